@@ -1,0 +1,45 @@
+#!/usr/bin/env bash
+# Installs every Debian 12 package geotandem needs (idempotent), then configures and builds.
+# Usage: scripts/setup.sh [PRESET ...]   (default preset: release)
+# Environment: GEOTANDEM_SKIP_APT=1 skips the package step (for machines that already have them).
+set -euo pipefail
+here="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+cd "$here"
+
+packages=(
+  build-essential cmake ninja-build pkg-config git ca-certificates
+  libgtest-dev libgmock-dev libbenchmark-dev
+  libgdal-dev gdal-bin libsegyio-dev
+  libopenmesh-dev libeigen3-dev
+  libzmq3-dev cppzmq-dev
+  nlohmann-json3-dev libyaml-cpp-dev libcli11-dev
+  libsqlite3-dev sqlite3 libxxhash-dev zlib1g-dev
+  clang-format clang-tidy
+)
+
+as_root() {
+  if [ "$(id -u)" -eq 0 ]; then "$@"; else sudo "$@"; fi
+}
+
+if [ "${GEOTANDEM_SKIP_APT:-0}" != 1 ]; then
+  missing=()
+  for p in "${packages[@]}"; do
+    dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+  done
+  if [ ${#missing[@]} -gt 0 ]; then
+    echo "setup: installing ${#missing[@]} Debian packages: ${missing[*]}"
+    as_root apt-get update -qq
+    as_root env DEBIAN_FRONTEND=noninteractive apt-get install -y -qq --no-install-recommends "${missing[@]}"
+  else
+    echo "setup: all Debian packages present"
+  fi
+fi
+
+presets=("$@")
+[ ${#presets[@]} -gt 0 ] || presets=(release)
+jobs="${GEOTANDEM_JOBS:-$(nproc)}"
+for preset in "${presets[@]}"; do
+  echo "setup: configuring and building preset '$preset' with $jobs jobs"
+  cmake --preset "$preset" >/dev/null
+  cmake --build --preset "$preset" -j "$jobs"
+done

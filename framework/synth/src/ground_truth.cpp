@@ -1,0 +1,126 @@
+#include "geotandem/synth/ground_truth.hpp"
+
+#include <cmath>
+#include <fstream>
+
+#include "geotandem/core/error.hpp"
+
+namespace geotandem::synth {
+namespace {
+
+// JSON has no infinity: an infinite SNR (no noise) is written as null.
+nlohmann::json finite_or_null(double value) {
+  return std::isfinite(value) ? nlohmann::json(value) : nlohmann::json(nullptr);
+}
+
+nlohmann::json geometry_json(const volume::Geometry& g) {
+  const auto& a = g.affine;
+  return {{"shape", {g.shape[0], g.shape[1], g.shape[2]}},
+          {"axes", {"inline", "crossline", "sample"}},
+          {"inline0", g.inline0},
+          {"inline_step", g.inline_step},
+          {"crossline0", g.crossline0},
+          {"crossline_step", g.crossline_step},
+          {"z0", g.z0},
+          {"dz", g.dz},
+          {"z_unit", volume::to_string(g.z_unit)},
+          {"affine", {{"x0", a.x0}, {"xi", a.xi}, {"xj", a.xj}, {"y0", a.y0}, {"yi", a.yi}, {"yj", a.yj}}},
+          {"bin_size_m", {a.step_i(), a.step_j()}}};
+}
+
+nlohmann::json body_json(const Body& b) {
+  nlohmann::json dims = nlohmann::json::object();
+  for (const auto& [name, value] : b.dimensions)
+    dims[name] = value;
+  return {{"name", b.name},
+          {"type", to_string(b.type)},
+          {"centre_index", b.centre_index},
+          {"centre_world", b.centre_world},
+          {"azimuth_deg", b.azimuth_deg},
+          {"volume_voxels", b.volume_voxels},
+          {"volume_world", b.volume_world},
+          {"volume_exact", b.volume_exact},
+          {"bounds_index", {{"lo", b.bounds_lo}, {"hi", b.bounds_hi}}},
+          {"dimensions", dims},
+          {"crosses_block_plane", b.crosses_block_plane},
+          {"cut_by_border", b.cut_by_border},
+          {"has_cavity", b.has_cavity},
+          {"chaotic", b.chaotic},
+          {"negative_control", b.negative_control}};
+}
+
+} // namespace
+
+const char* to_string(CubeKind kind) {
+  return kind == CubeKind::analytic ? "analytic" : "seismic";
+}
+
+CubeKind parse_cube_kind(const std::string& text) {
+  if (text == "analytic") return CubeKind::analytic;
+  if (text == "seismic") return CubeKind::seismic;
+  throw InvalidArgument("unknown synthetic cube kind '" + text + "'", {},
+                        "use 'analytic' (attribute-like field with exact bodies) or 'seismic' (convolutional model)");
+}
+
+const char* to_string(BodyType type) {
+  switch (type) {
+  case BodyType::ellipsoid: return "ellipsoid";
+  case BodyType::tube: return "tube";
+  case BodyType::shell: return "shell";
+  case BodyType::channel: return "channel";
+  case BodyType::lobe: return "lobe";
+  case BodyType::bright_spot: return "bright_spot";
+  }
+  return "unknown";
+}
+
+nlohmann::json to_json(const GroundTruth& t) {
+  nlohmann::json j;
+  j["format"] = "geotandem synthetic ground truth";
+  j["version"] = 1;
+  j["kind"] = to_string(t.kind);
+  j["seed"] = t.seed;
+  j["geometry"] = geometry_json(t.geometry);
+  j["world_volume_unit"] = t.world_volume_unit;
+  j["body_frame_unit_m"] = t.body_frame_unit_m;
+  j["voxel_volume_world"] = t.voxel_volume_world;
+  j["iso"] = t.iso ? nlohmann::json(*t.iso) : nlohmann::json(nullptr);
+  j["bubble_volume_threshold"] = {{"voxels", t.bubble_volume_threshold_voxels},
+                                  {"world", t.bubble_volume_threshold_voxels * t.voxel_volume_world}};
+  j["bubbles"] = {{"count", t.bubble_count}, {"radius_min", t.bubble_radius_min}, {"radius_max", t.bubble_radius_max}};
+  j["block_planes"] = {{"inline", t.block_planes[0]}, {"crossline", t.block_planes[1]}, {"sample", t.block_planes[2]}};
+  nlohmann::json bodies = nlohmann::json::array();
+  for (const auto& b : t.bodies)
+    bodies.push_back(body_json(b));
+  j["bodies"] = bodies;
+  if (t.seismic) {
+    const auto& s = *t.seismic;
+    j["seismic"] = {{"peak_frequency_hz", s.peak_frequency_hz},
+                    {"snr", finite_or_null(s.snr)},
+                    {"signal_rms", s.signal_rms},
+                    {"noise_rms", s.noise_rms},
+                    {"background_rms", s.background_rms},
+                    {"chaotic_rms", s.chaotic_rms},
+                    {"wavelet_half_length", s.wavelet_half_length},
+                    {"rms_threshold_suggestion", s.rms_threshold_suggestion}};
+  }
+  return j;
+}
+
+void write_ground_truth(const GroundTruth& truth, const std::string& path) {
+  std::ofstream out(path, std::ios::trunc);
+  if (!out)
+    throw IoError("cannot create the ground-truth file", {path}, "check that its directory exists and is writable");
+  out << to_json(truth).dump(2) << '\n';
+  out.close();
+  if (!out) throw IoError("could not write the ground-truth file", {path}, "check the free space");
+}
+
+std::string truth_path_for(const std::string& cube_path) {
+  std::string path = cube_path;
+  while (path.size() > 1 && path.back() == '/')
+    path.pop_back(); // "cube.zarr/" names the same store as "cube.zarr"
+  return path + ".truth.json";
+}
+
+} // namespace geotandem::synth

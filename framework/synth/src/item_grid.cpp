@@ -1,0 +1,50 @@
+#include "item_grid.hpp"
+
+#include <algorithm>
+
+namespace geotandem::synth::detail {
+
+ItemGrid::ItemGrid(const volume::Index3& shape, std::int64_t cell) : shape_(shape), cell_(cell) {
+  for (int a = 0; a < 3; ++a)
+    count_[a] = (shape[a] + cell - 1) / cell;
+  cells_.resize(static_cast<std::size_t>(count_[0] * count_[1] * count_[2]));
+}
+
+volume::Box ItemGrid::cells_of(const volume::Box& box) const {
+  const volume::Box clipped = box.intersection(volume::Box::of_shape(shape_));
+  volume::Box cells;
+  if (clipped.empty()) return cells;
+  for (int a = 0; a < 3; ++a) {
+    cells.lo[a] = clipped.lo[a] / cell_;
+    cells.hi[a] = (clipped.hi[a] - 1) / cell_ + 1;
+  }
+  return cells;
+}
+
+std::size_t ItemGrid::cell_index(std::int64_t ci, std::int64_t cj, std::int64_t ck) const {
+  return static_cast<std::size_t>((ci * count_[1] + cj) * count_[2] + ck);
+}
+
+void ItemGrid::add(std::uint32_t item, const volume::Box& influence) {
+  const volume::Box cells = cells_of(influence);
+  for (auto ci = cells.lo[0]; ci < cells.hi[0]; ++ci)
+    for (auto cj = cells.lo[1]; cj < cells.hi[1]; ++cj)
+      for (auto ck = cells.lo[2]; ck < cells.hi[2]; ++ck)
+        cells_[cell_index(ci, cj, ck)].push_back(item);
+}
+
+std::vector<std::uint32_t> ItemGrid::query(const volume::Box& box) const {
+  std::vector<std::uint32_t> items;
+  const volume::Box cells = cells_of(box);
+  for (auto ci = cells.lo[0]; ci < cells.hi[0]; ++ci)
+    for (auto cj = cells.lo[1]; cj < cells.hi[1]; ++cj)
+      for (auto ck = cells.lo[2]; ck < cells.hi[2]; ++ck) {
+        const auto& list = cells_[cell_index(ci, cj, ck)];
+        items.insert(items.end(), list.begin(), list.end());
+      }
+  std::sort(items.begin(), items.end());
+  items.erase(std::unique(items.begin(), items.end()), items.end());
+  return items;
+}
+
+} // namespace geotandem::synth::detail

@@ -1,0 +1,171 @@
+#include "seismic_model.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
+#include "hash.hpp"
+
+namespace geotandem::synth::detail {
+namespace {
+
+// exp(-a x^2) < 1e-7 beyond the support.
+constexpr double support_log = 16.11809565095832; // ln(1e7)
+
+} // namespace
+
+Wavelet::Wavelet(double peak_frequency_hz, double dt_s) {
+  const double pf = std::numbers::pi * peak_frequency_hz * dt_s;
+  a = pf * pf;
+  half = std::sqrt(support_log / a);
+  const int n = static_cast<int>(std::floor(half));
+  for (int x = -n; x <= n; ++x)
+    taps.push_back((*this)(static_cast<double>(x)));
+}
+
+double Wavelet::operator()(double x) const {
+  const double ax2 = a * x * x;
+  return (1.0 - 2.0 * ax2) * std::exp(-ax2);
+}
+
+void Fold::at(const Vec3& p, double& stretch, double& shift) const {
+  double sum = 0.0;
+  for (const auto& b : bumps) {
+    const double dx = p.x - b.x, dy = p.y - b.y;
+    sum += b.height * std::exp(-(dx * dx + dy * dy) / (2.0 * b.sigma * b.sigma));
+  }
+  stretch = 1.0 + sum;
+  shift = offset + dip_x * p.x + dip_y * p.y;
+}
+
+double Channel::volume() const {
+  return line.arc_length() * 4.0 / 3.0 * half_width * depth;
+}
+
+Aabb Channel::bounds(const Frame& frame) const {
+  Aabb box = line.bounds(frame, half_width, 0.0);
+  box.lo[2] = top;
+  box.hi[2] = top + depth;
+  return box;
+}
+
+double Lobe::volume() const {
+  return std::numbers::pi * a * b * thickness / 2.0;
+}
+
+Aabb Lobe::bounds(const Frame& frame) const {
+  auto e = frame.ellipse_extent(a, axes.ux, axes.uy, b, axes.vx, axes.vy);
+  auto c = frame.to_index(centre);
+  return Aabb{{c[0] - e[0], c[1] - e[1], centre.z}, {c[0] + e[0], c[1] + e[1], centre.z + thickness}};
+}
+
+double BrightSpot::weight(const Vec3& p) const {
+  const double dx = p.x - centre.x, dy = p.y - centre.y;
+  const double s = (dx * axes.ux + dy * axes.uy) / a, n = (dx * axes.vx + dy * axes.vy) / b;
+  const double rho = std::sqrt(s * s + n * n);
+  if (rho >= 1.0) return 0.0;
+  if (rho <= 0.7) return amplitude;
+  const double c = std::cos(0.5 * std::numbers::pi * (rho - 0.7) / 0.3); // smooth rim
+  return amplitude * c * c;
+}
+
+Aabb BrightSpot::bounds(const Frame& frame, double half_height) const {
+  auto e = frame.ellipse_extent(a, axes.ux, axes.uy, b, axes.vx, axes.vy);
+  auto c = frame.to_index(centre);
+  return Aabb{{c[0] - e[0], c[1] - e[1], centre.z - half_height}, {c[0] + e[0], c[1] + e[1], centre.z + half_height}};
+}
+
+SeismicModel::SeismicModel(const Frame& frame_, const Wavelet& wavelet_)
+    : frame(frame_), wavelet(wavelet_), chaotic_grid({frame_.geometry().shape[0], frame_.geometry().shape[1], 1}, 16),
+      spot_grid({frame_.geometry().shape[0], frame_.geometry().shape[1], 1}, 16) {}
+
+void SeismicModel::intervals(std::int64_t i, std::int64_t j, std::vector<Interval>& out) const {
+  out.clear();
+  const Vec3 p = frame.to_frame(static_cast<double>(i), static_cast<double>(j), 0.0);
+  for (std::uint32_t id : chaotic_grid.query(volume::Box{{i, j, 0}, {i + 1, j + 1, 1}})) {
+    if (const auto* lobe = std::get_if<Lobe>(&chaotic[id])) {
+      const double dx = p.x - lobe->centre.x, dy = p.y - lobe->centre.y;
+      const double s = (dx * lobe->axes.ux + dy * lobe->axes.uy) / lobe->a;
+      const double n = (dx * lobe->axes.vx + dy * lobe->axes.vy) / lobe->b;
+      const double rho2 = s * s + n * n;
+      if (rho2 < 1.0) out.push_back({lobe->centre.z, lobe->centre.z + lobe->thickness * (1.0 - rho2)});
+      continue;
+    }
+    const auto& ch = std::get<Channel>(chaotic[id]);
+    double s = 0.0, n = 0.0;
+    ch.line.local(p, s, n);
+    const double w = ch.half_width;
+    if (std::abs(n) >= ch.line.amplitude + w || std::abs(s) >= ch.line.half_length + w) continue;
+    if (std::abs(n - ch.line.offset(s)) * ch.line.lipschitz_factor >= w) continue;
+    const double t = ch.line.nearest(s, n);
+    const double ds = s - t, dn = n - ch.line.offset(t);
+    const double d2 = ds * ds + dn * dn;
+    if (d2 >= w * w || ch.line.end_distance(s, n) < 0.0) continue;
+    out.push_back({ch.top, ch.top + ch.depth * (1.0 - d2 / (w * w))});
+  }
+}
+
+void SeismicModel::trace(std::int64_t i, std::int64_t j, std::int64_t k0, std::int64_t k1, double* out) const {
+  const auto count = static_cast<std::size_t>(k1 - k0);
+  std::fill(out, out + count, 0.0);
+  const double h = wavelet.half;
+  const double lo = static_cast<double>(k0) - h, hi = static_cast<double>(k1 - 1) + h;
+  // Adds spike (position, amplitude) to every sample it reaches. exp(-a x^2) runs along the support
+  // by a two-term recurrence (three exp per spike instead of one per sample), always from the first
+  // sample of the support, so a sample's value never depends on the box. Each sample receives its
+  // spikes in one global order (layers by index, then chaotic spikes by body and index, then bright
+  // spots), whatever box is read, so sums are bit-identical.
+  const double a = wavelet.a, step2 = std::exp(-2.0 * a);
+  auto add = [&](double position, double amplitude) {
+    const auto first = static_cast<std::int64_t>(std::ceil(position - h));
+    const auto last = static_cast<std::int64_t>(std::floor(position + h));
+    if (last < k0 || first >= k1) return;
+    double x = static_cast<double>(first) - position;
+    double g = std::exp(-a * x * x), ratio = std::exp(-a * (2.0 * x + 1.0));
+    for (auto k = first; k <= std::min(last, k1 - 1); ++k) {
+      if (k >= k0) out[k - k0] += amplitude * (1.0 - 2.0 * a * x * x) * g;
+      g *= ratio;
+      ratio *= step2;
+      x += 1.0;
+    }
+  };
+  std::vector<Interval> inside;
+  intervals(i, j, inside);
+  auto in_chaotic = [&](double position) {
+    for (const auto& iv : inside)
+      if (position >= iv.top && position < iv.base) return true;
+    return false;
+  };
+
+  const Vec3 p = frame.to_frame(static_cast<double>(i), static_cast<double>(j), 0.0);
+  double stretch = 1.0, shift = 0.0;
+  fold.at(p, stretch, shift);
+  // Layers m sit at geological time tau_m = spacing * (m + 0.8 u_m), increasing in m.
+  const auto m_lo = static_cast<std::int64_t>(std::floor((lo - shift) / stretch / spacing)) - 1;
+  const auto m_hi = static_cast<std::int64_t>(std::ceil((hi - shift) / stretch / spacing)) + 1;
+  for (auto m = m_lo; m <= m_hi; ++m) {
+    const std::uint64_t r = hash1(reflector_key, m);
+    const double tau = spacing * (static_cast<double>(m) + 0.8 * unit(r));
+    const double position = tau * stretch + shift;
+    if (position < lo || position > hi || in_chaotic(position)) continue;
+    add(position, uniform(mix64(r), -1.0, 1.0));
+  }
+  // Chaotic bodies: spikes at random positions per trace, with no lateral continuity.
+  const std::uint64_t trace_key = hash2(chaotic_key, i, j);
+  for (const auto& iv : inside) {
+    const double top = std::max(iv.top, lo), base = std::min(iv.base, hi + 1.0);
+    for (auto n = static_cast<std::int64_t>(std::floor(top / spacing)) - 1;
+         n <= static_cast<std::int64_t>(std::ceil(base / spacing)); ++n) {
+      const std::uint64_t r = hash1(trace_key, n);
+      const double position = spacing * (static_cast<double>(n) + unit(r));
+      if (position < iv.top || position >= iv.base || position < lo || position > hi) continue;
+      add(position, chaotic_amplitude * uniform(mix64(r), -1.0, 1.0));
+    }
+  }
+  for (std::uint32_t id : spot_grid.query(volume::Box{{i, j, 0}, {i + 1, j + 1, 1}})) {
+    const double wgt = spots[id].weight(p);
+    if (wgt > 0.0 && spots[id].centre.z >= lo && spots[id].centre.z <= hi) add(spots[id].centre.z, wgt);
+  }
+}
+
+} // namespace geotandem::synth::detail

@@ -1,0 +1,107 @@
+#pragma once
+// Internals of the seismic kind: a convolutional model. Reflectivity is a layer cake of spikes in
+// geological time, folded per trace (vertical stretch by Gaussian bumps plus a planar dip), with
+// the spikes inside chaotic bodies replaced by random per-trace spikes of higher amplitude, and a
+// flat bright reflector (negative control). Each spike is convolved analytically with a Ricker
+// wavelet at its fractional position, so traces are smooth laterally and need no interpolation.
+
+#include <cstdint>
+#include <variant>
+#include <vector>
+
+#include "frame.hpp"
+#include "geotandem/synth/ground_truth.hpp"
+#include "geotandem/synth/options.hpp"
+#include "item_grid.hpp"
+#include "shapes.hpp"
+
+namespace geotandem::synth::detail {
+
+// Ricker wavelet in samples: w(x) = (1 - 2 a x^2) exp(-a x^2), a = (pi f dt)^2, cut where
+// exp(-a x^2) < 1e-7.
+struct Wavelet {
+  double a = 0.0;
+  double half = 0.0;        // support half length (samples, fractional)
+  std::vector<double> taps; // w(n) for n = -floor(half) .. floor(half)
+
+  Wavelet(double peak_frequency_hz, double dt_s);
+  double operator()(double x) const;
+  int half_taps() const { return static_cast<int>(taps.size() / 2); }
+};
+
+struct Bump {
+  double x, y, sigma, height;
+};
+
+// Layer at geological time tau lies at sample tau * stretch(i, j) + shift(i, j).
+struct Fold {
+  std::vector<Bump> bumps;
+  double dip_x = 0.0, dip_y = 0.0, offset = 0.0;
+  void at(const Vec3& p, double& stretch, double& shift) const;
+};
+
+// A channel: flat top at `top`, U-shaped base top + depth (1 - (d / half_width)^2), d the
+// horizontal distance to the sinuous centre line.
+struct Channel {
+  SinuousLine line;
+  double half_width = 1.0, depth = 1.0, top = 0.0;
+  double volume() const; // arc_length * 4/3 * half_width * depth (exact, see docs)
+  Aabb bounds(const Frame& frame) const;
+};
+
+// A lobe: horizontal ellipse, flat top at centre.z, base top + thickness (1 - rho^2).
+struct Lobe {
+  Vec3 centre;
+  double a = 1.0, b = 1.0, thickness = 1.0, azimuth = 0.0;
+  Axes axes;
+  double volume() const; // pi a b thickness / 2
+  Aabb bounds(const Frame& frame) const;
+};
+
+// A flat strong reflector over a horizontal ellipse, tapered at its rim.
+struct BrightSpot {
+  Vec3 centre;
+  double a = 1.0, b = 1.0, azimuth = 0.0, amplitude = 1.0;
+  Axes axes;
+  double weight(const Vec3& p) const; // amplitude factor at a trace, 0 outside
+  Aabb bounds(const Frame& frame, double half_height) const;
+};
+
+using Chaotic = std::variant<Channel, Lobe>;
+
+// A sample range [top, base) of a trace inside a chaotic body.
+struct Interval {
+  double top, base;
+};
+
+struct SeismicModel {
+  Frame frame;
+  std::uint64_t reflector_key = 0, chaotic_key = 0, noise_key = 0;
+  Wavelet wavelet;
+  Fold fold;
+  double spacing = 3.0;         // mean reflector spacing (samples)
+  double chaotic_amplitude = 1; // half range of chaotic spike amplitudes (layers: 1)
+  std::vector<Chaotic> chaotic;
+  std::vector<BrightSpot> spots;
+  ItemGrid chaotic_grid;    // per trace cell: chaotic bodies
+  ItemGrid spot_grid;       // per trace cell: bright spots
+  double noise_scale = 0.0; // multiplies unit-variance band-limited noise
+
+  SeismicModel(const Frame& frame, const Wavelet& wavelet);
+  // Chaotic intervals of trace (i, j).
+  void intervals(std::int64_t i, std::int64_t j, std::vector<Interval>& out) const;
+  // Noiseless samples [k0, k1) of trace (i, j), written to out[0 .. k1 - k0).
+  void trace(std::int64_t i, std::int64_t j, std::int64_t k0, std::int64_t k1, double* out) const;
+};
+
+struct SeismicLayout {
+  std::vector<Chaotic> chaotic;
+  std::vector<BrightSpot> spots;
+  Fold fold;
+  GroundTruth truth;
+};
+
+// Places channels, lobes and the bright spot (deterministic in options.seed and options.shape).
+SeismicLayout layout_seismic(const SeismicOptions& options, const Frame& frame, const Wavelet& wavelet);
+
+} // namespace geotandem::synth::detail

@@ -1,0 +1,190 @@
+#include "shapes.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
+namespace geotandem::synth::detail {
+
+Axes Axes::of(double azimuth_rad) {
+  const double s = std::sin(azimuth_rad), c = std::cos(azimuth_rad);
+  return {s, c, c, -s};
+}
+
+Ellipsoid::Ellipsoid(Vec3 centre_, double a_, double b_, double c_, double azimuth_)
+    : centre(centre_), a(a_), b(b_), c(c_), azimuth(azimuth_), axes(Axes::of(azimuth_)) {}
+
+double Ellipsoid::signed_distance(const Vec3& p) const {
+  const double dx = p.x - centre.x, dy = p.y - centre.y;
+  const double s = (dx * axes.ux + dy * axes.uy) / a;
+  const double n = (dx * axes.vx + dy * axes.vy) / b;
+  const double z = (p.z - centre.z) / c;
+  const double rho = std::sqrt(s * s + n * n + z * z);
+  // |grad rho| * rho = |(s/a, n/b, z/c)| in normalised coordinates.
+  const double g = std::sqrt(s * s / (a * a) + n * n / (b * b) + z * z / (c * c));
+  if (g == 0.0) return std::min({a, b, c});
+  return (1.0 - rho) * rho / g;
+}
+
+double Ellipsoid::volume() const {
+  return 4.0 / 3.0 * std::numbers::pi * a * b * c;
+}
+
+Aabb Ellipsoid::bounds(const Frame& frame) const {
+  auto e = frame.ellipse_extent(a, axes.ux, axes.uy, b, axes.vx, axes.vy);
+  auto ci = frame.to_index(centre);
+  return Aabb{{ci[0] - e[0], ci[1] - e[1], ci[2] - c}, {ci[0] + e[0], ci[1] + e[1], ci[2] + c}};
+}
+
+Shell::Shell(const Ellipsoid& outer_, double inner_)
+    : outer(outer_), cavity(outer_.centre, outer_.a * inner_, outer_.b * inner_, outer_.c * inner_, outer_.azimuth),
+      inner(inner_) {}
+
+double Shell::signed_distance(const Vec3& p) const {
+  return std::min(outer.signed_distance(p), -cavity.signed_distance(p));
+}
+
+double Shell::volume() const {
+  return outer.volume() * (1.0 - inner * inner * inner);
+}
+
+double Sphere::signed_distance(const Vec3& p) const {
+  const double dx = p.x - centre.x, dy = p.y - centre.y, dz = p.z - centre.z;
+  return r - std::sqrt(dx * dx + dy * dy + dz * dz);
+}
+
+double SinuousLine::offset(double t) const {
+  return amplitude * std::sin(wavenumber * t + phase);
+}
+
+double SinuousLine::slope(double t) const {
+  return amplitude * wavenumber * std::cos(wavenumber * t + phase);
+}
+
+Vec3 SinuousLine::point(double t) const {
+  const double n = offset(t);
+  return {centre.x + t * axes.ux + n * axes.vx, centre.y + t * axes.uy + n * axes.vy, centre.z};
+}
+
+void SinuousLine::local(const Vec3& p, double& s, double& n) const {
+  const double dx = p.x - centre.x, dy = p.y - centre.y;
+  s = dx * axes.ux + dy * axes.uy;
+  n = dx * axes.vx + dy * axes.vy;
+}
+
+double SinuousLine::nearest(double s, double n) const {
+  // Root of g'(t)/2 = (t - s) + (h(t) - n) h'(t), increasing in t under the convexity condition.
+  // It lies within |t - s| <= (A + |n|) A k; safeguarded Newton inside that bracket.
+  const double bracket = (amplitude + std::abs(n)) * amplitude * wavenumber + 1e-9;
+  double lo = s - bracket, hi = s + bracket, t = s;
+  for (int iteration = 0; iteration < 60; ++iteration) {
+    const double arg = wavenumber * t + phase;
+    const double sn = std::sin(arg), cs = std::cos(arg);
+    const double h = amplitude * sn, h1 = amplitude * wavenumber * cs;
+    const double h2 = -amplitude * wavenumber * wavenumber * sn;
+    const double f = (t - s) + (h - n) * h1;
+    const double df = 1.0 + h1 * h1 + (h - n) * h2;
+    if (f == 0.0) break;
+    if (f < 0.0)
+      lo = t;
+    else
+      hi = t;
+    double next = t - f / df;
+    if (!(next > lo && next < hi)) next = 0.5 * (lo + hi);
+    // The distance is stationary at the root: an error e in t changes it by O(e^2).
+    if (std::abs(next - t) <= 1e-8) {
+      t = next;
+      break;
+    }
+    t = next;
+  }
+  return t;
+}
+
+void SinuousLine::prepare() {
+  for (int e = 0; e < 2; ++e) {
+    const double t = e == 0 ? -half_length : half_length;
+    const double h1 = slope(t), norm = std::sqrt(1.0 + h1 * h1);
+    end_n[e] = offset(t);
+    end_ts[e] = 1.0 / norm;
+    end_tn[e] = h1 / norm;
+  }
+  const double lip = amplitude * wavenumber;
+  lipschitz_factor = 1.0 / std::sqrt(1.0 + lip * lip);
+}
+
+double SinuousLine::end_distance(double s, double n) const {
+  const double first = (s + half_length) * end_ts[0] + (n - end_n[0]) * end_tn[0];
+  const double last = (half_length - s) * end_ts[1] - (n - end_n[1]) * end_tn[1];
+  return std::min(first, last);
+}
+
+double SinuousLine::arc_length() const {
+  // Composite Simpson rule on sqrt(1 + h'(t)^2); the integrand is smooth and periodic, so 4096
+  // intervals leave an error far below 1e-9 of the length.
+  constexpr int intervals = 4096;
+  const double step = 2.0 * half_length / intervals;
+  auto f = [&](double t) {
+    const double h1 = slope(t);
+    return std::sqrt(1.0 + h1 * h1);
+  };
+  double sum = f(-half_length) + f(half_length);
+  for (int n = 1; n < intervals; ++n)
+    sum += (n % 2 ? 4.0 : 2.0) * f(-half_length + n * step);
+  return sum * step / 3.0;
+}
+
+Aabb SinuousLine::bounds(const Frame& frame, double radius_h, double radius_v) const {
+  // The body lies within the union of balls of radius `radius_h` centred on the line: sample the
+  // line densely and grow by the index extent of such a ball (plus the sagitta between samples).
+  constexpr int samples = 128;
+  Aabb box{{HUGE_VAL, HUGE_VAL, HUGE_VAL}, {-HUGE_VAL, -HUGE_VAL, -HUGE_VAL}};
+  for (int n = 0; n <= samples; ++n) {
+    auto index = frame.to_index(point(-half_length + 2.0 * half_length * n / samples));
+    for (int a = 0; a < 2; ++a) {
+      box.lo[a] = std::min(box.lo[a], index[a]);
+      box.hi[a] = std::max(box.hi[a], index[a]);
+    }
+  }
+  const double step = 2.0 * half_length / samples;
+  const double sagitta = amplitude * wavenumber * wavenumber * step * step / 8.0 + 1e-9;
+  auto disc = frame.disc_extent();
+  for (int a = 0; a < 2; ++a) {
+    box.lo[a] -= (radius_h + sagitta) * disc[a];
+    box.hi[a] += (radius_h + sagitta) * disc[a];
+  }
+  box.lo[2] = centre.z - radius_v;
+  box.hi[2] = centre.z + radius_v;
+  return box;
+}
+
+double SinuousLine::max_amplitude(double wavelength, double reach) {
+  // Largest A with A k^2 (2A + reach) = 0.9: 2k^2 A^2 + k^2 reach A - 0.9 = 0.
+  const double k = 2.0 * std::numbers::pi / wavelength, k2 = k * k;
+  return (-k2 * reach + std::sqrt(k2 * k2 * reach * reach + 7.2 * k2)) / (4.0 * k2);
+}
+
+double Tube::signed_distance(const Vec3& p) const {
+  double s = 0.0, n = 0.0;
+  line.local(p, s, n);
+  const double dz = p.z - line.centre.z;
+  // Only samples closer than radius + band to the line can get an estimate above -band; all others
+  // get -reach. Cheap tests first: no point of the line has |n| > A, its ends lie at
+  // |s| <= half_length, and (the line being the graph of a Lipschitz function of s) the distance
+  // is at least the offset across it times 1/sqrt(1 + L^2).
+  const double near = radius + band;
+  if (std::abs(dz) > near || std::abs(n) > line.amplitude + near || std::abs(s) > line.half_length + radius + reach)
+    return -reach;
+  const double across = std::abs(n - line.offset(s)) * line.lipschitz_factor;
+  if (across * across + dz * dz > near * near) return -reach;
+  const double t = line.nearest(s, n);
+  const double ds = s - t, dn = n - line.offset(t);
+  const double d = std::sqrt(ds * ds + dn * dn + dz * dz);
+  return std::min(radius - d, line.end_distance(s, n));
+}
+
+double Tube::volume() const {
+  return line.arc_length() * std::numbers::pi * radius * radius;
+}
+
+} // namespace geotandem::synth::detail

@@ -1,0 +1,56 @@
+#pragma once
+// Opening and writing cubes. The format is found from the file itself (signature, sidecar,
+// directory layout), never from a flag.
+//
+// Readers: netCDF-4 / HDF5 / Zarr through GDAL's multidimensional API; GeoTIFF and ENVI through
+// GDAL's classic raster API (one band = one inline slice); SEG-Y through segyio; raw float32 with
+// a JSON sidecar (FILE.raw + FILE.raw.json).
+// Writers (format from the extension): .nc (netCDF-4), .zarr (Zarr v2), .tif (GeoTIFF, one band
+// per inline), .segy/.sgy (SEG-Y rev 1, IEEE floats), .raw (+ .raw.json).
+
+#include <functional>
+#include <limits>
+#include <memory>
+#include <string>
+
+#include "geotandem/core/cancel.hpp"
+#include "geotandem/core/progress.hpp"
+#include "geotandem/volume/volume.hpp"
+
+namespace geotandem::volume {
+
+// What to do with NaN or infinite samples.
+enum class NanPolicy {
+  error, // default: DataError naming the file, the box and the first bad sample's index
+  fill,  // replace them by OpenOptions::fill_value (default: lowest float, i.e. "outside")
+};
+NanPolicy parse_nan_policy(const std::string& text);
+
+struct OpenOptions {
+  NanPolicy nan_policy = NanPolicy::error;
+  float fill_value = std::numeric_limits<float>::lowest();
+  // For multidimensional files with several 3D arrays: the array's name (empty: the only 3D one).
+  std::string variable;
+};
+
+// Opens a cube; throws IoError (missing, unreadable) or FormatError (unknown or broken format),
+// naming the file and what to do.
+std::unique_ptr<Volume> open_volume(const std::string& path, const OpenOptions& options = {});
+
+// The format open_volume would use for `path` ("netCDF-4", "Zarr", "SEG-Y", ...), or throws.
+std::string detect_format(const std::string& path);
+
+struct WriteOptions {
+  // Chunk edge used for chunked formats and for the streaming block size (samples).
+  int chunk = 64;
+  std::string variable = "amplitude";
+  bool overwrite = false;
+};
+
+// Streams `volume` into a new file, block by block (never the whole cube in memory). The format
+// comes from the extension of `path`; an unknown extension is an InvalidArgument that lists the
+// known ones. An existing file is an error unless options.overwrite.
+void write_volume(const Volume& volume, const std::string& path, const WriteOptions& options = {},
+                  Progress* progress = nullptr, const CancelToken& cancel = {});
+
+} // namespace geotandem::volume

@@ -1,0 +1,63 @@
+#pragma once
+// A lazy 3D scalar field. Consumers ask for a box (a block plus the halo they need) and never load
+// a whole cube unless it is small. Attributes and synthetic cubes are volumes too: they compute any
+// box on demand.
+
+#include <memory>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "geotandem/volume/box.hpp"
+#include "geotandem/volume/geometry.hpp"
+
+namespace geotandem::volume {
+
+class Volume {
+public:
+  virtual ~Volume() = default;
+
+  virtual const Geometry& geometry() const = 0;
+
+  // Writes the samples of `box` into `out` in the box's C order (see box.hpp).
+  // Preconditions: `box` lies inside geometry().bounds() and out.size() == box.count();
+  // throws InvalidArgument naming the box and the cube's shape otherwise, IoError or FormatError
+  // when the underlying file cannot deliver the samples.
+  // Thread safety: not required; use one Volume per thread unless a subclass says otherwise.
+  void read(const Box& box, std::span<float> out) const;
+  std::vector<float> read(const Box& box) const;
+
+  // Short format name ("netCDF-4", "Zarr", "SEG-Y", "raw", "synthetic analytic", ...).
+  virtual std::string format() const = 0;
+  // Where the samples come from, for messages: a path, or the parameters of a computed volume.
+  virtual std::string source() const = 0;
+
+protected:
+  // Called by read() after the box was checked.
+  virtual void read_box(const Box& box, std::span<float> out) const = 0;
+};
+
+// A volume that holds its samples in memory (tests, small cubes, results of a whole-cube
+// computation).
+class MemoryVolume final : public Volume {
+public:
+  MemoryVolume(Geometry geometry, std::vector<float> samples, std::string source = "memory");
+  // Reads a whole volume into memory.
+  static std::unique_ptr<MemoryVolume> copy_of(const Volume& volume);
+
+  const Geometry& geometry() const override { return geometry_; }
+  std::string format() const override { return "memory"; }
+  std::string source() const override { return source_; }
+  const std::vector<float>& samples() const { return samples_; }
+  std::vector<float>& samples() { return samples_; }
+
+protected:
+  void read_box(const Box& box, std::span<float> out) const override;
+
+private:
+  Geometry geometry_;
+  std::vector<float> samples_;
+  std::string source_;
+};
+
+} // namespace geotandem::volume

@@ -1,0 +1,43 @@
+#pragma once
+// Per-format readers and writers behind open_volume/write_volume. Internal to the volume part.
+// Each reader returns a Volume that reads lazily by box; each writer streams from a Volume.
+
+#include <memory>
+#include <string>
+
+#include "geotandem/core/cancel.hpp"
+#include "geotandem/core/progress.hpp"
+#include "geotandem/volume/io.hpp"
+
+namespace geotandem::volume::detail {
+
+enum class Format { netcdf, hdf5, zarr, geotiff, envi, segy, raw, unknown };
+
+// Looks at the file (signature bytes, sidecars, directory layout); never at the extension alone.
+Format sniff_format(const std::string& path);
+const char* format_name(Format format);
+
+// GDAL multidimensional API: netCDF-4, HDF5 (read only), Zarr. (gdal_md.cpp)
+std::unique_ptr<Volume> open_gdal_md(const std::string& path, Format format, const OpenOptions& options);
+void write_gdal_md(const Volume& volume, const std::string& path, Format format, const WriteOptions& options,
+                   Progress& progress, const CancelToken& cancel);
+
+// GDAL classic rasters, one band per inline slice: GeoTIFF, ENVI. (gdal_raster.cpp)
+std::unique_ptr<Volume> open_gdal_raster(const std::string& path, Format format, const OpenOptions& options);
+void write_geotiff(const Volume& volume, const std::string& path, const WriteOptions& options, Progress& progress,
+                   const CancelToken& cancel);
+
+// SEG-Y through segyio. (segy.cpp)
+std::unique_ptr<Volume> open_segy(const std::string& path, const OpenOptions& options);
+void write_segy(const Volume& volume, const std::string& path, const WriteOptions& options, Progress& progress,
+                const CancelToken& cancel);
+
+// Raw little-endian float32, C order [inline][crossline][sample], with FILE.json sidecar. (raw.cpp)
+std::unique_ptr<Volume> open_raw(const std::string& path, const OpenOptions& options);
+void write_raw(const Volume& volume, const std::string& path, const WriteOptions& options, Progress& progress,
+               const CancelToken& cancel);
+
+// Wraps a reader so that NaN and infinite samples follow the policy. (nan_guard.cpp)
+std::unique_ptr<Volume> guard_nan(std::unique_ptr<Volume> inner, const OpenOptions& options);
+
+} // namespace geotandem::volume::detail

@@ -1,0 +1,93 @@
+#pragma once
+// Shared by the GDAL-backed readers and writers (gdal_md*.cpp, gdal_raster*.cpp): one-time driver
+// registration, capture of GDAL's messages into our exceptions, owning dataset handles, the names
+// under which a cube's geometry is stored (docs/formats-gdal.md), and the chunk-by-chunk streaming
+// loop of the writers.
+//
+// Thread safety: GDAL datasets are not thread-safe. Every Volume made here owns its own dataset
+// handle; use one Volume per thread (open the file once per thread).
+
+#include <gdal_priv.h>
+
+#include <functional>
+#include <memory>
+#include <optional>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "geotandem/core/cancel.hpp"
+#include "geotandem/core/progress.hpp"
+#include "geotandem/volume/volume.hpp"
+
+namespace geotandem::volume::detail::gdal {
+
+// Registers GDAL's drivers once per process. GDAL keeps its driver manager as a process-wide
+// global: there is no way to pass one down, so the first caller registers and later calls are free.
+void register_drivers();
+
+// While alive, collects GDAL's warnings and errors of the calling thread (GDAL keeps one handler
+// stack per thread) instead of letting them reach stderr, so they end up in our error text.
+class ErrorCapture {
+public:
+  ErrorCapture();
+  ~ErrorCapture();
+  ErrorCapture(const ErrorCapture&) = delete;
+  ErrorCapture& operator=(const ErrorCapture&) = delete;
+
+  // A CE_Failure or CE_Fatal was reported since construction or the last clear().
+  bool failed() const { return failed_; }
+  // The error number of the first failure (CPLE_None when none).
+  CPLErrorNum first_error() const { return first_error_; }
+  // "; GDAL: msg1; msg2" (at most a few messages), or "" when GDAL said nothing.
+  std::string text() const;
+  void clear();
+
+private:
+  static void CPL_STDCALL handle(CPLErr level, CPLErrorNum number, const char* message);
+
+  std::vector<std::string> messages_;
+  bool failed_ = false;
+  CPLErrorNum first_error_ = CPLE_None;
+};
+
+struct DatasetCloser {
+  void operator()(GDALDataset* dataset) const;
+};
+// Owns a dataset; closing flushes it (release every group, array and dimension handle first).
+using DatasetPtr = std::unique_ptr<GDALDataset, DatasetCloser>;
+
+// Opens `path` with GDALOpenEx restricted to `driver` (a GDAL short name). `flags` adds
+// GDAL_OF_RASTER or GDAL_OF_MULTIDIM_RASTER. Throws FormatError naming the file with GDAL's reason.
+DatasetPtr open_dataset(const std::string& path, unsigned flags, const char* driver, const std::string& format);
+
+// Closes a dataset that was written; throws IoError naming `path` when GDAL reports a failure
+// while flushing.
+void close_written(DatasetPtr dataset, const std::string& path);
+
+// Geometry storage. Numbers are stored under these keys (as Float64 attributes in netCDF/Zarr, as
+// "%.17g" text metadata items in GeoTIFF); the sample unit as the text "ms" or "m" under
+// z_unit_key. A missing key leaves the field as the reader's default.
+struct GeometryField {
+  const char* key;
+  double& (*field)(Geometry&);
+};
+std::span<const GeometryField> geometry_fields();
+inline constexpr const char* z_unit_key = "geotandem_z_unit";
+double field_value(const Geometry& geometry, const GeometryField& field);
+
+// Text that parses back to the same double; and its inverse (nullopt unless the whole text is a
+// finite number).
+std::string format_double(double value);
+std::optional<double> parse_double(const char* text);
+
+// GDAL's name of a data type ("Float32", "Int16", ...).
+std::string type_name(GDALDataType type);
+
+// Streams `source` in boxes of `block` samples aligned on multiples of `block` from the origin
+// (clipped at the far faces), in C order of the boxes: reads each box, hands it to `write`,
+// reports progress in boxes and checks `cancel` between boxes.
+void stream_boxes(const Volume& source, const Index3& block, const std::string& label, Progress& progress,
+                  const CancelToken& cancel, const std::function<void(const Box&, std::span<const float>)>& write);
+
+} // namespace geotandem::volume::detail::gdal

@@ -1,0 +1,217 @@
+#include "gdal_md_inspect.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cctype>
+#include <vector>
+
+#include "gdal_common.hpp"
+#include "geotandem/core/error.hpp"
+
+namespace geotandem::volume::detail::gdal {
+namespace {
+
+struct Found {
+  std::string full_name;
+  std::shared_ptr<GDALMDArray> array;
+};
+
+// Every array of `group` and its subgroups. Depth-limited: a cube is never buried deep, and a
+// malformed file must not send us round a loop of links.
+void collect(GDALGroup& group, std::vector<Found>& out, int depth) {
+  for (const std::string& name : group.GetMDArrayNames())
+    if (auto array = group.OpenMDArray(name)) out.push_back({array->GetFullName(), std::move(array)});
+  if (depth >= 4) return;
+  for (const std::string& name : group.GetGroupNames())
+    if (auto child = group.OpenGroup(name)) collect(*child, out, depth + 1);
+}
+
+bool is_float(const GDALMDArray& array) {
+  const GDALExtendedDataType& type = array.GetDataType();
+  return type.GetClass() == GEDTC_NUMERIC &&
+         (type.GetNumericDataType() == GDT_Float32 || type.GetNumericDataType() == GDT_Float64);
+}
+
+bool is_cube(const GDALMDArray& array) {
+  return array.GetDimensionCount() == 3 && is_float(array);
+}
+
+std::string type_of(const GDALMDArray& array) {
+  const GDALExtendedDataType& type = array.GetDataType();
+  if (type.GetClass() == GEDTC_STRING) return "String";
+  if (type.GetClass() == GEDTC_COMPOUND) return "Compound";
+  return type_name(type.GetNumericDataType());
+}
+
+// "amplitude (Float32, 37x29x53)"
+std::string describe(const Found& found) {
+  std::string shape;
+  for (const auto& dim : found.array->GetDimensions())
+    shape += (shape.empty() ? "" : "x") + std::to_string(dim->GetSize());
+  return found.full_name + " (" + type_of(*found.array) + ", " + (shape.empty() ? "scalar" : shape) + ")";
+}
+
+// The arrays that are cubes (`cubes`) or all the others (`!cubes`), described; "none" if none.
+std::string list(const std::vector<Found>& arrays, bool cubes) {
+  std::string out;
+  for (const Found& found : arrays)
+    if (is_cube(*found.array) == cubes) out += (out.empty() ? "" : ", ") + describe(found);
+  return out.empty() ? "none" : out;
+}
+
+std::string lower(std::string text) {
+  for (char& c : text)
+    c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  return text;
+}
+
+// 0 inline, 1 crossline, 2 sample, -1 not recognised.
+int axis_of(const std::string& dimension_name) {
+  const std::string name = lower(dimension_name);
+  for (const char* n : {"iline", "inline", "inlines", "il"})
+    if (name == n) return 0;
+  for (const char* n : {"xline", "crossline", "crosslines", "xl"})
+    if (name == n) return 1;
+  for (const char* n : {"twt", "time", "depth", "z", "sample", "samples"})
+    if (name == n) return 2;
+  return -1;
+}
+
+std::vector<double> read_coordinates(const GDALMDArray& variable) {
+  std::vector<double> values(static_cast<std::size_t>(variable.GetDimensions()[0]->GetSize()));
+  const GUInt64 start = 0;
+  const std::size_t count = values.size();
+  if (!variable.Read(&start, &count, nullptr, nullptr, GDALExtendedDataType::Create(GDT_Float64), values.data()))
+    return {};
+  return values;
+}
+
+// The values of the dimension's 1-D numeric indexing variable, or empty.
+std::vector<double> coordinates_of(const GDALDimension& dimension) {
+  auto variable = dimension.GetIndexingVariable();
+  if (!variable || variable->GetDimensionCount() != 1 || variable->GetDataType().GetClass() != GEDTC_NUMERIC ||
+      variable->GetDimensions()[0]->GetSize() != dimension.GetSize() || dimension.GetSize() == 0)
+    return {};
+  return read_coordinates(*variable);
+}
+
+std::string unit_of(const GDALDimension& dimension) {
+  auto variable = dimension.GetIndexingVariable();
+  if (!variable) return {};
+  std::string unit = variable->GetUnit();
+  if (unit.empty())
+    if (auto attribute = variable->GetAttribute("units"))
+      if (const char* text = attribute->ReadAsString()) unit = text;
+  return lower(unit);
+}
+
+// First value and increment of a coordinate variable (increment kept at `step` for a single value).
+void take_line_numbers(const std::vector<double>& values, double& first, double& step) {
+  if (values.empty()) return;
+  first = values[0];
+  if (values.size() > 1 && values[1] != values[0]) step = values[1] - values[0];
+}
+
+} // namespace
+
+std::shared_ptr<GDALMDArray> choose_array(GDALGroup& root, const std::string& requested, const std::string& path) {
+  std::vector<Found> arrays;
+  collect(root, arrays, 0);
+  if (!requested.empty()) {
+    auto it = std::find_if(arrays.begin(), arrays.end(),
+                           [&](const Found& f) { return f.full_name == requested || f.array->GetName() == requested; });
+    if (it == arrays.end())
+      throw FormatError("the file has no array named '" + requested + "'; cube candidates: " + list(arrays, true) +
+                            "; other arrays: " + list(arrays, false),
+                        {path}, "pass one of the candidates as the variable name");
+    if (it->array->GetDimensionCount() != 3)
+      throw FormatError("array " + describe(*it) + " has " + std::to_string(it->array->GetDimensionCount()) +
+                            " dimensions; a cube needs 3 (inline, crossline, sample)",
+                        {path}, "choose a 3-D array; candidates: " + list(arrays, true));
+    if (!is_float(*it->array))
+      throw FormatError("array " + describe(*it) +
+                            " does not hold floating-point samples; geotandem reads Float32 "
+                            "or Float64 cubes",
+                        {path}, "convert the array to Float32");
+    return it->array;
+  }
+  std::vector<const Found*> cubes;
+  for (const Found& found : arrays)
+    if (is_cube(*found.array)) cubes.push_back(&found);
+  if (cubes.size() == 1) return cubes.front()->array;
+  if (cubes.empty())
+    throw FormatError("the file has no 3-D Float32 or Float64 array; arrays found: " + list(arrays, false), {path},
+                      "a cube is a 3-D floating-point array (inline, crossline, sample); convert it to Float32");
+  throw FormatError("the file has several 3-D floating-point arrays: " + list(arrays, true), {path},
+                    "choose one with the variable option (--variable NAME)");
+}
+
+std::shared_ptr<GDALMDArray> in_cube_order(const std::shared_ptr<GDALMDArray>& array) {
+  const auto& dims = array->GetDimensions();
+  std::array<int, 3> position{-1, -1, -1}; // position[axis] = stored dimension holding that axis
+  for (int d = 0; d < 3; ++d) {
+    int axis = axis_of(dims[static_cast<std::size_t>(d)]->GetName());
+    if (axis < 0 || position[static_cast<std::size_t>(axis)] >= 0) return array; // unknown or ambiguous
+    position[static_cast<std::size_t>(axis)] = d;
+  }
+  if (position == std::array<int, 3>{0, 1, 2}) return array;
+  auto view = array->Transpose({position[0], position[1], position[2]});
+  return view ? view : array;
+}
+
+Geometry read_geometry(const GDALMDArray& array, const GDALMDArray& attributes_of, const std::string& path) {
+  Geometry g;
+  const auto& dims = array.GetDimensions();
+  for (int a = 0; a < 3; ++a)
+    g.shape[a] = static_cast<std::int64_t>(dims[static_cast<std::size_t>(a)]->GetSize());
+  // Without better knowledge the indices are the line numbers.
+  g.inline0 = 0.0;
+  g.crossline0 = 0.0;
+  take_line_numbers(coordinates_of(*dims[0]), g.inline0, g.inline_step);
+  take_line_numbers(coordinates_of(*dims[1]), g.crossline0, g.crossline_step);
+
+  const GDALDimension& z = *dims[2];
+  const std::string unit = unit_of(z);
+  if (unit == "m" || unit == "meter" || unit == "meters" || unit == "metre" || unit == "metres" ||
+      (unit.empty() && lower(z.GetName()) == "depth"))
+    g.z_unit = SampleUnit::metres;
+  std::vector<double> zs = coordinates_of(z);
+  if (unit == "s" || unit == "second" || unit == "seconds")
+    for (double& value : zs)
+      value *= 1000.0;
+  if (!zs.empty()) g.z0 = zs[0];
+  if (zs.size() > 1 && zs[1] > zs[0]) g.dz = zs[1] - zs[0];
+
+  for (const GeometryField& field : geometry_fields())
+    if (auto attribute = attributes_of.GetAttribute(field.key)) {
+      if (attribute->GetDataType().GetClass() == GEDTC_NUMERIC) {
+        field.field(g) = attribute->ReadAsDouble();
+      } else if (auto value = parse_double(attribute->ReadAsString())) {
+        field.field(g) = *value;
+      } else {
+        throw FormatError(std::string("attribute ") + field.key + " of array " + attributes_of.GetFullName() +
+                              " is not a number",
+                          {path}, "repair or remove the attribute");
+      }
+    }
+  if (auto attribute = attributes_of.GetAttribute(z_unit_key)) {
+    const char* text = attribute->ReadAsString();
+    try {
+      g.z_unit = parse_sample_unit(text ? text : "");
+    } catch (const InvalidArgument&) {
+      throw FormatError(std::string("attribute ") + z_unit_key + " is '" + (text ? text : "") +
+                            "'; expected 'ms' or 'm'",
+                        {path}, "repair the attribute");
+    }
+  }
+  try {
+    g.validate();
+  } catch (const InvalidArgument& error) {
+    throw FormatError("the geometry stored with array " + attributes_of.GetFullName() +
+                          " is unusable: " + error.message(),
+                      {path}, "repair the geotandem_* attributes or the coordinate variables");
+  }
+  return g;
+}
+
+} // namespace geotandem::volume::detail::gdal

@@ -1,0 +1,183 @@
+#include <array>
+#include <filesystem>
+#include <fstream>
+
+#include "formats.hpp"
+#include "geotandem/core/error.hpp"
+
+namespace fs = std::filesystem;
+
+namespace geotandem::volume {
+namespace detail {
+namespace {
+
+bool starts_with(const std::array<unsigned char, 16>& head, std::size_t got, std::string_view magic) {
+  if (got < magic.size()) return false;
+  for (std::size_t n = 0; n < magic.size(); ++n)
+    if (head[n] != static_cast<unsigned char>(magic[n])) return false;
+  return true;
+}
+
+std::string lower_extension(const std::string& path) {
+  std::string ext = fs::path(path).extension().string();
+  for (char& c : ext)
+    c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  return ext;
+}
+
+bool envi_header_beside(const std::string& path) {
+  for (const fs::path& hdr : {fs::path(path + ".hdr"), fs::path(path).replace_extension(".hdr")}) {
+    std::ifstream in(hdr);
+    std::string first;
+    if (in && std::getline(in, first) && first.rfind("ENVI", 0) == 0) return true;
+  }
+  return false;
+}
+
+// SEG-Y has no magic number: a 3200-byte textual header (EBCDIC or ASCII, by convention starting
+// with 'C', sometimes blank), a 400-byte big-endian binary header with a known sample format code
+// at bytes 3225-3226, then traces. The size is not checked here: a truncated SEG-Y file must reach
+// the SEG-Y reader, which says what is missing.
+bool looks_like_segy(const std::string& path, std::uintmax_t size) {
+  if (size < 3600 + 240) return false;
+  std::ifstream in(path, std::ios::binary);
+  unsigned char first = 0;
+  in.read(reinterpret_cast<char*>(&first), 1);
+  if (first != 0xC3 && first != 'C' && first != 0x40 && first != ' ') return false;
+  unsigned char code[2] = {0, 0};
+  in.seekg(3224);
+  in.read(reinterpret_cast<char*>(code), 2);
+  int format = code[0] << 8 | code[1];
+  return in && (format == 1 || format == 2 || format == 3 || format == 5 || format == 8);
+}
+
+// The writer for an output path, from its extension; nullptr when the extension is unknown.
+using Writer = void (*)(const Volume&, const std::string&, const WriteOptions&, Progress&, const CancelToken&);
+
+void write_netcdf(const Volume& v, const std::string& p, const WriteOptions& o, Progress& r, const CancelToken& c) {
+  write_gdal_md(v, p, Format::netcdf, o, r, c);
+}
+void write_zarr(const Volume& v, const std::string& p, const WriteOptions& o, Progress& r, const CancelToken& c) {
+  write_gdal_md(v, p, Format::zarr, o, r, c);
+}
+
+Writer writer_for(const std::string& ext) {
+  if (ext == ".nc") return write_netcdf;
+  if (ext == ".zarr") return write_zarr;
+  if (ext == ".tif" || ext == ".tiff") return write_geotiff;
+  if (ext == ".segy" || ext == ".sgy") return write_segy;
+  if (ext == ".raw") return write_raw;
+  return nullptr;
+}
+
+} // namespace
+
+const char* format_name(Format format) {
+  switch (format) {
+  case Format::netcdf: return "netCDF-4";
+  case Format::hdf5: return "HDF5";
+  case Format::zarr: return "Zarr";
+  case Format::geotiff: return "GeoTIFF";
+  case Format::envi: return "ENVI";
+  case Format::segy: return "SEG-Y";
+  case Format::raw: return "raw";
+  case Format::unknown: break;
+  }
+  return "unknown";
+}
+
+Format sniff_format(const std::string& path) {
+  std::error_code ec;
+  auto status = fs::status(path, ec);
+  if (ec || !fs::exists(status))
+    throw IoError("no such file or directory", {path}, "check the path; formats are found from the file itself");
+  if (fs::is_directory(status)) {
+    for (const char* marker : {".zgroup", ".zarray", "zarr.json"})
+      if (fs::exists(fs::path(path) / marker)) return Format::zarr;
+    throw FormatError("a directory that is not a Zarr store (no .zgroup, .zarray or zarr.json inside)", {path});
+  }
+  if (fs::exists(path + ".json")) return Format::raw;
+  if (envi_header_beside(path)) return Format::envi;
+
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw IoError("cannot open the file for reading", {path}, "check its permissions");
+  std::array<unsigned char, 16> head{};
+  in.read(reinterpret_cast<char*>(head.data()), head.size());
+  auto got = static_cast<std::size_t>(in.gcount());
+  if (starts_with(head, got, "\x89HDF\r\n\x1a\n")) {
+    std::string ext = lower_extension(path);
+    return ext == ".h5" || ext == ".hdf5" || ext == ".he5" ? Format::hdf5 : Format::netcdf;
+  }
+  if (starts_with(head, got, std::string_view("CDF\x01", 4)) || starts_with(head, got, std::string_view("CDF\x02", 4)))
+    return Format::netcdf;
+  if (starts_with(head, got, std::string_view("II*\0", 4)) || starts_with(head, got, std::string_view("MM\0*", 4)) ||
+      starts_with(head, got, std::string_view("II+\0", 4)) || starts_with(head, got, std::string_view("MM\0+", 4)))
+    return Format::geotiff;
+  if (looks_like_segy(path, fs::file_size(path, ec))) return Format::segy;
+  return Format::unknown;
+}
+
+} // namespace detail
+
+NanPolicy parse_nan_policy(const std::string& text) {
+  if (text == "error") return NanPolicy::error;
+  if (text == "fill") return NanPolicy::fill;
+  throw InvalidArgument("unknown NaN policy '" + text + "'", {},
+                        "use 'error' (stop at the first NaN) or 'fill' (treat NaN as outside every body)");
+}
+
+std::string detect_format(const std::string& path) {
+  auto format = detail::sniff_format(path);
+  if (format == detail::Format::unknown)
+    throw FormatError("unknown format: not netCDF/HDF5, Zarr, GeoTIFF, ENVI, SEG-Y, nor raw with a .json sidecar",
+                      {path}, "convert the cube to one of these, or add FILE.json beside a raw float32 file");
+  return detail::format_name(format);
+}
+
+std::unique_ptr<Volume> open_volume(const std::string& path, const OpenOptions& options) {
+  using detail::Format;
+  detect_format(path); // throws a clear error for missing or unknown files
+  std::unique_ptr<Volume> volume;
+  switch (auto format = detail::sniff_format(path)) {
+  case Format::netcdf:
+  case Format::hdf5:
+  case Format::zarr: volume = detail::open_gdal_md(path, format, options); break;
+  case Format::geotiff:
+  case Format::envi: volume = detail::open_gdal_raster(path, format, options); break;
+  case Format::segy: volume = detail::open_segy(path, options); break;
+  case Format::raw: volume = detail::open_raw(path, options); break;
+  case Format::unknown: break;
+  }
+  try {
+    volume->geometry().validate();
+  } catch (const InvalidArgument& e) {
+    // The geometry came from the file, not from the caller: a broken file, not a bad argument.
+    throw FormatError("the file describes an invalid geometry: " + e.message(), {path}, e.hint());
+  }
+  return detail::guard_nan(std::move(volume), options);
+}
+
+void write_volume(const Volume& volume, const std::string& path, const WriteOptions& options, Progress* progress,
+                  const CancelToken& cancel) {
+  NullProgress silent;
+  Progress& report = progress ? *progress : silent;
+  const std::string ext = detail::lower_extension(path);
+  if (options.chunk < 1) throw InvalidArgument("chunk size must be at least 1", {path});
+  // Resolve the writer before touching anything: an unknown extension must not cost the user the
+  // file that already sits at `path`.
+  const detail::Writer writer = detail::writer_for(ext);
+  if (!writer)
+    throw InvalidArgument("cannot tell the output format from the extension '" + ext + "'", {path},
+                          "use .nc (netCDF-4), .zarr, .tif (GeoTIFF), .segy or .raw");
+  std::error_code ec;
+  if (fs::exists(path, ec)) {
+    if (!options.overwrite) throw IoError("the output already exists", {path}, "remove it or pass --overwrite");
+    fs::remove_all(path, ec);
+    if (ec) throw IoError("cannot remove the existing output: " + ec.message(), {path});
+  }
+  // A stale raw sidecar would describe the old cube until the new one is complete.
+  if (ext == ".raw") fs::remove(path + ".json", ec);
+  writer(volume, path, options, report, cancel);
+}
+
+} // namespace geotandem::volume

@@ -1,0 +1,399 @@
+// Raw cubes: little-endian float32 in C order [inline][crossline][sample] in FILE.raw, described
+// by the JSON sidecar FILE.raw.json (shape, geometry, format tag and version; see
+// docs/formats-segy-raw.md). Boxes are read with one pread per contiguous run of samples, runs
+// separated by small gaps being merged.
+
+#include <fcntl.h>
+#include <unistd.h>
+
+#include <bit>
+#include <cerrno>
+#include <cstdint>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+#include <vector>
+
+#include "formats.hpp"
+#include "geotandem/core/error.hpp"
+
+namespace fs = std::filesystem;
+
+namespace geotandem::volume::detail {
+namespace {
+
+using json = nlohmann::json;
+
+constexpr const char* kTag = "geotandem-raw";
+constexpr int kVersion = 1;
+
+std::string sidecar_of(const std::string& path) {
+  return path + ".json";
+}
+
+// Samples are little-endian on disk; a big-endian host swaps them on the way in and out.
+void to_or_from_little_endian(std::span<float> samples) {
+  if constexpr (std::endian::native == std::endian::big) {
+    for (float& value : samples) {
+      auto bits = std::bit_cast<std::uint32_t>(value);
+      bits = (bits >> 24) | ((bits >> 8) & 0xFF00u) | ((bits << 8) & 0xFF0000u) | (bits << 24);
+      value = std::bit_cast<float>(bits);
+    }
+  }
+}
+
+class Descriptor {
+public:
+  explicit Descriptor(int fd) : fd_(fd) {}
+  ~Descriptor() {
+    if (fd_ >= 0) ::close(fd_);
+  }
+  Descriptor(const Descriptor&) = delete;
+  Descriptor& operator=(const Descriptor&) = delete;
+  int get() const { return fd_; }
+  // Closes and returns close()'s result, so that a writer sees a failed final flush.
+  int release_and_close() {
+    int result = ::close(fd_);
+    fd_ = -1;
+    return result;
+  }
+
+private:
+  int fd_;
+};
+
+// ---- The sidecar -------------------------------------------------------------------------------
+
+// Checks one JSON object against the keys it must have, naming `where` (a dotted key path) and
+// the sidecar file in every error.
+class SidecarReader {
+public:
+  explicit SidecarReader(std::string file) : file_(std::move(file)) {}
+
+  void expect_keys(const json& object, const std::string& where, std::initializer_list<const char*> keys) const {
+    if (!object.is_object()) fail("'" + where + "' must be a JSON object");
+    std::string known;
+    for (const char* key : keys)
+      known += std::string(known.empty() ? "" : ", ") + key;
+    for (const auto& item : object.items()) {
+      bool found = false;
+      for (const char* key : keys)
+        found = found || item.key() == key;
+      if (!found) fail("unknown key '" + join(where, item.key()) + "'", "the keys here are: " + known);
+    }
+    for (const char* key : keys)
+      if (!object.contains(key)) fail("missing key '" + join(where, key) + "'", "the keys here are: " + known);
+  }
+
+  double number(const json& object, const std::string& where, const char* key) const {
+    const json& value = object.at(key);
+    if (!value.is_number()) fail("key '" + join(where, key) + "' must be a number, found " + value.dump());
+    return value.get<double>();
+  }
+
+  std::string text(const json& object, const std::string& where, const char* key) const {
+    const json& value = object.at(key);
+    if (!value.is_string()) fail("key '" + join(where, key) + "' must be a string, found " + value.dump());
+    return value.get<std::string>();
+  }
+
+  void expect_text(const json& object, const char* key, const std::string& wanted) const {
+    std::string found = text(object, "", key);
+    if (found != wanted)
+      fail("key '" + std::string(key) + "' is \"" + found + "\"; geotandem raw files have \"" + wanted + "\"");
+  }
+
+  [[noreturn]] void fail(const std::string& message, const std::string& hint = {}) const {
+    throw FormatError("raw sidecar: " + message, {file_},
+                      hint.empty() ? "see docs/formats-segy-raw.md for the sidecar's keys" : hint);
+  }
+
+private:
+  static std::string join(const std::string& where, const std::string& key) {
+    return where.empty() ? key : where + "." + key;
+  }
+  std::string file_;
+};
+
+// 1-based line and column of a byte offset, for parse errors.
+ErrorContext position_of(const std::string& file, const std::string& text, std::size_t byte) {
+  ErrorContext where{file};
+  long line = 1, column = 1;
+  for (std::size_t n = 0; n + 1 < byte && n < text.size(); ++n) {
+    if (text[n] == '\n') {
+      ++line;
+      column = 1;
+    } else {
+      ++column;
+    }
+  }
+  where.line = line;
+  where.column = column;
+  return where;
+}
+
+Geometry read_sidecar(const std::string& sidecar) {
+  std::ifstream in(sidecar, std::ios::binary);
+  if (!in) throw IoError("cannot read the raw sidecar", {sidecar}, "check that it exists and is readable");
+  std::stringstream buffer;
+  buffer << in.rdbuf();
+  const std::string text = buffer.str();
+  json doc;
+  try {
+    doc = json::parse(text);
+  } catch (const json::parse_error& e) {
+    throw FormatError(std::string("raw sidecar is not valid JSON: ") + e.what(), position_of(sidecar, text, e.byte),
+                      "fix the JSON syntax; see docs/formats-segy-raw.md");
+  }
+
+  SidecarReader r(sidecar);
+  r.expect_keys(doc, "", {"format", "version", "dtype", "byte_order", "order", "axes", "shape", "geometry"});
+  r.expect_text(doc, "format", kTag);
+  const json& version = doc.at("version");
+  if (!version.is_number_integer() || version.get<long long>() < 1)
+    r.fail("key 'version' must be a positive integer, found " + version.dump());
+  if (version.get<long long>() > kVersion)
+    r.fail("sidecar version " + version.dump() + " is newer than this geotandem reads (" + std::to_string(kVersion) +
+               ")",
+           "update geotandem");
+  r.expect_text(doc, "dtype", "float32");
+  r.expect_text(doc, "byte_order", "little");
+  r.expect_text(doc, "order", "C");
+  if (doc.at("axes") != json::array({"inline", "crossline", "sample"}))
+    r.fail("key 'axes' must be [\"inline\", \"crossline\", \"sample\"], found " + doc.at("axes").dump());
+
+  Geometry g;
+  const json& shape = doc.at("shape");
+  if (!shape.is_array() || shape.size() != 3) r.fail("key 'shape' must be [inlines, crosslines, samples]");
+  for (std::size_t a = 0; a < 3; ++a) {
+    if (!shape[a].is_number_integer() || shape[a].get<long long>() < 1)
+      r.fail("key 'shape' must hold three positive integers, found " + shape.dump());
+    g.shape[a] = shape[a].get<std::int64_t>();
+  }
+
+  const json& geo = doc.at("geometry");
+  r.expect_keys(geo, "geometry",
+                {"inline0", "inline_step", "crossline0", "crossline_step", "z0", "dz", "z_unit", "affine"});
+  g.inline0 = r.number(geo, "geometry", "inline0");
+  g.inline_step = r.number(geo, "geometry", "inline_step");
+  g.crossline0 = r.number(geo, "geometry", "crossline0");
+  g.crossline_step = r.number(geo, "geometry", "crossline_step");
+  g.z0 = r.number(geo, "geometry", "z0");
+  g.dz = r.number(geo, "geometry", "dz");
+  const std::string unit = r.text(geo, "geometry", "z_unit");
+  try {
+    g.z_unit = parse_sample_unit(unit);
+  } catch (const InvalidArgument&) {
+    r.fail("key 'geometry.z_unit' is \"" + unit + "\"", "use \"ms\" (time) or \"m\" (depth)");
+  }
+  const json& affine = geo.at("affine");
+  r.expect_keys(affine, "geometry.affine", {"x0", "xi", "xj", "y0", "yi", "yj"});
+  g.affine.x0 = r.number(affine, "geometry.affine", "x0");
+  g.affine.xi = r.number(affine, "geometry.affine", "xi");
+  g.affine.xj = r.number(affine, "geometry.affine", "xj");
+  g.affine.y0 = r.number(affine, "geometry.affine", "y0");
+  g.affine.yi = r.number(affine, "geometry.affine", "yi");
+  g.affine.yj = r.number(affine, "geometry.affine", "yj");
+  try {
+    g.validate();
+  } catch (const InvalidArgument& e) {
+    r.fail("the geometry is invalid: " + e.message(), e.hint());
+  }
+  return g;
+}
+
+std::string sidecar_text(const Geometry& g) {
+  using ordered = nlohmann::ordered_json;
+  ordered doc;
+  doc["format"] = kTag;
+  doc["version"] = kVersion;
+  doc["dtype"] = "float32";
+  doc["byte_order"] = "little";
+  doc["order"] = "C";
+  doc["axes"] = {"inline", "crossline", "sample"};
+  doc["shape"] = {g.shape[0], g.shape[1], g.shape[2]};
+  ordered geo;
+  geo["inline0"] = g.inline0;
+  geo["inline_step"] = g.inline_step;
+  geo["crossline0"] = g.crossline0;
+  geo["crossline_step"] = g.crossline_step;
+  geo["z0"] = g.z0;
+  geo["dz"] = g.dz;
+  geo["z_unit"] = to_string(g.z_unit);
+  ordered affine;
+  affine["x0"] = g.affine.x0;
+  affine["xi"] = g.affine.xi;
+  affine["xj"] = g.affine.xj;
+  affine["y0"] = g.affine.y0;
+  affine["yi"] = g.affine.yi;
+  affine["yj"] = g.affine.yj;
+  geo["affine"] = affine;
+  doc["geometry"] = geo;
+  return doc.dump(2) + "\n";
+}
+
+// ---- The data file -----------------------------------------------------------------------------
+
+class RawVolume final : public Volume {
+public:
+  RawVolume(std::string path, Geometry geometry, int fd)
+      : path_(std::move(path)), geometry_(std::move(geometry)), fd_(fd) {}
+
+  const Geometry& geometry() const override { return geometry_; }
+  std::string format() const override { return "raw"; }
+  std::string source() const override { return path_; }
+
+protected:
+  // One run per trace of the box (its samples lo..hi), in file order, which is also the order of
+  // `out`. Runs that touch are read by one pread straight into `out`; runs separated by small
+  // gaps are read by one pread into a scratch buffer and copied out, because a system call costs
+  // about as much as copying tens of kilobytes from the page cache (64^3 blocks read ~10x faster).
+  void read_box(const Box& box, std::span<float> out) const override {
+    const auto run_bytes = static_cast<std::uint64_t>(box.size(2)) * sizeof(float);
+    auto* dst = reinterpret_cast<char*>(out.data());
+    std::vector<char> scratch;
+    Group group;
+    for (std::int64_t i = box.lo[0]; i < box.hi[0]; ++i)
+      for (std::int64_t j = box.lo[1]; j < box.hi[1]; ++j, dst += run_bytes) {
+        const std::uint64_t offset = geometry_.bounds().offset({i, j, box.lo[2]}) * sizeof(float);
+        if (!group.runs.empty() && !group.accepts(offset, run_bytes)) read_group(group, scratch, box);
+        group.add(offset, run_bytes, dst);
+      }
+    read_group(group, scratch, box);
+    to_or_from_little_endian(out);
+  }
+
+private:
+  static constexpr std::uint64_t kMaxGap = 64 * 1024;        // bytes skipped between two runs
+  static constexpr std::uint64_t kMaxSpan = 8 * 1024 * 1024; // bytes of one scratch read
+
+  struct Run {
+    std::uint64_t offset;
+    char* dst;
+  };
+  struct Group {
+    std::vector<Run> runs;
+    std::uint64_t end = 0, run_bytes = 0;
+    bool contiguous = true;
+
+    bool accepts(std::uint64_t offset, std::uint64_t bytes) const {
+      if (offset == end && contiguous) return true; // straight into `out`, no size limit
+      return offset - end <= kMaxGap && offset + bytes - runs.front().offset <= kMaxSpan;
+    }
+    void add(std::uint64_t offset, std::uint64_t bytes, char* dst) {
+      contiguous = runs.empty() || (contiguous && offset == end);
+      runs.push_back({offset, dst});
+      end = offset + bytes;
+      run_bytes = bytes;
+    }
+  };
+
+  void read_group(Group& group, std::vector<char>& scratch, const Box& box) const {
+    const std::uint64_t start = group.runs.front().offset, span = group.end - start;
+    if (group.contiguous) {
+      read_bytes(start, span, group.runs.front().dst, box);
+    } else {
+      scratch.resize(span);
+      read_bytes(start, span, scratch.data(), box);
+      for (const Run& run : group.runs)
+        std::memcpy(run.dst, scratch.data() + (run.offset - start), group.run_bytes);
+    }
+    group = Group{};
+  }
+
+  void read_bytes(std::uint64_t offset, std::uint64_t count, char* dst, const Box& box) const {
+    while (count > 0) {
+      ssize_t got = ::pread(fd_.get(), dst, count, static_cast<off_t>(offset));
+      if (got < 0 && errno == EINTR) continue;
+      if (got < 0)
+        throw IoError(std::string("read failed: ") + std::strerror(errno), {path_, {}, {}, "box " + box.to_string()});
+      if (got == 0)
+        throw FormatError("unexpected end of file at byte " + std::to_string(offset), {path_},
+                          "the file shrank after it was opened; copy it again");
+      dst += got;
+      offset += static_cast<std::uint64_t>(got);
+      count -= static_cast<std::uint64_t>(got);
+    }
+  }
+
+  std::string path_;
+  Geometry geometry_;
+  Descriptor fd_;
+};
+
+void write_all(int fd, const float* data, std::size_t count, const std::string& path) {
+  const auto* bytes = reinterpret_cast<const char*>(data);
+  std::size_t left = count * sizeof(float);
+  while (left > 0) {
+    ssize_t put = ::write(fd, bytes, left);
+    if (put < 0 && errno == EINTR) continue;
+    if (put < 0) throw IoError(std::string("write failed: ") + std::strerror(errno), {path}, "check the free space");
+    bytes += put;
+    left -= static_cast<std::size_t>(put);
+  }
+}
+
+} // namespace
+
+std::unique_ptr<Volume> open_raw(const std::string& path, const OpenOptions&) {
+  const std::string sidecar = sidecar_of(path);
+  Geometry g = read_sidecar(sidecar);
+  std::error_code ec;
+  const std::uintmax_t size = fs::file_size(path, ec);
+  if (ec) throw IoError("cannot get the size of the raw data file: " + ec.message(), {path});
+  const std::uintmax_t wanted = g.sample_count() * sizeof(float);
+  if (size != wanted)
+    throw FormatError("the raw data file has " + std::to_string(size) + " bytes but the shape " +
+                          g.bounds().to_string() + " in " + sidecar + " needs " + std::to_string(wanted) +
+                          " bytes of float32",
+                      {path}, "check the shape in the sidecar, or copy the data file again if it is truncated");
+  int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
+  if (fd < 0) throw IoError(std::string("cannot open the raw data file: ") + std::strerror(errno), {path});
+  return std::make_unique<RawVolume>(path, std::move(g), fd);
+}
+
+void write_raw(const Volume& volume, const std::string& path, const WriteOptions&, Progress& progress,
+               const CancelToken& cancel) {
+  const Geometry& g = volume.geometry();
+  g.validate();
+  const std::string sidecar = sidecar_of(path), partial = sidecar + ".partial";
+  Descriptor fd(::open(path.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644));
+  if (fd.get() < 0)
+    throw IoError(std::string("cannot create the raw data file: ") + std::strerror(errno), {path},
+                  "check that the directory exists and is writable");
+  try {
+    const std::int64_t ni = g.shape[0], nj = g.shape[1], nk = g.shape[2];
+    std::vector<float> slab(static_cast<std::size_t>(nj * nk));
+    progress.begin("writing raw " + path, static_cast<std::uint64_t>(ni), "inlines");
+    for (std::int64_t i = 0; i < ni; ++i) {
+      cancel.throw_if_cancelled();
+      volume.read(Box{{i, 0, 0}, {i + 1, nj, nk}}, slab);
+      to_or_from_little_endian(slab);
+      write_all(fd.get(), slab.data(), slab.size(), path);
+      progress.update(static_cast<std::uint64_t>(i + 1));
+    }
+    if (fd.release_and_close() != 0)
+      throw IoError(std::string("write failed on close: ") + std::strerror(errno), {path}, "check the free space");
+    // The sidecar comes last and appears whole (rename), so that a raw cube that can be detected
+    // is a complete one.
+    {
+      std::ofstream out(partial, std::ios::binary | std::ios::trunc);
+      out << sidecar_text(g);
+      out.close();
+      if (!out) throw IoError("cannot write the raw sidecar", {partial}, "check the free space");
+    }
+    std::error_code renamed;
+    fs::rename(partial, sidecar, renamed);
+    if (renamed) throw IoError("cannot put the raw sidecar in place: " + renamed.message(), {sidecar});
+    progress.end();
+  } catch (...) {
+    std::error_code ec;
+    fs::remove(path, ec);
+    fs::remove(partial, ec);
+    throw;
+  }
+}
+
+} // namespace geotandem::volume::detail

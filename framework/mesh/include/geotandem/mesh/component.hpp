@@ -1,0 +1,53 @@
+#pragma once
+// A finished surface component as the tandem algorithm hands it over, its measures, and the sink
+// interface through which it leaves the algorithm (the store implements it; tests can collect).
+
+#include <array>
+#include <cstdint>
+#include <string>
+
+#include "geotandem/mesh/surface.hpp"
+
+namespace geotandem::mesh {
+
+// Measures of one component. Lengths, areas and volumes are in world units (metres horizontally;
+// the sample axis in its own unit: ms or m), so a volume is m^3 for depth cubes and m^2*ms for
+// time cubes. Angles in degrees.
+struct ComponentStats {
+  std::uint64_t vertex_count = 0;
+  std::uint64_t triangle_count = 0;
+  bool closed = false;          // every edge has exactly two triangles (no border)
+  bool cut_by_border = false;   // touches the cube's outer faces (then it cannot be closed)
+  double volume = 0.0;          // enclosed volume by the divergence theorem; 0 when not closed
+  double area = 0.0;
+  std::array<double, 3> centroid{};   // area-weighted centroid of the surface, world x, y, z
+  std::array<double, 3> box_min{};    // axis-aligned bounds in world coordinates
+  std::array<double, 3> box_max{};
+  // Oriented bounding box from the principal axes of the surface (area-weighted covariance):
+  // axes[0] is the longest. Half extents along each axis.
+  std::array<double, 3> obb_center{};
+  std::array<std::array<double, 3>, 3> obb_axes{};
+  std::array<double, 3> obb_half_extents{};
+  double azimuth = 0.0;    // of the main horizontal axis, clockwise from north, axial: [0, 180)
+  double dip = 0.0;        // of the main axis below the horizontal, [0, 90]
+  double elongation = 0.0; // 1 - (second extent / first extent) of the horizontal footprint, [0, 1]
+};
+
+// A finished component, in index coordinates (voxel units) as the algorithm works.
+struct Component {
+  // Deterministic identity: the smallest global lattice-edge id of any marching-cubes vertex ever
+  // born in this component. The same body gets the same key whatever the block decomposition and
+  // the number of workers, so a component committed twice is stored once.
+  std::uint64_t key = 0;
+  SurfaceMesh surface;
+  ComponentStats stats;
+};
+
+// Where finished components go. commit() must be idempotent per key.
+class ComponentSink {
+public:
+  virtual ~ComponentSink() = default;
+  virtual void commit(const Component& component) = 0;
+};
+
+} // namespace geotandem::mesh

@@ -1,0 +1,80 @@
+#pragma once
+// Marching cubes made for stitching (ALGORITHM.md, "Marching cubes, made for stitching"): layer by
+// layer along one index axis, holding at most two cross-sections of samples, with a case table
+// whose ambiguous faces are decided by the face's own four corner signs. Two blocks that share a
+// sample plane produce the same vertices (same lattice-edge ids, bit-identical positions) and the
+// same segments on it, so welding by id gives exactly the surface of one block covering both.
+// See docs/marching-cubes.md for the rule and its consequences.
+//
+// Units: every coordinate is in index units (i, j, k) of the whole cube, spacing 1.
+// Inside means value >= iso (NaN samples are outside). Triangles are counter-clockwise seen from
+// outside, so a closed body has a positive enclosed volume.
+
+#include <cstdint>
+#include <memory>
+#include <vector>
+
+#include "geotandem/mesh/surface.hpp"
+#include "geotandem/tandem/layer.hpp"
+#include "geotandem/volume/box.hpp"
+#include "geotandem/volume/volume.hpp"
+
+namespace geotandem::tandem {
+
+// A vertex never lies closer than this (as a fraction of the lattice edge) to a sample: values
+// equal to iso would otherwise put vertices on samples, where several lattice edges would give
+// coincident vertices and zero-area triangles. The shift is at most 1/256 of a voxel.
+inline constexpr double kMcVertexMargin = 1.0 / 256.0;
+
+struct McOptions {
+  float iso = 0.0f; // threshold; must not be NaN
+  int axis = 0;     // extraction axis (0 = i, 1 = j, 2 = k): the layers are stacked along it
+};
+
+// The cells of a whole cube of `shape` samples: [0, n - 1) per axis. A cell (i, j, k) spans the
+// samples i..i+1, j..j+1, k..k+1.
+volume::Box cube_cells(const volume::Index3& shape);
+
+// Extracts the layers of one block of cells, in increasing rank.
+// A block of cells [lo, hi) reads samples [lo, hi + 1); layer k (rank k) holds its cells whose
+// index along the axis is k - 1, between cross-sections k - 1 and k, for k = lo + 1 .. hi.
+// Each cross-section is read once, with Volume::read of a box one sample thick along the axis;
+// never more than two are held. Vertices carry the global lattice-edge ids of the whole cube
+// (LatticeIds of the volume's shape) and positions computed from the edge's lower-index end:
+//   t = (iso - v0) / (v1 - v0), clamped to [kMcVertexMargin, 1 - kMcVertexMargin],
+// so every block and every axis computes bit-identical vertices.
+// Throws InvalidArgument when the options are invalid or `cells` is empty or not inside the
+// cube's cells; read errors of the volume (IoError, FormatError, ...) pass through.
+// Memory: about 30 bytes per sample of one cross-section of the block (two cross-sections of
+// values, their sign bits, vertex numbers per lattice edge), plus the layer's output.
+// The volume must outlive the extractor; one extractor per thread.
+class LayerExtractor {
+public:
+  LayerExtractor(const volume::Volume& volume, const volume::Box& cells, const McOptions& options);
+  ~LayerExtractor();
+  LayerExtractor(const LayerExtractor&) = delete;
+  LayerExtractor& operator=(const LayerExtractor&) = delete;
+
+  // Fills `out` (cleared first) with the next layer; false once every layer was returned.
+  // Order guarantee: layer k lists first its vertices on cross-section k - 1, in the order layer
+  // k - 1 listed them (there as one contiguous run); a consumer may weld by that order.
+  bool next(Layer& out);
+
+  std::int64_t first_rank() const; // cells.lo[axis] + 1
+  std::int64_t last_rank() const;  // cells.hi[axis]
+  std::int64_t next_rank() const;  // the rank the next call to next() returns (last_rank() + 1 at the end)
+  const volume::Box& cells() const;
+  const LatticeIds& lattice() const;
+
+private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+// The whole surface of a block of cells in one mesh, vertices welded by lattice-edge id (the
+// oracle for tests and the "brute" route). `ids`, when given, receives the lattice-edge id of
+// each point. Same preconditions and errors as LayerExtractor.
+mesh::SurfaceMesh extract_surface(const volume::Volume& volume, const volume::Box& cells, const McOptions& options,
+                                  std::vector<std::uint64_t>* ids = nullptr);
+
+} // namespace geotandem::tandem

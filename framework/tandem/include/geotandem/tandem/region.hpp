@@ -1,0 +1,78 @@
+#pragma once
+// The part of the cube a working surface covers (ALGORITHM.md, "Extended time lag"): a union of
+// blocks of cells. After merges it need not be a box (a node merged with a nephew is L-shaped).
+// Its *open faces* are the parts of its boundary that are not on the faces of the whole cube: a
+// neighbour will arrive there later, so the surface must stay unsimplified near them.
+//
+// Units: index coordinates of the whole cube (voxel units). A block of cells [lo, hi) spans the
+// coordinates [lo, hi] on each axis (cell i lies between samples i and i + 1); the whole cube of
+// n samples is the cells [0, n - 1) (marching_cubes.hpp, cube_cells()).
+
+#include <array>
+#include <string>
+#include <vector>
+
+#include "geotandem/volume/box.hpp"
+
+namespace geotandem::tandem {
+
+// An axis-aligned rectangle of the plane x[axis] = plane: the other two axes, in increasing
+// order, span [lo[0], hi[0]] x [lo[1], hi[1]].
+struct OpenFace {
+  int axis = 0;
+  double plane = 0.0;
+  std::array<double, 2> lo{0.0, 0.0};
+  std::array<double, 2> hi{0.0, 0.0};
+
+  // Euclidean distance from p to the rectangle.
+  double distance(const std::array<double, 3>& p) const;
+  bool operator==(const OpenFace&) const = default;
+};
+
+class Region {
+public:
+  // An empty region (no blocks, no open faces).
+  Region() = default;
+  // `cube_cells`: the cells of the whole cube; `blocks`: disjoint non-empty boxes of cells inside
+  // it. Throws InvalidArgument naming the offending box when a block is empty, leaves the cube or
+  // overlaps another.
+  Region(const volume::Box& cube_cells, std::vector<volume::Box> blocks);
+  // One block of the cube.
+  static Region block(const volume::Box& cube_cells, const volume::Box& block_cells) {
+    return Region(cube_cells, {block_cells});
+  }
+
+  const volume::Box& cube() const { return cube_; }
+  const std::vector<volume::Box>& blocks() const { return blocks_; }
+  const std::vector<OpenFace>& open_faces() const { return open_faces_; }
+  bool empty() const { return blocks_.empty(); }
+
+  // Distance from p to the nearest open face; +infinity when there is none.
+  double distance_to_open_faces(const std::array<double, 3>& p) const;
+  // Whether the ball (centre, radius) stays clear of every open face: distance > radius.
+  bool ball_clear(const std::array<double, 3>& centre, double radius) const {
+    return distance_to_open_faces(centre) > radius;
+  }
+  // Whether p lies on an open face (within `tolerance`).
+  bool on_open_face(const std::array<double, 3>& p, double tolerance = 1e-9) const {
+    return distance_to_open_faces(p) <= tolerance;
+  }
+  // Whether p lies in the region (closed boxes).
+  bool contains(const std::array<double, 3>& p) const;
+
+  // The union with a region of the same cube. Throws InvalidArgument when the cubes differ or the
+  // blocks overlap.
+  Region merged_with(const Region& other) const;
+
+  // "cube [..] blocks {[..], [..]} open faces N", for messages.
+  std::string to_string() const;
+
+private:
+  void compute_open_faces();
+
+  volume::Box cube_{};
+  std::vector<volume::Box> blocks_;
+  std::vector<OpenFace> open_faces_;
+};
+
+} // namespace geotandem::tandem

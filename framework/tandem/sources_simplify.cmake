@@ -1,0 +1,14 @@
+# Working surface, Attali cost, queues, time lag, components, the single-block tandem loop.
+set(TANDEM_SIMPLIFY_SOURCES
+  src/attali_cost.cpp
+  src/collapse_ops.cpp
+  src/component_table.cpp
+  src/region.cpp
+  src/surface_engine.cpp
+  src/surface_cost.cpp
+  src/triangle_insert.cpp
+  src/surface_layers.cpp
+  src/surface_dump.cpp
+  src/surface_compact.cpp
+  src/working_surface.cpp
+  src/tandem_driver.cpp)

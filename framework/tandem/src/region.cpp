@@ -1,0 +1,139 @@
+#include "geotandem/tandem/region.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <utility>
+
+#include "geotandem/core/error.hpp"
+
+namespace geotandem::tandem {
+namespace {
+
+struct Rect {
+  double lo0, hi0, lo1, hi1;
+  bool has_area() const { return hi0 > lo0 && hi1 > lo1; }
+};
+
+// R minus C, as up to four rectangles with positive area.
+void subtract(const Rect& r, const Rect& c, std::vector<Rect>& out) {
+  const double lo0 = std::max(r.lo0, c.lo0), hi0 = std::min(r.hi0, c.hi0);
+  const double lo1 = std::max(r.lo1, c.lo1), hi1 = std::min(r.hi1, c.hi1);
+  if (!(hi0 > lo0 && hi1 > lo1)) {
+    out.push_back(r);
+    return;
+  }
+  const Rect pieces[4] = {
+      {r.lo0, lo0, r.lo1, r.hi1}, // before c along the first axis
+      {hi0, r.hi0, r.lo1, r.hi1}, // after c along the first axis
+      {lo0, hi0, r.lo1, lo1},     // inside c's span, before it along the second axis
+      {lo0, hi0, hi1, r.hi1},     // inside c's span, after it along the second axis
+  };
+  for (const Rect& p : pieces)
+    if (p.has_area()) out.push_back(p);
+}
+
+void other_axes(int axis, int& u, int& v) {
+  u = axis == 0 ? 1 : 0;
+  v = axis == 2 ? 1 : 2;
+}
+
+} // namespace
+
+double OpenFace::distance(const std::array<double, 3>& p) const {
+  int u = 0, v = 0;
+  other_axes(axis, u, v);
+  const double dn = p[static_cast<std::size_t>(axis)] - plane;
+  const double pu = p[static_cast<std::size_t>(u)], pv = p[static_cast<std::size_t>(v)];
+  const double du = pu < lo[0] ? lo[0] - pu : (pu > hi[0] ? pu - hi[0] : 0.0);
+  const double dv = pv < lo[1] ? lo[1] - pv : (pv > hi[1] ? pv - hi[1] : 0.0);
+  return std::sqrt(dn * dn + du * du + dv * dv);
+}
+
+Region::Region(const volume::Box& cube_cells, std::vector<volume::Box> blocks)
+    : cube_(cube_cells), blocks_(std::move(blocks)) {
+  if (cube_.empty())
+    throw InvalidArgument("region: the cube's cells " + cube_.to_string() + " are empty", {},
+                          "a cube needs at least two samples along every axis");
+  for (std::size_t i = 0; i < blocks_.size(); ++i) {
+    const volume::Box& b = blocks_[i];
+    if (b.empty() || !cube_.contains(b))
+      throw InvalidArgument("region: block " + b.to_string() + " is empty or leaves the cube's cells " +
+                                cube_.to_string(),
+                            {.block = b.to_string()}, "blocks are boxes of cells inside the cube");
+    for (std::size_t j = 0; j < i; ++j)
+      if (!b.intersection(blocks_[j]).empty())
+        throw InvalidArgument("region: blocks " + blocks_[j].to_string() + " and " + b.to_string() + " overlap",
+                              {.block = b.to_string()}, "merge only regions made of different blocks");
+  }
+  compute_open_faces();
+}
+
+void Region::compute_open_faces() {
+  open_faces_.clear();
+  std::vector<Rect> pieces, next;
+  for (const volume::Box& b : blocks_) {
+    for (int axis = 0; axis < 3; ++axis) {
+      int u = 0, v = 0;
+      other_axes(axis, u, v);
+      for (int side = 0; side < 2; ++side) {
+        const std::int64_t plane = side == 0 ? b.lo[axis] : b.hi[axis];
+        const std::int64_t cube_plane = side == 0 ? cube_.lo[axis] : cube_.hi[axis];
+        if (plane == cube_plane) continue; // a face of the whole cube: never open
+        pieces.assign(1, Rect{static_cast<double>(b.lo[u]), static_cast<double>(b.hi[u]), static_cast<double>(b.lo[v]),
+                              static_cast<double>(b.hi[v])});
+        // Parts covered by a block of the region on the other side are interior, not open.
+        for (const volume::Box& c : blocks_) {
+          const bool touches = side == 0 ? c.hi[axis] == plane : c.lo[axis] == plane;
+          if (&c == &b || !touches) continue;
+          const Rect cover{static_cast<double>(c.lo[u]), static_cast<double>(c.hi[u]), static_cast<double>(c.lo[v]),
+                           static_cast<double>(c.hi[v])};
+          next.clear();
+          for (const Rect& r : pieces)
+            subtract(r, cover, next);
+          pieces.swap(next);
+        }
+        for (const Rect& r : pieces)
+          open_faces_.push_back(OpenFace{axis, static_cast<double>(plane), {r.lo0, r.lo1}, {r.hi0, r.hi1}});
+      }
+    }
+  }
+}
+
+double Region::distance_to_open_faces(const std::array<double, 3>& p) const {
+  double best = std::numeric_limits<double>::infinity();
+  for (const OpenFace& f : open_faces_)
+    best = std::min(best, f.distance(p));
+  return best;
+}
+
+bool Region::contains(const std::array<double, 3>& p) const {
+  for (const volume::Box& b : blocks_) {
+    bool inside = true;
+    for (int a = 0; a < 3 && inside; ++a)
+      inside = p[static_cast<std::size_t>(a)] >= static_cast<double>(b.lo[a]) &&
+               p[static_cast<std::size_t>(a)] <= static_cast<double>(b.hi[a]);
+    if (inside) return true;
+  }
+  return false;
+}
+
+Region Region::merged_with(const Region& other) const {
+  if (empty()) return other;
+  if (other.empty()) return *this;
+  if (!(cube_ == other.cube_))
+    throw InvalidArgument("region: cannot merge regions of different cubes " + cube_.to_string() + " and " +
+                          other.cube_.to_string());
+  std::vector<volume::Box> all = blocks_;
+  all.insert(all.end(), other.blocks_.begin(), other.blocks_.end());
+  return Region(cube_, std::move(all));
+}
+
+std::string Region::to_string() const {
+  std::string s = "cube " + cube_.to_string() + " blocks {";
+  for (std::size_t i = 0; i < blocks_.size(); ++i)
+    s += (i ? ", " : "") + blocks_[i].to_string();
+  return s + "} open faces " + std::to_string(open_faces_.size());
+}
+
+} // namespace geotandem::tandem

@@ -1,0 +1,159 @@
+// The inputs of the cost of a collapse, kept ready: the per-vertex sums of the isotropy and
+// volume terms of the triangles around each vertex, the volume plane, and the evaluation itself.
+#include <cmath>
+
+#include "surface_engine.hpp"
+
+namespace geotandem::tandem {
+
+using detail::Candidate;
+using detail::CostInputs;
+using detail::Vec3;
+using detail::operator+;
+using detail::operator-;
+using detail::operator*;
+
+namespace {
+// One corner's share of a triangle's terms: p x q and q - p for the two corners that follow it.
+inline void add_corner(detail::VertexRecord& r, const detail::FaceRecord& fr, const Vec3& pq, const Vec3& link) {
+  r.isotropy += fr.isotropy;
+  r.det_sum += fr.det;
+  r.cross_sum = r.cross_sum + pq;
+  r.link_sum = r.link_sum + link;
+  r.normal_sum = r.normal_sum + fr.normal;
+}
+inline void remove_corner(detail::VertexRecord& r, const detail::FaceRecord& fr, const Vec3& pq, const Vec3& link) {
+  r.isotropy -= fr.isotropy;
+  r.det_sum -= fr.det;
+  r.cross_sum = r.cross_sum - pq;
+  r.link_sum = r.link_sum - link;
+  r.normal_sum = r.normal_sum - fr.normal;
+}
+} // namespace
+
+void WorkingSurface::Engine::add_face_terms(FH f) {
+  const HH h0 = mesh_->halfedge_handle(f);
+  const HH h1 = mesh_->next_halfedge_handle(h0);
+  const VH v0 = mesh_->from_vertex_handle(h0), v1 = mesh_->to_vertex_handle(h0), v2 = mesh_->to_vertex_handle(h1);
+  const Vec3 a = position(v0), b = position(v1), c = position(v2);
+  const Vec3 p0 = a - origin_, p1 = b - origin_, p2 = c - origin_;
+  detail::FaceRecord& fr = frec(f);
+  fr.normal = detail::cross(p1 - p0, p2 - p0);
+  fr.isotropy = detail::Isotropy::of_triangle(a, b, c, fr.normal);
+  const Vec3 c0 = detail::cross(p1, p2);
+  fr.det = detail::dot(p0, c0);
+  fr.alive = true;
+  add_corner(vrec(v0), fr, c0, p2 - p1);
+  add_corner(vrec(v1), fr, detail::cross(p2, p0), p0 - p2);
+  add_corner(vrec(v2), fr, detail::cross(p0, p1), p1 - p0);
+}
+
+void WorkingSurface::Engine::remove_face_terms(FH f, VH skip_a, VH skip_b) {
+  // The cross products are recomputed from the same positions in the same order, so they cancel
+  // what add_face_terms added exactly.
+  const HH h0 = mesh_->halfedge_handle(f);
+  const HH h1 = mesh_->next_halfedge_handle(h0);
+  const VH v0 = mesh_->from_vertex_handle(h0), v1 = mesh_->to_vertex_handle(h0), v2 = mesh_->to_vertex_handle(h1);
+  const Vec3 p0 = position(v0) - origin_, p1 = position(v1) - origin_, p2 = position(v2) - origin_;
+  const detail::FaceRecord& fr = frec(f);
+  if (v0 != skip_a && v0 != skip_b) remove_corner(vrec(v0), fr, detail::cross(p1, p2), p2 - p1);
+  if (v1 != skip_a && v1 != skip_b) remove_corner(vrec(v1), fr, detail::cross(p2, p0), p0 - p2);
+  if (v2 != skip_a && v2 != skip_b) remove_corner(vrec(v2), fr, detail::cross(p0, p1), p1 - p0);
+}
+
+void WorkingSurface::Engine::recompute_face_terms() {
+  // From scratch: the running sums drift by rounding over many collapses.
+  for (std::size_t i = 0; i < mesh_->n_vertices(); ++i) {
+    vrec_[i].isotropy = detail::Isotropy{};
+    vrec_[i].det_sum = 0.0;
+    vrec_[i].cross_sum = {0.0, 0.0, 0.0};
+    vrec_[i].link_sum = {0.0, 0.0, 0.0};
+    vrec_[i].normal_sum = {0.0, 0.0, 0.0};
+  }
+  for (std::size_t i = 0; i < mesh_->n_faces(); ++i)
+    if (frec_[i].alive) add_face_terms(FH(static_cast<int>(i)));
+}
+
+void WorkingSurface::Engine::volume_plane(HH h, CostInputs& in) const {
+  // Six times the volume enclosed with a point s is the sum over triangles of det(p0 - s, p1 - s,
+  // p2 - s). Moving a and b to c replaces, in every triangle (v, p, q) that keeps one of them,
+  // det(v - s, p - s, q - s) by (c - s).((p - s) x (q - s)), and removes the two triangles of ab:
+  // the volume is unchanged when (c - s).N = K, N summing (p - s) x (q - s) over the kept
+  // triangles and K the determinants of all the triangles around a and b. Around an interior
+  // vertex this does not depend on s; at a boundary (an open fan) it does, and s = midpoint of ab
+  // keeps a flat patch flat. The per-vertex sums are taken from the origin o; with d = s - o,
+  //   (p - s) x (q - s) = (p - o) x (q - o) - d x (q - p),   det_s(t) = det_o(t) - d.n_t.
+  const VH a = mesh_->from_vertex_handle(h), b = mesh_->to_vertex_handle(h);
+  const detail::VertexRecord& ra = vrec_[a.idx()];
+  const detail::VertexRecord& rb = vrec_[b.idx()];
+  Vec3 cross_sum = ra.cross_sum + rb.cross_sum;
+  Vec3 link_sum = ra.link_sum + rb.link_sum;
+  Vec3 normal_sum = ra.normal_sum + rb.normal_sum;
+  double det_sum = ra.det_sum + rb.det_sum;
+  for (HH side : {h, mesh_->opposite_halfedge_handle(h)}) {
+    const FH f = mesh_->face_handle(side);
+    if (!f.is_valid()) continue;
+    // The triangle (u, v, w) of ab (side goes from u to v) is counted at both u and v, and in S_ab
+    // once; it vanishes, so its terms at u and v leave N:
+    //   (v x w) + (w x u) = w x (u - v)   and   (w - v) + (u - w) = u - v.
+    const detail::FaceRecord& fr = frec_[f.idx()];
+    det_sum -= fr.det;
+    normal_sum = normal_sum - fr.normal;
+    const Vec3 u = position(mesh_->from_vertex_handle(side)) - origin_;
+    const Vec3 v = position(mesh_->to_vertex_handle(side)) - origin_;
+    const Vec3 w = position(mesh_->to_vertex_handle(mesh_->next_halfedge_handle(side))) - origin_;
+    cross_sum = cross_sum - detail::cross(w, u - v);
+    link_sum = link_sum - (u - v);
+  }
+  const Vec3 d = 0.5 * (in.a + in.b) - origin_;
+  in.preserve_volume = true;
+  in.volume_normal = cross_sum - detail::cross(d, link_sum);
+  in.volume_offset = det_sum - detail::dot(d, normal_sum);
+}
+
+bool WorkingSurface::Engine::prepare_inputs(HH h, CostInputs& in) {
+  const VH a = mesh_->from_vertex_handle(h), b = mesh_->to_vertex_handle(h);
+  const detail::VertexRecord& ra = vrec(a);
+  const detail::VertexRecord& rb = vrec(b);
+  const unsigned border = ra.border | rb.border;
+  // Both faces of one axis (a cube one voxel thick): c cannot lie on both.
+  if (border & (border >> 1) & 0b010101u) return false;
+  in.shape = ra.shape + rb.shape;
+  in.weight = ra.weight + rb.weight;
+  in.isotropy = ra.isotropy;
+  in.isotropy += rb.isotropy;
+  // The triangles abx and aby are in both sums.
+  const FH f0 = mesh_->face_handle(h), f1 = mesh_->face_handle(mesh_->opposite_halfedge_handle(h));
+  if (f0.is_valid()) in.isotropy -= frec(f0).isotropy;
+  if (f1.is_valid()) in.isotropy -= frec(f1).isotropy;
+  in.a = position(a);
+  in.b = position(b);
+  if (options_.preserve_volume) volume_plane(h, in);
+  in.fixed_axes = 0;
+  for (unsigned i = 0; i < 3; ++i) {
+    const unsigned bits = (border >> (2 * i)) & 3u;
+    if (bits == 0) continue;
+    in.fixed_axes |= 1u << i;
+    in.fixed_value[i] = bits == 1u ? 0.0 : cube_hi_[i];
+  }
+  return true;
+}
+
+bool WorkingSurface::Engine::evaluate(HH h, Candidate& out) {
+  CostInputs in;
+  if (!prepare_inputs(h, in)) {
+    ++counters_.rejected_border;
+    return false;
+  }
+  ++counters_.evaluations;
+  const auto prepared = cost_.prepare(in);
+  out = cost_.best(prepared);
+  if (out.fallback) ++counters_.distrusted;
+  if (!(out.shape_error <= options_.max_error)) {
+    ++counters_.rejected_shape;
+    return false;
+  }
+  return true;
+}
+
+} // namespace geotandem::tandem

@@ -1,0 +1,182 @@
+// dumping(): finished components leave the working surface; compaction of the mesh afterwards.
+#include <cassert>
+#include <string>
+
+#include "geotandem/core/error.hpp"
+#include "geotandem/mesh/measure.hpp"
+#include "surface_engine.hpp"
+
+namespace geotandem::tandem {
+
+using detail::EdgeState;
+
+std::size_t WorkingSurface::Engine::dump() {
+  std::size_t dumped = 0;
+  for (std::int32_t c : components_.take_maybe_finished()) {
+    const std::int32_t root = components_.find(c);
+    const detail::ComponentRecord& r = components_.at(root);
+    if (!r.alive || r.waiting != 0) continue;
+    dump_component(root);
+    ++dumped;
+  }
+  maybe_collect_garbage();
+  return dumped;
+}
+
+void WorkingSurface::Engine::dump_component(std::int32_t root) {
+  const detail::ComponentRecord record = components_.at(root);
+  assert(record.member >= 0 && vrec(VH(record.member)).alive);
+  if (local_index_.size() < mesh_->n_vertices()) local_index_.resize(mesh_->n_vertices(), -1);
+
+  // Gather the component by a traversal of one-rings from its member vertex.
+  mesh::Component component;
+  component.key = record.key;
+  std::vector<VH> order;
+  const std::uint32_t stamp = marks_.next_stamp();
+  const VH start(record.member);
+  marks_.mark(start, stamp);
+  order.push_back(start);
+  std::vector<FH> faces;
+  for (std::size_t next = 0; next < order.size(); ++next) {
+    const VH v = order[next];
+    local_index_[static_cast<std::size_t>(v.idx())] = static_cast<std::int32_t>(next);
+    const HH first = mesh_->halfedge_handle(v);
+    HH h = first;
+    do {
+      const VH w = mesh_->to_vertex_handle(h);
+      if (!marks_.marked(w, stamp)) {
+        marks_.mark(w, stamp);
+        order.push_back(w);
+      }
+      const FH f = mesh_->face_handle(h);
+      if (f.is_valid() && mesh_->halfedge_handle(f) == h) faces.push_back(f); // each face once
+      h = detail::next_outgoing(*mesh_, h);
+    } while (h != first);
+  }
+  component.surface.points.reserve(order.size());
+  for (VH v : order)
+    component.surface.points.push_back(position(v));
+  component.surface.triangles.reserve(faces.size());
+  for (FH f : faces) {
+    const HH h = mesh_->halfedge_handle(f);
+    const VH v0 = mesh_->from_vertex_handle(h), v1 = mesh_->to_vertex_handle(h),
+             v2 = mesh_->to_vertex_handle(mesh_->next_halfedge_handle(h));
+    component.surface.triangles.push_back(
+        {static_cast<std::uint32_t>(local_index_[static_cast<std::size_t>(v0.idx())]),
+         static_cast<std::uint32_t>(local_index_[static_cast<std::size_t>(v1.idx())]),
+         static_cast<std::uint32_t>(local_index_[static_cast<std::size_t>(v2.idx())])});
+  }
+
+  if (sink_) {
+    component.stats = mesh::measure_component(component.surface, cube_);
+    sink_->commit(component);
+  }
+
+  // Remove it: nothing outside the component refers to its elements.
+  for (VH v : order) {
+    const HH first = mesh_->halfedge_handle(v);
+    HH h = first;
+    do {
+      const EH e = mesh_->edge_handle(h);
+      detail::EdgeRecord& er = erec(e);
+      if (er.alive) {
+        if (er.state != EdgeState::idle) set_state(e, EdgeState::idle, 0.0);
+        er.alive = false;
+        mesh_->status(e).set_deleted(true);
+      }
+      h = detail::next_outgoing(*mesh_, h);
+    } while (h != first);
+    detail::VertexRecord& vr = vrec(v);
+    vr.alive = false;
+    mesh_->status(v).set_deleted(true);
+  }
+  for (FH f : faces) {
+    frec(f).alive = false;
+    mesh_->status(f).set_deleted(true);
+  }
+  components_.remove(root);
+  live_vertices_ -= order.size();
+  live_faces_ -= faces.size();
+  ++counters_.components_dumped;
+  counters_.triangles_dumped += faces.size();
+}
+
+void WorkingSurface::Engine::maybe_collect_garbage() {
+  // Compaction costs a pass over everything held; do it when two thirds of the storage are dead
+  // (amortised O(1) per removed element) and there is enough of it to matter.
+  const std::size_t dead_faces = mesh_->n_faces() - live_faces_;
+  if (dead_faces > options_.compaction_min_dead && dead_faces > 2 * live_faces_) collect_garbage();
+}
+
+void WorkingSurface::Engine::collect_garbage() {
+  delayed_.clear(); // before the slots are renumbered
+  const std::vector<std::int32_t> moved = rebuild_mesh();
+  slots_.assign(mesh_->n_edges(), -1);
+  local_index_.clear();
+  marks_.clear();
+  refresh();
+  recompute_face_terms();
+
+  auto remap = [&](std::int32_t& v) { v = v >= 0 ? moved[static_cast<std::size_t>(v)] : -1; };
+  previous_ids_.for_each([&](std::uint64_t, std::int32_t& v) { remap(v); });
+  current_ids_.for_each([&](std::uint64_t, std::int32_t& v) { remap(v); });
+  std::vector<std::int32_t> isolated;
+  for (std::int32_t v : isolated_) {
+    remap(v);
+    if (v >= 0) isolated.push_back(v);
+  }
+  isolated_.swap(isolated);
+
+  // Components: renumber the live ones and pick members again.
+  const std::vector<std::int32_t> renumber = components_.compact();
+  for (std::size_t i = 0; i < components_.record_count(); ++i)
+    components_.at(static_cast<std::int32_t>(i)).member = -1;
+  for (std::size_t i = 0; i < mesh_->n_vertices(); ++i) {
+    detail::VertexRecord& r = vrec_[i];
+    r.component = renumber[static_cast<std::size_t>(r.component)];
+    detail::ComponentRecord& c = components_.at(r.component);
+    if (c.member < 0) c.member = static_cast<std::int32_t>(i);
+  }
+
+  // Queues: rebuilt from the edges' states (the records moved with the edges).
+  std::vector<detail::IndexedHeap::Entry> q;
+  std::vector<std::int32_t> parked;
+  for (std::size_t i = 0; i < mesh_->n_edges(); ++i) {
+    const detail::EdgeRecord& r = erec_[i];
+    const auto item = static_cast<std::int32_t>(i);
+    switch (r.state) {
+    case EdgeState::candidate: q.push_back({r.key, item}); break;
+    case EdgeState::delayed: delayed_.push(item, r.key); break;
+    case EdgeState::parked:
+      slots_[i] = static_cast<std::int32_t>(parked.size());
+      parked.push_back(item);
+      break;
+    case EdgeState::idle: break;
+    }
+  }
+  candidates_.assign(std::move(q));
+  parked_.swap(parked);
+  ++counters_.garbage_collections;
+}
+
+mesh::SurfaceMesh WorkingSurface::Engine::snapshot() const {
+  mesh::SurfaceMesh out;
+  std::vector<std::int32_t> index(mesh_->n_vertices(), -1);
+  for (std::size_t i = 0; i < mesh_->n_vertices(); ++i) {
+    if (!vrec_[i].alive) continue;
+    index[i] = static_cast<std::int32_t>(out.points.size());
+    out.points.push_back(detail::to_vec(points_[i]));
+  }
+  for (std::size_t i = 0; i < mesh_->n_faces(); ++i) {
+    if (!frec_[i].alive) continue;
+    const HH h = mesh_->halfedge_handle(FH(static_cast<int>(i)));
+    const VH v0 = mesh_->from_vertex_handle(h), v1 = mesh_->to_vertex_handle(h),
+             v2 = mesh_->to_vertex_handle(mesh_->next_halfedge_handle(h));
+    out.triangles.push_back({static_cast<std::uint32_t>(index[static_cast<std::size_t>(v0.idx())]),
+                             static_cast<std::uint32_t>(index[static_cast<std::size_t>(v1.idx())]),
+                             static_cast<std::uint32_t>(index[static_cast<std::size_t>(v2.idx())])});
+  }
+  return out;
+}
+
+} // namespace geotandem::tandem

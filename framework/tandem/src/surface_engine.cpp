@@ -1,0 +1,365 @@
+#include "surface_engine.hpp"
+
+#include <algorithm>
+#include <cassert>
+#include <cmath>
+#include <string>
+
+#include "geotandem/core/error.hpp"
+#include "geotandem/tandem/marching_cubes.hpp"
+
+namespace geotandem::tandem {
+
+using detail::Candidate;
+using detail::CostInputs;
+using detail::EdgeGeometry;
+using detail::EdgeState;
+using detail::Vec3;
+using detail::operator+;
+using detail::operator-;
+using detail::operator*;
+
+WorkingSurface::Engine::Engine(const volume::Geometry& cube, Region region, int axis, const SimplifyOptions& options,
+                               mesh::ComponentSink* sink, CollapseObserver* observer)
+    : cube_(cube), region_(std::move(region)), axis_(axis), options_(options), sink_(sink), observer_(observer),
+      cost_(options.max_error, options.isotropy), front_rule_(detail::make_front_rule(options.time_lag, axis)),
+      face_rule_(detail::make_face_rule(options.extended_time_lag)), candidates_(&slots_), delayed_(&slots_) {
+  options_.validate();
+  cube_.validate();
+  if (axis < 0 || axis > 2)
+    throw InvalidArgument("working surface: extraction axis " + std::to_string(axis) + " is not 0, 1 or 2");
+  const volume::Box cells = cube_cells(cube_.shape);
+  if (region_.empty()) region_ = Region::block(cells, cells);
+  if (!(region_.cube() == cells))
+    throw InvalidArgument("working surface: the region's cube " + region_.cube().to_string() +
+                              " is not the cells of the cube " + cells.to_string(),
+                          {}, "build the region from cube_cells(geometry.shape)");
+  lattice_.shape = cube_.shape;
+  for (std::size_t i = 0; i < 3; ++i)
+    origin_[i] = static_cast<double>(region_.blocks().front().lo[i]);
+  for (int i = 0; i < 3; ++i)
+    cube_hi_[static_cast<std::size_t>(i)] = static_cast<double>(cube_.shape[i] - 1);
+  mesh_->add_property(vprop_, "geotandem:vertex");
+  mesh_->add_property(eprop_, "geotandem:edge");
+  mesh_->add_property(fprop_, "geotandem:face");
+  refresh();
+}
+
+void WorkingSurface::Engine::refresh() {
+  vrec_ = mesh_->property(vprop_).data_vector().data();
+  erec_ = mesh_->property(eprop_).data_vector().data();
+  frec_ = mesh_->property(fprop_).data_vector().data();
+  points_ = mesh_->property(mesh_->points_pph()).data_vector().data();
+  if (slots_.size() < mesh_->n_edges()) slots_.resize(mesh_->n_edges(), -1);
+  marks_.ensure(mesh_->n_vertices());
+}
+
+// ---------------------------------------------------------------------------------------------
+// Queues
+
+detail::EdgeGeometry WorkingSurface::Engine::geometry_of(HH h) const {
+  const VH a = mesh_->from_vertex_handle(h), b = mesh_->to_vertex_handle(h);
+  const detail::VertexRecord& ra = vrec_[a.idx()];
+  const detail::VertexRecord& rb = vrec_[b.idx()];
+  EdgeGeometry g;
+  g.a = position(a);
+  g.b = position(b);
+  g.height_a = ra.height;
+  g.height_b = rb.height;
+  g.rad_a = ra.rad;
+  g.rad_b = rb.rad;
+  return g;
+}
+
+void WorkingSurface::Engine::set_state(EH e, EdgeState state, double key) {
+  detail::EdgeRecord& r = erec(e);
+  const EdgeState old = r.state;
+  const auto item = static_cast<std::int32_t>(e.idx());
+  if (old == state) { // stays in the same queue: move it in place
+    if (state == EdgeState::candidate) candidates_.update(item, key);
+    if (state == EdgeState::delayed) {
+      delayed_.erase(item, r.key);
+      delayed_.push(item, key);
+    }
+    r.key = key;
+    return;
+  }
+  switch (old) {
+  case EdgeState::candidate: candidates_.erase(item); break;
+  case EdgeState::delayed: delayed_.erase(item, r.key); break;
+  case EdgeState::parked: {
+    const std::int32_t slot = slots_[static_cast<std::size_t>(item)];
+    const std::int32_t last = parked_.back();
+    parked_[static_cast<std::size_t>(slot)] = last;
+    slots_[static_cast<std::size_t>(last)] = slot;
+    parked_.pop_back();
+    slots_[static_cast<std::size_t>(item)] = -1;
+    break;
+  }
+  case EdgeState::idle: break;
+  }
+  r.state = state;
+  r.key = key;
+  switch (state) {
+  case EdgeState::candidate: candidates_.push(item, key); break;
+  case EdgeState::delayed: delayed_.push(item, key); break;
+  case EdgeState::parked:
+    slots_[static_cast<std::size_t>(item)] = static_cast<std::int32_t>(parked_.size());
+    parked_.push_back(item);
+    break;
+  case EdgeState::idle: break;
+  }
+  const bool was_waiting = detail::waiting(old), is_waiting = detail::waiting(state);
+  if (was_waiting != is_waiting) {
+    const VH a = mesh_->to_vertex_handle(mesh_->halfedge_handle(e, 0));
+    components_.add_waiting(vrec(a).component, is_waiting ? 1 : -1);
+  }
+}
+
+std::uint32_t WorkingSurface::Engine::stamp_of(EH e) const {
+  const HH h = mesh_->halfedge_handle(e, 0);
+  return vrec_[mesh_->from_vertex_handle(h).idx()].version + vrec_[mesh_->to_vertex_handle(h).idx()].version;
+}
+
+void WorkingSurface::Engine::place(EH e) {
+  const HH h = mesh_->halfedge_handle(e, 0);
+  const EdgeGeometry g = geometry_of(h);
+  const double lag = front_rule_->key(g);
+  if (!(lag < front_)) {
+    set_state(e, EdgeState::delayed, lag);
+    return;
+  }
+  if (!face_rule_->allows(g, region_)) {
+    ++counters_.blocked_by_faces;
+    set_state(e, EdgeState::parked, lag);
+    return;
+  }
+  // Lazy evaluation: a candidate keeps its old key, now stale, and is evaluated again when it
+  // reaches the top of Q (put back if it became dearer). Costs mostly grow as patches merge, so
+  // the old key is nearly always a lower bound and the order stays the greedy one.
+  // (The stamp cannot tell: an edge that lost a to c has new endpoints, whose versions may sum to
+  // the old value.)
+  if (erec(e).state == EdgeState::candidate) {
+    erec(e).dirty = true;
+    return;
+  }
+  Candidate c;
+  if (evaluate(h, c)) {
+    detail::EdgeRecord& r = erec(e);
+    r.target = c.position;
+    r.retried = false;
+    r.dirty = false;
+    r.stamp = stamp_of(e);
+    set_state(e, EdgeState::candidate, c.cost);
+  } else {
+    set_state(e, EdgeState::idle, 0.0);
+  }
+}
+
+void WorkingSurface::Engine::activate(double front) {
+  if (front < front_)
+    throw InvalidArgument("working surface: the front cannot move back from " + std::to_string(front_) + " to " +
+                          std::to_string(front));
+  front_ = front;
+  if (std::isinf(front_)) drop_isolated_vertices(); // no layer will use them now
+  std::vector<std::int32_t> bucket;
+  while (delayed_.lowest_below(front_, bucket)) {
+    bool moved = false;
+    for (std::int32_t e : bucket) {
+      if (!(erec_[e].key < front_)) continue;
+      place(EH(e));
+      moved = true;
+    }
+    if (!moved) break; // the lowest bucket only holds keys at or above the front
+  }
+}
+
+void WorkingSurface::Engine::set_region(Region region) {
+  if (!(region.cube() == region_.cube()))
+    throw InvalidArgument("working surface: the new region " + region.to_string() + " is not in the same cube as " +
+                          region_.to_string());
+  region_ = std::move(region);
+  const std::vector<std::int32_t> parked = parked_;
+  for (std::int32_t e : parked)
+    place(EH(e));
+}
+
+// ---------------------------------------------------------------------------------------------
+// Collapses
+
+void WorkingSurface::Engine::simplify(const CancelToken* cancel) {
+  std::uint32_t steps = 0;
+  while (!candidates_.empty()) {
+    if (cancel && (++steps & 0xFFFu) == 0) cancel->throw_if_cancelled();
+    const EH e(candidates_.top().item);
+    double key = candidates_.top().key;
+    set_state(e, EdgeState::idle, 0.0);
+    detail::EdgeRecord& r = erec(e);
+    if (r.dirty || r.stamp != stamp_of(e)) {
+      // Collapses nearby changed what its cost depends on: compute it again, and put it back
+      // when it became dearer.
+      Candidate c;
+      if (!evaluate(mesh_->halfedge_handle(e, 0), c)) continue;
+      r.target = c.position;
+      r.retried = false;
+      r.dirty = false;
+      r.stamp = stamp_of(e);
+      if (c.cost > key + 1e-12 * (1.0 + key)) {
+        set_state(e, EdgeState::candidate, c.cost);
+        continue;
+      }
+    }
+    try_collapse(e, key);
+  }
+}
+
+void WorkingSurface::Engine::try_collapse(EH e, double cost) {
+  const HH h = mesh_->halfedge_handle(e, 0);
+  detail::EdgeRecord& r = erec(e);
+  if (!detail::link_condition_ok(*mesh_, h, marks_)) {
+    ++counters_.rejected_link;
+    return;
+  }
+  if (detail::collapse_keeps_shape(*mesh_, h, r.target, points_)) {
+    collapse(h, r.target, cost);
+    return;
+  }
+  ++counters_.rejected_flip;
+  if (r.retried) return;
+  // One more chance at the simple positions (volume-preserving when asked) that keep every
+  // triangle's shape.
+  CostInputs in;
+  if (!prepare_inputs(h, in)) return;
+  const auto prepared = cost_.prepare(in);
+  Vec3 positions[3];
+  const int count = cost_.fallback_positions(prepared, positions);
+  Candidate options[3];
+  for (int k = 0; k < count; ++k)
+    options[k] = cost_.at(prepared, positions[k]);
+  for (int k = 1; k < count; ++k) // by cost (at most three)
+    for (int j = k; j > 0 && options[j].cost < options[j - 1].cost; --j)
+      std::swap(options[j], options[j - 1]);
+  for (int k = 0; k < count; ++k) {
+    const Candidate& o = options[k];
+    if (!(o.shape_error <= options_.max_error)) continue;
+    if (!detail::collapse_keeps_shape(*mesh_, h, o.position, points_)) continue;
+    ++counters_.retried;
+    r.target = o.position;
+    r.retried = true;
+    set_state(e, EdgeState::candidate, o.cost);
+    return;
+  }
+}
+
+void WorkingSurface::Engine::report_collapse(HH h, const Vec3& target, double cost) {
+  const EdgeGeometry g = geometry_of(h);
+  CollapseEvent ev;
+  ev.a = g.a;
+  ev.b = g.b;
+  ev.c = target;
+  ev.height = g.height();
+  ev.rad = g.rad();
+  ev.reach = g.reach();
+  ev.front = front_;
+  ev.open_face_distance = region_.distance_to_open_faces(g.midpoint());
+  ev.cost = cost;
+  CostInputs in;
+  if (prepare_inputs(h, in)) ev.shape_error = cost_.at(cost_.prepare(in), target).shape_error;
+  // The invariants of the time lag and the extended time lag, checked on every collapse in debug.
+  assert(front_rule_->key(g) < front_);
+  assert(!options_.time_lag || ev.reach < ev.front);
+  assert(!options_.extended_time_lag || ev.open_face_distance > ev.rad);
+  assert(options_.extended_time_lag || (!region_.on_open_face(g.a) && !region_.on_open_face(g.b)));
+  assert(ev.shape_error <= options_.max_error);
+  if (observer_) observer_->on_collapse(ev);
+}
+
+void WorkingSurface::Engine::collapse(HH h, const Vec3& target, double cost) {
+#ifdef NDEBUG
+  if (observer_) report_collapse(h, target, cost);
+#else
+  report_collapse(h, target, cost);
+#endif
+  const VH a = mesh_->from_vertex_handle(h), b = mesh_->to_vertex_handle(h);
+  const EdgeGeometry g = geometry_of(h);
+
+  // The three edges that disappear leave the queues (ab, bx and ay: collapse_halfedge keeps ax
+  // and by); the others are re-placed once c is known.
+  {
+    const HH o = mesh_->opposite_halfedge_handle(h);
+    EH doomed[3] = {mesh_->edge_handle(h), EH(), EH()};
+    if (mesh_->face_handle(h).is_valid()) doomed[1] = mesh_->edge_handle(mesh_->next_halfedge_handle(h));
+    if (mesh_->face_handle(o).is_valid()) doomed[2] = mesh_->edge_handle(mesh_->next_halfedge_handle(o));
+    for (EH e : doomed)
+      if (e.is_valid() && erec(e).state != EdgeState::idle) set_state(e, EdgeState::idle, 0.0);
+  }
+  // The terms of the triangles around a and b leave their other corners' sums: every one of these
+  // triangles changes or disappears. Each triangle once: those around a, then those around b that
+  // do not contain a.
+  for (VH v : {a, b}) {
+    const HH start = mesh_->halfedge_handle(v);
+    HH s = start;
+    do {
+      const FH f = mesh_->face_handle(s);
+      if (f.is_valid()) {
+        const VH p = mesh_->to_vertex_handle(s), q = mesh_->to_vertex_handle(mesh_->next_halfedge_handle(s));
+        if (!(v == b && (p == a || q == a))) remove_face_terms(f, a, b);
+      }
+      s = detail::next_outgoing(*mesh_, s);
+    } while (s != start);
+  }
+
+  // Component bookkeeping: a's component keeps b as a member if it used a.
+  detail::VertexRecord& ra = vrec(a);
+  detail::VertexRecord& rb = vrec(b);
+  {
+    detail::ComponentRecord& comp = components_.at(components_.find(ra.component));
+    if (comp.member == a.idx()) comp.member = b.idx();
+  }
+
+  const detail::CollapseResult result = detail::collapse_halfedge(*mesh_, h);
+  for (int i = 0; i < result.removed_edge_count; ++i)
+    erec(result.removed_edges[i]).alive = false;
+  for (int i = 0; i < result.removed_face_count; ++i)
+    frec(result.removed_faces[i]).alive = false;
+  live_faces_ -= static_cast<std::size_t>(result.removed_face_count);
+  --live_vertices_;
+
+  rb.shape += ra.shape;
+  rb.weight += ra.weight;
+  rb.height = g.height();
+  rb.rad = g.rad();
+  rb.lattice_id = detail::kNoLatticeId;
+  rb.border |= ra.border;
+  ra.alive = false;
+  points_[b.idx()] = detail::TriMesh::Point(target[0], target[1], target[2]);
+
+  // New terms of the triangles around c.
+  rb.isotropy = detail::Isotropy{};
+  rb.det_sum = 0.0;
+  rb.cross_sum = {0.0, 0.0, 0.0};
+  rb.link_sum = {0.0, 0.0, 0.0};
+  rb.normal_sum = {0.0, 0.0, 0.0};
+  const HH start = mesh_->halfedge_handle(b);
+  HH s = start;
+  do {
+    const FH f = mesh_->face_handle(s);
+    if (f.is_valid()) add_face_terms(f);
+    s = detail::next_outgoing(*mesh_, s);
+  } while (s != start);
+
+  ++counters_.collapses;
+  ++rb.version;
+  s = start;
+  do {
+    ++vrec(mesh_->to_vertex_handle(s)).version;
+    s = detail::next_outgoing(*mesh_, s);
+  } while (s != start);
+  s = start;
+  do {
+    place(mesh_->edge_handle(s));
+    s = detail::next_outgoing(*mesh_, s);
+  } while (s != start);
+}
+
+} // namespace geotandem::tandem

@@ -1,0 +1,132 @@
+#pragma once
+// The machinery behind WorkingSurface: the working mesh and its records, the queues Q (candidates
+// by cost) and W (edges delayed by the front, by reach; edges parked by the open faces), the
+// component table, and the id maps that weld a layer to the previous one.
+//
+// Edge life cycle (place()): an edge whose lag key is not below the front is delayed; else, if
+// the open faces forbid it, parked; else its candidate is computed and it enters Q, or stays idle
+// when the shape error exceeds E0. Any change of a or b re-places the edge. A popped candidate is
+// collapsed unless the link condition or the flip test refuses it (then it stays idle until its
+// neighbourhood changes; a flip gets one retry at the best of a, b and the midpoint).
+
+#include <cstdint>
+#include <limits>
+#include <memory>
+#include <vector>
+
+#include "attali_cost.hpp"
+#include "bucket_queue.hpp"
+#include "collapse_ops.hpp"
+#include "component_table.hpp"
+#include "constraints.hpp"
+#include "geotandem/tandem/simplify.hpp"
+#include "id_map.hpp"
+#include "indexed_heap.hpp"
+#include "working_mesh.hpp"
+
+namespace geotandem::tandem {
+
+class WorkingSurface::Engine {
+public:
+  Engine(const volume::Geometry& cube, Region region, int axis, const SimplifyOptions& options,
+         mesh::ComponentSink* sink, CollapseObserver* observer);
+
+  void add_layer(const Layer& layer);
+  void activate(double front);
+  void simplify(const CancelToken* cancel);
+  std::size_t dump();
+  void set_region(Region region);
+
+  const Region& region() const { return region_; }
+  double front() const { return front_; }
+  std::size_t triangle_count() const { return live_faces_; }
+  std::size_t vertex_count() const { return live_vertices_; }
+  std::size_t component_count() const { return components_.alive_count(); }
+  std::size_t waiting_edge_count() const { return delayed_.size() + parked_.size(); }
+  const SimplifyCounters& counters() const { return counters_; }
+  mesh::SurfaceMesh snapshot() const;
+
+private:
+  using VH = detail::VH;
+  using HH = detail::HH;
+  using EH = detail::EH;
+  using FH = detail::FH;
+
+  // Raw views of the records; valid until the mesh grows or is compacted.
+  void refresh();
+  detail::VertexRecord& vrec(VH v) { return vrec_[v.idx()]; }
+  detail::EdgeRecord& erec(EH e) { return erec_[e.idx()]; }
+  detail::FaceRecord& frec(FH f) { return frec_[f.idx()]; }
+  detail::Vec3 position(VH v) const { return detail::to_vec(points_[v.idx()]); }
+
+  // Layers (surface_layers.cpp).
+  VH weld_or_create(std::uint64_t id, const std::array<double, 3>& p, std::int64_t rank, std::size_t index);
+  std::uint8_t border_bits(const std::array<double, 3>& p) const;
+  void drop_isolated_vertices();
+
+  // Queues.
+  detail::EdgeGeometry geometry_of(HH h) const;
+  void place(EH e);
+  std::uint32_t stamp_of(EH e) const;
+  void set_state(EH e, detail::EdgeState state, double key);
+  bool prepare_inputs(HH h, detail::CostInputs& in);
+  // Face terms (isotropy, volume) into and out of the sums of the face's corners.
+  void add_face_terms(FH f);
+  void remove_face_terms(FH f, VH skip_a, VH skip_b);
+  void recompute_face_terms();
+  void volume_plane(HH h, detail::CostInputs& in) const;
+  bool evaluate(HH h, detail::Candidate& out);
+  void try_collapse(EH e, double cost);
+  void collapse(HH h, const detail::Vec3& target, double cost);
+  void report_collapse(HH h, const detail::Vec3& target, double cost);
+
+  // Dumping and compaction (surface_dump.cpp).
+  void dump_component(std::int32_t root);
+  void maybe_collect_garbage();
+  void collect_garbage();
+  // A fresh mesh with only the live elements (surface_compact.cpp); returns old -> new vertex index.
+  std::vector<std::int32_t> rebuild_mesh();
+
+  volume::Geometry cube_;
+  LatticeIds lattice_;
+  Region region_;
+  int axis_;
+  SimplifyOptions options_;
+  mesh::ComponentSink* sink_;
+  CollapseObserver* observer_;
+  std::array<double, 3> cube_hi_{};
+  detail::Vec3 origin_{}; // volume terms are computed relative to it (the first block's corner)
+
+  detail::AttaliCost cost_;
+  std::unique_ptr<detail::FrontRule> front_rule_;
+  std::unique_ptr<detail::FaceRule> face_rule_;
+
+  std::unique_ptr<detail::TriMesh> mesh_ = std::make_unique<detail::TriMesh>();
+  OpenMesh::VPropHandleT<detail::VertexRecord> vprop_;
+  OpenMesh::EPropHandleT<detail::EdgeRecord> eprop_;
+  OpenMesh::FPropHandleT<detail::FaceRecord> fprop_;
+  detail::VertexRecord* vrec_ = nullptr;
+  detail::EdgeRecord* erec_ = nullptr;
+  detail::FaceRecord* frec_ = nullptr;
+  detail::TriMesh::Point* points_ = nullptr;
+
+  std::vector<std::int32_t> slots_;  // edge -> position in Q, W or the parked list
+  detail::IndexedHeap candidates_;   // Q, by eps_alpha
+  detail::BucketQueue delayed_;      // W, by lag key (unit buckets)
+  std::vector<std::int32_t> parked_; // W, edges waiting for the region to grow
+  detail::ComponentTable components_;
+  detail::IdMap previous_ids_; // ids of the last layer: the next one may repeat them
+  detail::IdMap current_ids_;
+  detail::VertexMarks marks_;
+  std::vector<std::int32_t> local_index_;            // scratch for dumping
+  std::vector<std::int32_t> isolated_;               // vertices of the last layer that no triangle uses yet
+  std::vector<std::array<double, 3>> new_positions_; // scratch: the vertices a layer creates
+
+  double front_ = -std::numeric_limits<double>::infinity();
+  std::int64_t last_rank_ = std::numeric_limits<std::int64_t>::min();
+  std::size_t live_vertices_ = 0;
+  std::size_t live_faces_ = 0;
+  SimplifyCounters counters_;
+};
+
+} // namespace geotandem::tandem

@@ -1,0 +1,50 @@
+#pragma once
+// Exports of stored components to the formats interpreters open: PLY (ParaView, MeshLab,
+// CloudCompare), OBJ, VTP (ParaView; per-body key, volume and azimuth as cell and field data) and
+// GOCAD TSurf (Petrel, SKUA-GOCAD, OpendTect). Coordinates are world coordinates.
+
+#include <cstdint>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "geotandem/core/cancel.hpp"
+#include "geotandem/core/progress.hpp"
+#include "geotandem/store/store.hpp"
+
+namespace geotandem::store {
+
+enum class ExportFormat { ply, obj, vtp, tsurf };
+
+// "ply", "obj", "vtp", "ts" (or "tsurf"); throws InvalidArgument otherwise.
+ExportFormat parse_export_format(const std::string& text);
+// The file extension without dot: ply, obj, vtp, ts.
+const char* file_extension(ExportFormat format);
+
+struct ExportOptions {
+  ExportFormat format = ExportFormat::ply;
+  // One file per component, named <prefix><key>.<ext>, into the directory `out` (created when
+  // missing). Otherwise one file `out` holding every component.
+  bool per_component = false;
+  std::string name_prefix = "geobody_";
+  // PLY only: vertex coordinates as float32 instead of float64 (half the size; about 1e-7
+  // relative precision, a few centimetres at typical map coordinates).
+  bool ply_float32 = false;
+};
+
+struct ExportSummary {
+  std::vector<std::filesystem::path> files;
+  std::uint64_t components = 0;
+  std::uint64_t vertices = 0;
+  std::uint64_t triangles = 0;
+};
+
+// Writes `rows` (from ComponentStore::query) to `out`. Each file is written beside its final name
+// and renamed into place when complete. Streams component by component: memory holds one
+// component at a time. Throws InvalidArgument for an empty `rows`, IoError when a file cannot be
+// written, FormatError for a damaged record, Cancelled.
+ExportSummary export_components(const ComponentStore& store, const std::vector<ComponentRow>& rows,
+                                const std::filesystem::path& out, const ExportOptions& options, Progress& progress,
+                                const CancelToken& cancel);
+
+} // namespace geotandem::store

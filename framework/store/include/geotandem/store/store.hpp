@@ -1,0 +1,149 @@
+#pragma once
+// The component store (design section 7; the seed's "raw data file + index component file"):
+//   STORE/store.json     format version, cube geometry, creation info
+//   STORE/index.sqlite   one row per component (key, record location, measures, run), runs and
+//                        named selections; written by one process (the manager, or the single
+//                        process of a local run)
+//   STORE/shards/*.gts   append-only raw data, one shard per writer (see shard.hpp)
+// An index row is committed only after its record was made durable, so every row points at a
+// complete record, whatever moment a process is killed. The byte layout is in docs/store-format.md.
+
+#include <cstdint>
+#include <filesystem>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "geotandem/mesh/component.hpp"
+#include "geotandem/store/query.hpp"
+#include "geotandem/store/shard.hpp"
+#include "geotandem/volume/geometry.hpp"
+
+namespace geotandem::store {
+
+inline constexpr int store_format_version = 1;
+
+// What the index holds for one component. Measures are in world units (see mesh::ComponentStats);
+// the vertex and triangle counts of `stats` are those of the stored record.
+struct ComponentRow {
+  std::uint64_t key = 0;
+  RecordLocation location;
+  mesh::ComponentStats stats;
+  std::optional<std::int64_t> run;
+};
+
+// A row to commit: a record already written (and synced) by a ShardWriter, with its measures.
+struct IndexEntry {
+  std::uint64_t key = 0;
+  RecordLocation location;
+  mesh::ComponentStats stats; // its counts are replaced by the location's
+  std::optional<std::int64_t> run;
+};
+
+struct RunInfo {
+  std::int64_t id = 0;
+  std::string parameters; // JSON text given to begin_run
+  std::string started;    // UTC, ISO 8601
+  std::string ended;      // empty while the run is open (or was killed)
+  std::string statistics; // JSON text given to end_run ("{}" before)
+  std::uint64_t component_count = 0;
+};
+
+struct Selection {
+  std::string name;
+  std::string parameters;          // JSON text: what made the selection
+  std::string created;             // UTC, ISO 8601
+  std::vector<std::uint64_t> keys; // in the order they were saved (a ranking stays a ranking)
+};
+
+struct SelectionSummary {
+  std::string name;
+  std::string parameters;
+  std::string created;
+  std::uint64_t size = 0;
+};
+
+struct CreateOptions {
+  std::string description; // free text kept in store.json
+  std::string creator;     // the command line or program that made the store
+};
+
+enum class OpenMode { read_only, read_write };
+
+// Not thread-safe: use one object per thread (SQLite allows concurrent readers of one store, and
+// readers while one process writes).
+class ComponentStore {
+public:
+  // Makes a new store in `dir` (created if missing; it must be empty otherwise). Throws
+  // InvalidArgument for an invalid geometry or a directory that already holds files, IoError when
+  // the directory cannot be written.
+  static ComponentStore create(const std::filesystem::path& dir, const volume::Geometry& geometry,
+                               const CreateOptions& options = {});
+  // Opens an existing store. Throws IoError when `dir` does not exist, FormatError when it is not a
+  // store (no store.json, unreadable JSON, a newer format version, a damaged index).
+  static ComponentStore open(const std::filesystem::path& dir, OpenMode mode = OpenMode::read_only);
+  // Opens the store in `dir` for writing if there is one (its geometry must equal `geometry`, else
+  // InvalidArgument), creates it otherwise. Used to resume an interrupted run.
+  static ComponentStore open_or_create(const std::filesystem::path& dir, const volume::Geometry& geometry,
+                                       const CreateOptions& options = {});
+  // True when `dir` holds a store.json.
+  static bool exists(const std::filesystem::path& dir);
+
+  ~ComponentStore();
+  ComponentStore(ComponentStore&&) noexcept;
+  ComponentStore& operator=(ComponentStore&&) noexcept;
+
+  const std::filesystem::path& directory() const;
+  const volume::Geometry& geometry() const;
+  // The whole store.json as text.
+  std::string info_json() const;
+  bool writable() const;
+
+  // Runs. `parameters_json` and `statistics_json` must be JSON (InvalidArgument otherwise).
+  std::int64_t begin_run(const std::string& parameters_json);
+  void end_run(std::int64_t run, const std::string& statistics_json);
+  std::vector<RunInfo> runs() const;
+
+  // Commits index rows in one transaction. A key already in the index is left as it is (a
+  // component committed twice is stored once). Returns the number of rows added. The records must
+  // be durable already (ShardWriter::sync). Throws InvalidArgument for an invalid shard name,
+  // IoError when the index cannot be written (read-only store, disk full).
+  std::size_t commit(const std::vector<IndexEntry>& entries);
+  std::size_t commit(const IndexEntry& entry) { return commit(std::vector<IndexEntry>{entry}); }
+
+  bool contains(std::uint64_t key) const;
+  std::uint64_t size() const;
+  // The end of the last indexed record of a shard (0 when the shard has none).
+  std::uint64_t indexed_end(const std::string& shard) const;
+
+  // Index rows matching `query`, in its order. Throws InvalidArgument for an unknown selection or
+  // an inconsistent range (min above max).
+  std::vector<ComponentRow> query(const Query& query = {}) const;
+  // The number of rows matching the filters of `query` (its sort and limit are ignored).
+  std::uint64_t count(const Query& query) const;
+  // The row of one key; std::nullopt when absent.
+  std::optional<ComponentRow> find(std::uint64_t key) const;
+  // Reads a component's surface in world coordinates, verifying its checksum. Throws
+  // InvalidArgument for an unknown key, IoError for a missing shard, FormatError (naming shard,
+  // offset and key) for a damaged record.
+  mesh::SurfaceMesh read(std::uint64_t key) const;
+  mesh::SurfaceMesh read(const ComponentRow& row) const;
+
+  // Named selections: a list of keys with the parameters that chose it (bubble removal writes one
+  // instead of deleting components; azimuth sorting writes a ranking). The order is kept (a key
+  // given twice keeps its first place). Every key must be in the store (InvalidArgument naming
+  // the first missing one). An existing selection of that name is replaced only with `replace`.
+  void save_selection(const std::string& name, const std::vector<std::uint64_t>& keys,
+                      const std::string& parameters_json, bool replace = false);
+  Selection load_selection(const std::string& name) const;
+  std::vector<SelectionSummary> selections() const;
+  void delete_selection(const std::string& name);
+
+private:
+  struct Impl;
+  explicit ComponentStore(std::unique_ptr<Impl> impl);
+  std::unique_ptr<Impl> impl_;
+};
+
+} // namespace geotandem::store

@@ -1,0 +1,56 @@
+#pragma once
+// The format writers behind export_components. Each writes the components of a SurfaceSource, in
+// its order, to one stream.
+
+#include <charconv>
+#include <functional>
+#include <ostream>
+#include <string>
+#include <vector>
+
+#include "geotandem/store/export.hpp"
+
+namespace geotandem::store::detail {
+
+// Hands out the world surfaces of a list of rows. Formats that write all points before all
+// triangles (PLY, VTP) visit each component twice: surfaces are kept after the first read while
+// they fit in `cache_budget` bytes, and read again otherwise, so memory stays bounded.
+class SurfaceSource {
+public:
+  SurfaceSource(const ComponentStore& store, std::vector<const ComponentRow*> rows, std::function<void()> on_first_read,
+                std::uint64_t cache_budget = 256ull << 20);
+  std::size_t size() const { return rows_.size(); }
+  const ComponentRow& row(std::size_t i) const { return *rows_[i]; }
+  // The surface of row i; the reference stays valid until the next call.
+  const mesh::SurfaceMesh& surface(std::size_t i);
+  const ComponentStore& store() const { return store_; }
+
+private:
+  const ComponentStore& store_;
+  std::vector<const ComponentRow*> rows_;
+  std::function<void()> on_first_read_;
+  std::vector<mesh::SurfaceMesh> cache_;
+  std::vector<bool> seen_;
+  bool cache_all_ = false;
+  mesh::SurfaceMesh scratch_;
+};
+
+void write_ply(SurfaceSource& source, std::ostream& out, const ExportOptions& options);
+void write_obj(SurfaceSource& source, std::ostream& out, const ExportOptions& options);
+void write_vtp(SurfaceSource& source, std::ostream& out, const ExportOptions& options);
+void write_tsurf(SurfaceSource& source, std::ostream& out, const ExportOptions& options);
+
+// Shortest text that reads back to the same double (std::to_chars), for the text formats.
+inline void put_number(std::ostream& out, double value) {
+  char text[32];
+  auto result = std::to_chars(text, text + sizeof text, value);
+  out.write(text, result.ptr - text);
+}
+
+inline void put_number(std::ostream& out, std::uint64_t value) {
+  char text[24];
+  auto result = std::to_chars(text, text + sizeof text, value);
+  out.write(text, result.ptr - text);
+}
+
+} // namespace geotandem::store::detail

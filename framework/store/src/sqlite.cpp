@@ -1,0 +1,127 @@
+#include "sqlite.hpp"
+
+#include "geotandem/core/error.hpp"
+
+namespace geotandem::store::detail {
+namespace {
+
+bool is_format_problem(int code) {
+  int primary = code & 0xff;
+  return primary == SQLITE_NOTADB || primary == SQLITE_CORRUPT || primary == SQLITE_SCHEMA;
+}
+
+} // namespace
+
+Database::Database(const std::string& path, bool create, bool read_only) : path_(path) {
+  int flags = read_only ? SQLITE_OPEN_READONLY : SQLITE_OPEN_READWRITE;
+  if (create && !read_only) flags |= SQLITE_OPEN_CREATE;
+  int rc = sqlite3_open_v2(path.c_str(), &db_, flags | SQLITE_OPEN_NOMUTEX, nullptr);
+  if (rc != SQLITE_OK) {
+    std::string message = db_ ? sqlite3_errmsg(db_) : sqlite3_errstr(rc);
+    sqlite3_close(db_);
+    db_ = nullptr;
+    throw IoError("cannot open the store index: " + message, {path});
+  }
+  sqlite3_extended_result_codes(db_, 1);
+  // Readers may meet a writer mid-commit: wait for it instead of failing at once.
+  sqlite3_busy_timeout(db_, 10000);
+}
+
+Database::~Database() {
+  sqlite3_close_v2(db_);
+}
+
+void Database::fail(int code, const std::string& what) const {
+  std::string message = what + ": " + sqlite3_errmsg(db_) + " (SQLite code " + std::to_string(code) + ")";
+  if (is_format_problem(code))
+    throw FormatError(message, {path_}, "the index is damaged or not a geotandem store index");
+  throw IoError(message, {path_});
+}
+
+void Database::exec(const std::string& sql) {
+  char* error = nullptr;
+  int rc = sqlite3_exec(db_, sql.c_str(), nullptr, nullptr, &error);
+  if (rc != SQLITE_OK) {
+    std::string text = error ? error : sqlite3_errstr(rc);
+    sqlite3_free(error);
+    std::string message = "index statement failed: " + text + " in '" + sql.substr(0, 80) + "'";
+    if (is_format_problem(rc))
+      throw FormatError(message, {path_}, "the index is damaged or not a geotandem store index");
+    throw IoError(message, {path_});
+  }
+}
+
+Statement Database::prepare(std::string_view sql) {
+  return Statement(*this, sql);
+}
+
+Statement::Statement(const Database& db, std::string_view sql) : db_(&db), sql_(sql) {
+  int rc = sqlite3_prepare_v2(db.handle(), sql_.data(), static_cast<int>(sql_.size()), &stmt_, nullptr);
+  if (rc != SQLITE_OK) db.fail(rc, "cannot prepare index statement '" + sql_.substr(0, 80) + "'");
+}
+
+Statement::~Statement() {
+  sqlite3_finalize(stmt_);
+}
+
+Statement::Statement(Statement&& other) noexcept : db_(other.db_), stmt_(other.stmt_), sql_(std::move(other.sql_)) {
+  other.stmt_ = nullptr;
+}
+
+Statement& Statement::bind(int index, std::int64_t value) {
+  int rc = sqlite3_bind_int64(stmt_, index, value);
+  if (rc != SQLITE_OK) db_->fail(rc, "cannot bind parameter " + std::to_string(index));
+  return *this;
+}
+
+Statement& Statement::bind(int index, double value) {
+  int rc = sqlite3_bind_double(stmt_, index, value);
+  if (rc != SQLITE_OK) db_->fail(rc, "cannot bind parameter " + std::to_string(index));
+  return *this;
+}
+
+Statement& Statement::bind(int index, const std::string& value) {
+  int rc = sqlite3_bind_text(stmt_, index, value.data(), static_cast<int>(value.size()), SQLITE_TRANSIENT);
+  if (rc != SQLITE_OK) db_->fail(rc, "cannot bind parameter " + std::to_string(index));
+  return *this;
+}
+
+Statement& Statement::bind_null(int index) {
+  int rc = sqlite3_bind_null(stmt_, index);
+  if (rc != SQLITE_OK) db_->fail(rc, "cannot bind parameter " + std::to_string(index));
+  return *this;
+}
+
+bool Statement::step() {
+  int rc = sqlite3_step(stmt_);
+  if (rc == SQLITE_ROW) return true;
+  if (rc == SQLITE_DONE) return false;
+  db_->fail(rc, "index statement failed '" + sql_.substr(0, 80) + "'");
+}
+
+void Statement::reset() {
+  sqlite3_reset(stmt_);
+  sqlite3_clear_bindings(stmt_);
+}
+
+std::string Statement::column_text(int column) const {
+  const auto* text = sqlite3_column_text(stmt_, column);
+  if (!text) return {};
+  return std::string(reinterpret_cast<const char*>(text),
+                     static_cast<std::size_t>(sqlite3_column_bytes(stmt_, column)));
+}
+
+Transaction::Transaction(Database& db) : db_(db) {
+  db_.exec("BEGIN IMMEDIATE");
+}
+
+Transaction::~Transaction() {
+  if (!done_) sqlite3_exec(db_.handle(), "ROLLBACK", nullptr, nullptr, nullptr);
+}
+
+void Transaction::commit() {
+  db_.exec("COMMIT");
+  done_ = true;
+}
+
+} // namespace geotandem::store::detail

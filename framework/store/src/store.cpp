@@ -1,0 +1,215 @@
+// Creating and opening stores, store.json, runs.
+
+#include <unistd.h>
+
+#include <set>
+
+#include "geotandem/core/error.hpp"
+#include "store_impl.hpp"
+
+#ifndef GEOTANDEM_VERSION
+#define GEOTANDEM_VERSION "unknown"
+#endif
+
+namespace geotandem::store {
+
+using namespace detail;
+
+namespace {
+
+constexpr const char* format_name = "geotandem component store";
+
+std::string host_name() {
+  char name[256] = {};
+  if (::gethostname(name, sizeof name - 1) != 0) return "unknown";
+  return name;
+}
+
+std::filesystem::path info_path(const std::filesystem::path& dir) {
+  return dir / "store.json";
+}
+
+std::filesystem::path index_path(const std::filesystem::path& dir) {
+  return dir / "index.sqlite";
+}
+
+// True when `dir` holds nothing but what an interrupted create() leaves: an index, its journal
+// files, store.json.tmp and an empty shards/ directory. Such a directory was never a store.
+bool is_interrupted_creation(const std::filesystem::path& dir) {
+  static const std::set<std::string> leftovers = {"index.sqlite",         "index.sqlite-wal", "index.sqlite-shm",
+                                                  "index.sqlite-journal", "store.json.tmp",   "shards"};
+  std::error_code ec;
+  for (const auto& entry : std::filesystem::directory_iterator(dir, ec)) {
+    auto name = entry.path().filename().string();
+    if (!leftovers.count(name)) return false;
+    if (name == "shards" && !(entry.is_directory() && std::filesystem::is_empty(entry.path(), ec))) return false;
+  }
+  return !ec;
+}
+
+} // namespace
+
+ComponentStore::ComponentStore(std::unique_ptr<Impl> impl) : impl_(std::move(impl)) {}
+ComponentStore::~ComponentStore() = default;
+ComponentStore::ComponentStore(ComponentStore&&) noexcept = default;
+ComponentStore& ComponentStore::operator=(ComponentStore&&) noexcept = default;
+
+bool ComponentStore::exists(const std::filesystem::path& dir) {
+  std::error_code ec;
+  return std::filesystem::is_regular_file(info_path(dir), ec);
+}
+
+ComponentStore ComponentStore::create(const std::filesystem::path& dir, const volume::Geometry& geometry,
+                                      const CreateOptions& options) {
+  geometry.validate();
+  std::error_code ec;
+  if (exists(dir))
+    throw InvalidArgument("a store already exists here", {dir.string()}, "open it, or remove it to start afresh");
+  if (std::filesystem::exists(dir, ec)) {
+    if (!std::filesystem::is_directory(dir, ec))
+      throw InvalidArgument("cannot create a store: the path is a file", {dir.string()});
+    if (!std::filesystem::is_empty(dir, ec) && is_interrupted_creation(dir)) {
+      for (const auto& entry : std::filesystem::directory_iterator(dir))
+        std::filesystem::remove_all(entry.path());
+    } else if (!std::filesystem::is_empty(dir, ec))
+      throw InvalidArgument("cannot create a store in a directory that is not empty", {dir.string()},
+                            "name a new or empty directory");
+  }
+  std::filesystem::create_directories(dir / "shards", ec);
+  if (ec) throw IoError("cannot create the store directory: " + ec.message(), {dir.string()});
+
+  auto impl = std::make_unique<Impl>();
+  impl->dir = dir;
+  impl->geometry = geometry;
+  impl->writable = true;
+  impl->db = std::make_unique<Database>(index_path(dir).string(), true, false);
+  configure_connection(*impl->db, true);
+  create_schema(*impl->db);
+
+  nlohmann::json info = {{"format", format_name},
+                         {"format_version", store_format_version},
+                         {"geometry", geometry_to_json(geometry)},
+                         {"created",
+                          {{"time", utc_now()},
+                           {"host", host_name()},
+                           {"creator", options.creator},
+                           {"geotandem_version", GEOTANDEM_VERSION}}},
+                         {"description", options.description}};
+  impl->info_json = info.dump(2) + "\n";
+  // store.json comes last: a directory without it is an interrupted creation, never a store.
+  sync_directory(dir);
+  write_file_atomically(info_path(dir), impl->info_json);
+  return ComponentStore(std::move(impl));
+}
+
+ComponentStore ComponentStore::open(const std::filesystem::path& dir, OpenMode mode) {
+  std::error_code ec;
+  if (!std::filesystem::exists(dir, ec)) throw IoError("no such store directory", {dir.string()});
+  if (!std::filesystem::is_directory(dir, ec))
+    throw FormatError("not a geotandem store: a file, not a directory", {dir.string()});
+  if (!exists(dir))
+    throw FormatError("not a geotandem store: no store.json in the directory", {dir.string()},
+                      "give the directory made by 'geotandem extract' or a recipe's store output");
+  const auto info_file = info_path(dir).string();
+  auto text = read_text_file(info_path(dir));
+  auto info = nlohmann::json::parse(text, nullptr, false);
+  if (info.is_discarded() || !info.is_object()) throw FormatError("store.json is not valid JSON", {info_file});
+  if (info.value("format", std::string()) != format_name)
+    throw FormatError("store.json does not describe a geotandem component store", {info_file});
+  if (!info.contains("format_version") || !info["format_version"].is_number_integer())
+    throw FormatError("store.json has no format_version", {info_file});
+  int version = info["format_version"].get<int>();
+  if (version > store_format_version || version < 1)
+    throw FormatError("the store has format version " + std::to_string(version) + "; this build reads version " +
+                          std::to_string(store_format_version),
+                      {info_file}, "use the geotandem version that wrote it");
+  if (!info.contains("geometry")) throw FormatError("store.json has no geometry", {info_file});
+
+  auto impl = std::make_unique<Impl>();
+  impl->dir = dir;
+  impl->geometry = geometry_from_json(info["geometry"], info_file);
+  impl->info_json = text;
+  impl->writable = mode == OpenMode::read_write;
+  if (!std::filesystem::is_regular_file(index_path(dir), ec))
+    throw FormatError("the store has no index.sqlite", {dir.string()}, "the store is incomplete or damaged");
+  impl->db = std::make_unique<Database>(index_path(dir).string(), false, !impl->writable);
+  configure_connection(*impl->db, impl->writable);
+  check_schema(*impl->db);
+  return ComponentStore(std::move(impl));
+}
+
+ComponentStore ComponentStore::open_or_create(const std::filesystem::path& dir, const volume::Geometry& geometry,
+                                              const CreateOptions& options) {
+  if (!exists(dir)) return create(dir, geometry, options);
+  auto store = open(dir, OpenMode::read_write);
+  if (!(store.geometry() == geometry))
+    throw InvalidArgument("the store was made for a cube of another geometry", {dir.string()},
+                          "write to a new store, or extract from the cube the store was made for");
+  return store;
+}
+
+const std::filesystem::path& ComponentStore::directory() const {
+  return impl_->dir;
+}
+const volume::Geometry& ComponentStore::geometry() const {
+  return impl_->geometry;
+}
+std::string ComponentStore::info_json() const {
+  return impl_->info_json;
+}
+bool ComponentStore::writable() const {
+  return impl_->writable;
+}
+
+void ComponentStore::Impl::require_writable(const char* what) const {
+  if (!writable)
+    throw InvalidArgument(std::string("cannot ") + what + ": the store is open read-only", {dir.string()},
+                          "open it with OpenMode::read_write");
+}
+
+const FileHandle& ComponentStore::Impl::shard_for_reading(const std::string& shard) {
+  auto it = shards.find(shard);
+  if (it == shards.end()) it = shards.emplace(shard, open_read(shard_path(dir, shard))).first;
+  return it->second;
+}
+
+std::int64_t ComponentStore::begin_run(const std::string& parameters_json) {
+  impl_->require_writable("begin a run");
+  auto parameters = parse_json_argument(parameters_json, "the run parameters");
+  auto& db = *impl_->db;
+  db.prepare("INSERT INTO runs(parameters, started) VALUES(?, ?)").bind(1, parameters.dump()).bind(2, utc_now()).run();
+  return sqlite3_last_insert_rowid(db.handle());
+}
+
+void ComponentStore::end_run(std::int64_t run, const std::string& statistics_json) {
+  impl_->require_writable("end a run");
+  auto statistics = parse_json_argument(statistics_json, "the run statistics");
+  auto& db = *impl_->db;
+  db.prepare("UPDATE runs SET ended = ?, statistics = ? WHERE id = ?")
+      .bind(1, utc_now())
+      .bind(2, statistics.dump())
+      .bind(3, run)
+      .run();
+  if (db.changes() != 1)
+    throw InvalidArgument("no run " + std::to_string(run) + " in the store", {impl_->dir.string()});
+}
+
+std::vector<RunInfo> ComponentStore::runs() const {
+  auto statement =
+      impl_->db->prepare("SELECT r.id, r.parameters, r.started, r.ended, r.statistics,"
+                         " (SELECT count(*) FROM components c WHERE c.run = r.id) FROM runs r ORDER BY r.id");
+  std::vector<RunInfo> runs;
+  while (statement.step()) {
+    RunInfo run;
+    run.id = statement.column_int(0);
+    run.parameters = statement.column_text(1);
+    run.started = statement.column_text(2);
+    run.ended = statement.column_text(3);
+    run.statistics = statement.column_text(4);
+    run.component_count = from_sql(statement.column_int(5));
+    runs.push_back(std::move(run));
+  }
+  return runs;
+}
+
+} // namespace geotandem::store

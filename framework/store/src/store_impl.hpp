@@ -1,0 +1,50 @@
+#pragma once
+// The state behind a ComponentStore, shared by the files that implement it.
+
+#include <filesystem>
+#include <map>
+#include <memory>
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+#include "file_io.hpp"
+#include "geotandem/store/store.hpp"
+#include "sqlite.hpp"
+
+namespace geotandem::store {
+
+struct ComponentStore::Impl {
+  std::filesystem::path dir;
+  volume::Geometry geometry;
+  std::string info_json;
+  bool writable = false;
+  std::unique_ptr<detail::Database> db;
+  // Shards opened for reading, by writer name; kept open across reads.
+  std::map<std::string, detail::FileHandle> shards;
+
+  const detail::FileHandle& shard_for_reading(const std::string& shard);
+  void require_writable(const char* what) const;
+};
+
+namespace detail {
+
+inline constexpr int index_schema_version = 1;
+
+// Creates the index tables in a new database; checks the schema of an existing one (FormatError).
+void create_schema(Database& db);
+void check_schema(Database& db);
+// Per-connection settings (WAL is persistent; synchronous and foreign keys are not).
+void configure_connection(Database& db, bool writable);
+
+// The current time in UTC, ISO 8601 ("2024-05-01T12:00:00Z").
+std::string utc_now();
+// Parses JSON text given through the API; throws InvalidArgument naming `what`.
+nlohmann::json parse_json_argument(const std::string& text, const std::string& what);
+
+nlohmann::json geometry_to_json(const volume::Geometry& geometry);
+// Throws FormatError naming `file` for a missing or ill-typed field.
+volume::Geometry geometry_from_json(const nlohmann::json& j, const std::string& file);
+
+} // namespace detail
+} // namespace geotandem::store

@@ -1,0 +1,105 @@
+#pragma once
+// Recipes: what a geophysicist writes. A recipe names an input cube, a chain of steps, the outputs
+// and how to execute. It is validated completely before any work starts; every error names the
+// file, line and column and, for unknown keys and names, suggests the nearest valid one.
+// The full schema is in docs/recipe-schema.md.
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "geotandem/workflow/plugin.hpp"
+#include "geotandem/workflow/registry.hpp"
+
+namespace geotandem::workflow {
+
+struct Where {
+  long line = 0; // 1-based; 0 when unknown (a --set override)
+  long column = 0;
+};
+
+struct InputSpec {
+  // Exactly one of: a file path, or a synthetic cube.
+  std::string file;     // relative paths are relative to the recipe's directory
+  std::string variable; // for multidimensional files with several arrays
+  std::string nan = "error";
+  bool synthetic = false;
+  std::string synthetic_kind = "seismic"; // analytic | seismic
+  std::int64_t shape[3] = {160, 160, 128};
+  std::uint64_t seed = 1;
+  double snr = 4.0;
+  Where where;
+};
+
+// The kinds of steps, in the order a chain must respect: volume steps (attributes, including
+// combinators such as a product of two attributes), then one extraction, then component steps.
+enum class StepKind { attribute, extract, component };
+
+struct StepSpec {
+  StepKind kind = StepKind::attribute;
+  std::string name;                // plugin or built-in step name ("chaos", "extract", ...)
+  std::string as;                  // the name later steps use for its result (default: name)
+  std::vector<std::string> inputs; // names of earlier results; "input" is the recipe's cube
+  int arity = 1;                   // inputs an attribute needs
+  ParamValues params;              // every parameter, defaults filled in
+  Where where;
+};
+
+struct ExportSpec {
+  std::string format;    // ply | obj | vtp | ts
+  std::string selection; // a selection written by a component step; empty: the last one
+  std::string path;      // relative to the output directory
+  bool per_component = false;
+};
+
+struct OutputSpec {
+  std::string directory;       // relative paths are relative to the recipe's directory
+  std::string store = "store"; // relative to directory
+  std::string report = "report.html";
+  std::string attribute_file; // when set, the final attribute cube is written there too
+  std::vector<ExportSpec> exports;
+};
+
+struct ResourceSpec {
+  int cpus_per_worker = 1;
+  std::int64_t memory_mb = 0; // 0: the scheduler's default
+  std::int64_t walltime_s = 0;
+  std::string queue;
+  std::string account;
+  std::vector<std::string> extra_args;
+};
+
+struct ExecutionSpec {
+  std::string scheduler = "local"; // local | slurm | lsf
+  int workers = 1;
+  ResourceSpec resources;
+};
+
+struct Recipe {
+  std::string path;     // the recipe file
+  std::string base_dir; // its directory, for relative paths
+  InputSpec input;
+  std::vector<StepSpec> steps;
+  OutputSpec output;
+  ExecutionSpec execution;
+  // The recipe after defaults and overrides, as JSON: shown in reports, hashed for reruns.
+  nlohmann::json canonical;
+};
+
+// The built-in steps that are not attribute plugins, with their parameter specs.
+const std::vector<ParamSpec>& builtin_step_params(const std::string& name);
+std::vector<std::string> builtin_step_names();
+
+// Reads and validates a recipe. `overrides` are "dotted.path=value" strings from --set (for
+// example "execution.workers=4", "steps.extract.iso=0.4", "input.synthetic.seed=3"); a bad override
+// is reported as coming from --set. Throws InvalidArgument / IoError with file, line and column.
+Recipe load_recipe(const std::string& path, const PluginRegistry& plugins,
+                   const std::vector<std::string>& overrides = {});
+
+// The same, from text (tests); `name` stands for the file name in messages.
+Recipe parse_recipe(const std::string& text, const std::string& name, const PluginRegistry& plugins,
+                    const std::vector<std::string>& overrides = {});
+
+} // namespace geotandem::workflow

@@ -1,0 +1,121 @@
+#include "geotandem/workflow/extract_step.hpp"
+
+#include <chrono>
+#include <fstream>
+
+#include "geotandem/core/error.hpp"
+#include "geotandem/store/local_sink.hpp"
+#include "geotandem/tandem/tandem.hpp"
+
+namespace geotandem::workflow {
+
+ExtractMode parse_extract_mode(const std::string& text) {
+  if (text == "tandem-dump") return ExtractMode::tandem_dump;
+  if (text == "tandem") return ExtractMode::tandem;
+  if (text == "brute") return ExtractMode::brute;
+  throw InvalidArgument("unknown extraction mode '" + text + "'", {}, "use tandem-dump, tandem or brute");
+}
+
+const char* to_string(ExtractMode mode) {
+  switch (mode) {
+  case ExtractMode::tandem_dump: return "tandem-dump";
+  case ExtractMode::tandem: return "tandem";
+  case ExtractMode::brute: return "brute";
+  }
+  return "?";
+}
+
+int parse_axis(const std::string& text) {
+  if (text == "i" || text == "0") return 0;
+  if (text == "j" || text == "1") return 1;
+  if (text == "k" || text == "2") return 2;
+  throw InvalidArgument("unknown axis '" + text + "'", {}, "use i (inline), j (crossline) or k (sample)");
+}
+
+std::int64_t peak_rss_kb() {
+  std::ifstream status("/proc/self/status");
+  std::string line;
+  while (std::getline(status, line))
+    if (line.rfind("VmHWM:", 0) == 0) return std::stoll(line.substr(6));
+  return 0;
+}
+
+ExtractResult extract_to_store(const volume::Volume& volume, store::ComponentStore& store,
+                               const ExtractSettings& settings, Logger& log, Progress& progress,
+                               const CancelToken& cancel) {
+  if (!(store.geometry() == volume.geometry()))
+    throw InvalidArgument("the store was made for another cube geometry", {store.directory().string()},
+                          "extract into a new store directory");
+  auto start = std::chrono::steady_clock::now();
+  tandem::TandemOptions options;
+  options.iso = settings.iso;
+  options.axis = settings.axis;
+  options.simplify.max_error = settings.max_error;
+  options.simplify.isotropy = settings.isotropy;
+  options.simplify.extended_time_lag = settings.extended_time_lag;
+  options.simplify.validate();
+  options.dump = settings.mode != ExtractMode::tandem;
+  options.cancel = &cancel;
+  options.progress = &progress;
+
+  nlohmann::json parameters = settings.parameters;
+  parameters["iso"] = settings.iso;
+  parameters["max_error"] = settings.max_error;
+  parameters["isotropy"] = settings.isotropy;
+  parameters["axis"] = std::string(1, "ijk"[settings.axis]);
+  parameters["block_size"] = settings.block_size;
+  parameters["mode"] = to_string(settings.mode);
+  parameters["extended_time_lag"] = settings.extended_time_lag;
+  parameters["source"] = volume.source();
+
+  ExtractResult result;
+  result.run = store.begin_run(parameters.dump());
+  store::LocalSinkOptions sink_options;
+  sink_options.run = result.run;
+  store::LocalSink sink(store, sink_options);
+  log.info("extracting in this process (the manager/worker runtime is not part of this build)");
+
+  const auto& g = volume.geometry();
+  volume::Box cells{{0, 0, 0}, {g.shape[0] - 1, g.shape[1] - 1, g.shape[2] - 1}};
+  tandem::TandemStats stats;
+  stats = tandem::extract_block(volume, cells, options, &sink, nullptr, settings.mode == ExtractMode::brute);
+  sink.close();
+
+  result.components = sink.committed();
+  result.duplicates = sink.duplicates();
+  for (const auto& layer : stats.layers) {
+    result.input_triangles += layer.input_triangles;
+    result.triangles_per_layer.push_back(layer.triangles_in_memory);
+    result.collapses += layer.collapses;
+  }
+  result.collapses += stats.final_pass.collapses;
+  result.peak_triangles = stats.peak_triangles;
+  result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  result.peak_rss_kb = peak_rss_kb();
+
+  double extract_s = 0, insert_s = 0, simplify_s = 0, dump_s = 0;
+  for (const auto& layer : stats.layers) {
+    extract_s += layer.seconds_extract;
+    insert_s += layer.seconds_insert;
+    simplify_s += layer.seconds_simplify;
+    dump_s += layer.seconds_dump;
+  }
+  simplify_s += stats.final_pass.seconds_simplify;
+  dump_s += stats.final_pass.seconds_dump;
+  result.statistics = {{"components", result.components},
+                       {"duplicates", result.duplicates},
+                       {"input_triangles", result.input_triangles},
+                       {"peak_triangles", result.peak_triangles},
+                       {"collapses", result.collapses},
+                       {"triangles_per_layer", result.triangles_per_layer},
+                       {"seconds", {{"total", result.seconds},
+                                    {"marching_cubes", extract_s},
+                                    {"insert", insert_s},
+                                    {"simplify", simplify_s},
+                                    {"dump", dump_s}}},
+                       {"peak_rss_kb", result.peak_rss_kb}};
+  store.end_run(result.run, result.statistics.dump());
+  return result;
+}
+
+} // namespace geotandem::workflow

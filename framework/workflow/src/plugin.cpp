@@ -1,0 +1,95 @@
+#include "geotandem/workflow/plugin.hpp"
+
+#include <cerrno>
+#include <cmath>
+#include <cstdlib>
+#include <sstream>
+
+#include "geotandem/core/error.hpp"
+#include "geotandem/workflow/suggest.hpp"
+
+namespace geotandem::workflow {
+
+const char* to_string(ParamType type) {
+  switch (type) {
+  case ParamType::integer: return "integer";
+  case ParamType::real: return "number";
+  case ParamType::boolean: return "boolean";
+  case ParamType::text: return "text";
+  case ParamType::choice: return "choice";
+  }
+  return "?";
+}
+
+namespace {
+
+std::string range_text(const ParamSpec& spec) {
+  std::ostringstream out;
+  if (spec.min_value && spec.max_value)
+    out << "between " << *spec.min_value << " and " << *spec.max_value;
+  else if (spec.min_value)
+    out << "at least " << *spec.min_value;
+  else if (spec.max_value)
+    out << "at most " << *spec.max_value;
+  return out.str();
+}
+
+void check_range(const ParamSpec& spec, double value, const std::string& text) {
+  if ((spec.min_value && value < *spec.min_value) || (spec.max_value && value > *spec.max_value))
+    throw InvalidArgument("parameter '" + spec.name + "' is " + text + ", out of range", {},
+                          "use a value " + range_text(spec));
+}
+
+} // namespace
+
+ParamValue parse_param(const ParamSpec& spec, const std::string& text) {
+  ParamValue v;
+  v.type = spec.type;
+  v.text = text;
+  auto bad = [&](const char* expected) {
+    return InvalidArgument("parameter '" + spec.name + "' is '" + text + "', not " + expected, {},
+                           spec.help.empty() ? std::string() : spec.name + ": " + spec.help);
+  };
+  switch (spec.type) {
+  case ParamType::integer: {
+    char* end = nullptr;
+    errno = 0;
+    long long n = std::strtoll(text.c_str(), &end, 10);
+    if (text.empty() || *end != '\0' || errno) throw bad("an integer");
+    v.integer = n;
+    v.real = static_cast<double>(n);
+    check_range(spec, v.real, text);
+    break;
+  }
+  case ParamType::real: {
+    char* end = nullptr;
+    errno = 0;
+    double x = std::strtod(text.c_str(), &end);
+    if (text.empty() || *end != '\0' || errno || !std::isfinite(x)) throw bad("a number");
+    v.real = x;
+    check_range(spec, x, text);
+    break;
+  }
+  case ParamType::boolean:
+    if (text == "true" || text == "yes" || text == "on")
+      v.boolean = true;
+    else if (text == "false" || text == "no" || text == "off")
+      v.boolean = false;
+    else
+      throw bad("true or false");
+    break;
+  case ParamType::text: break;
+  case ParamType::choice: {
+    bool known = false;
+    for (const auto& c : spec.choices)
+      known = known || c == text;
+    if (!known)
+      throw InvalidArgument("parameter '" + spec.name + "' is '" + text + "', not a known choice", {},
+                            suggestion_hint(text, spec.choices));
+    break;
+  }
+  }
+  return v;
+}
+
+} // namespace geotandem::workflow

@@ -1,0 +1,52 @@
+#pragma once
+// Typed access to a YAML mapping that remembers which keys were used, so that every unknown key
+// becomes an error with its line, column and the nearest known key.
+
+#include <yaml-cpp/yaml.h>
+
+#include <set>
+#include <string>
+#include <vector>
+
+#include "geotandem/core/error.hpp"
+#include "geotandem/workflow/recipe.hpp"
+
+namespace geotandem::workflow::detail {
+
+Where where_of(const YAML::Node& node);
+// An InvalidArgument at `node` in `file`.
+InvalidArgument error_at(const std::string& file, const YAML::Node& node, const std::string& message,
+                         const std::string& hint = {});
+// The node's scalar text; an error naming `what` when it is not a scalar.
+std::string scalar_of(const std::string& file, const YAML::Node& node, const std::string& what);
+
+class MapReader {
+public:
+  // `what` names the mapping in messages ("input", "step 2 (extract)").
+  MapReader(std::string file, const YAML::Node& node, std::string what);
+
+  bool has(const std::string& key) const;
+  void rename(std::string what) { what_ = std::move(what); }
+  const YAML::Node node(const std::string& key);
+  std::string text(const std::string& key, const std::string& fallback);
+  std::string required_text(const std::string& key);
+  std::int64_t integer(const std::string& key, std::int64_t fallback, std::int64_t min, std::int64_t max);
+  double real(const std::string& key, double fallback, double min, double max);
+  bool boolean(const std::string& key, bool fallback);
+  std::vector<std::string> text_list(const std::string& key);
+
+  // Keys not consumed by any getter are errors: "unknown key 'x' in <what>" with a suggestion from
+  // `known` (the keys the getters may read).
+  void finish(const std::vector<std::string>& known) const;
+
+  const std::string& file() const { return file_; }
+  const YAML::Node& map() const { return node_; }
+
+private:
+  std::string file_;
+  YAML::Node node_;
+  std::string what_;
+  std::set<std::string> used_;
+};
+
+} // namespace geotandem::workflow::detail

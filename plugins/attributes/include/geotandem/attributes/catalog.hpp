@@ -1,0 +1,23 @@
+#pragma once
+// The built-in attributes as data: their specs, and a factory by name for the recipe and plugin
+// layers. Nothing registers itself; this list is the whole catalogue.
+
+#include <memory>
+#include <string_view>
+#include <vector>
+
+#include "geotandem/attributes/attribute.hpp"
+#include "geotandem/attributes/params.hpp"
+
+namespace geotandem::attributes {
+
+// envelope, rms, semblance, chaos, normalise, product: in that order.
+const std::vector<AttributeSpec>& builtin_attributes();
+
+// Builds the attribute `name` over `inputs` with `params` (given by a recipe, possibly partial:
+// missing parameters take their defaults). Throws InvalidArgument for an unknown name (listing the
+// known ones), a wrong number of inputs, or unknown, mistyped or out-of-range parameters.
+std::shared_ptr<Attribute> make_attribute(std::string_view name, std::vector<VolumePtr> inputs,
+                                          const ParamValues& params = {});
+
+} // namespace geotandem::attributes

@@ -1,0 +1,62 @@
+#include "geotandem/attributes/rms.hpp"
+
+#include <cmath>
+
+#include "filters.hpp"
+#include "mirror.hpp"
+
+namespace geotandem::attributes {
+
+const AttributeSpec& RmsOptions::spec() {
+  static const AttributeSpec spec{"rms",
+                                  "root mean square amplitude in a sliding window along the trace",
+                                  1,
+                                  {{"window",
+                                    ParamType::integer,
+                                    std::int64_t{9},
+                                    {1, 1001},
+                                    true,
+                                    {},
+                                    "samples",
+                                    "length of the centred window along the trace, about one dominant period"}}};
+  return spec;
+}
+
+RmsOptions RmsOptions::from_params(const ParamValues& params) {
+  ParamValues p = resolve(spec(), params);
+  RmsOptions options;
+  options.window = static_cast<int>(get_integer(p, "window"));
+  return options;
+}
+
+ParamValues RmsOptions::to_params() const {
+  return {{"window", std::int64_t{window}}};
+}
+
+void RmsOptions::validate() const {
+  check_integer(spec(), "window", window);
+}
+
+namespace {
+RmsOptions validated(const RmsOptions& options) {
+  options.validate();
+  return options;
+}
+} // namespace
+
+Rms::Rms(VolumePtr input, const RmsOptions& options)
+    : Attribute("rms", to_string(validated(options).to_params()), {std::move(input)}, {0, 0, (options.window - 1) / 2}),
+      options_(options) {}
+
+void Rms::compute(const Box& box, std::span<float> out) const {
+  detail::Array3 squares = detail::read_mirrored(*inputs().front(), box, halo());
+  for (float& v : squares.span())
+    v = v * v;
+  const detail::Array3 sums = detail::correlate(squares, 2, detail::box_kernel(static_cast<int>(halo()[2])));
+  const float inverse = 1.0f / static_cast<float>(options_.window);
+  const float* s = sums.data.get();
+  for (std::size_t n = 0; n < out.size(); ++n)
+    out[n] = std::sqrt(s[n] * inverse);
+}
+
+} // namespace geotandem::attributes

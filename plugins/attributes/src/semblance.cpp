@@ -1,0 +1,95 @@
+#include "geotandem/attributes/semblance.hpp"
+
+#include <algorithm>
+
+#include "filters.hpp"
+#include "mirror.hpp"
+
+namespace geotandem::attributes {
+
+const AttributeSpec& SemblanceOptions::spec() {
+  static const AttributeSpec spec{
+      "semblance",
+      "Marfurt semblance of a square of traces in a window along the trace (1 = identical traces)",
+      1,
+      {{"traces",
+        ParamType::integer,
+        std::int64_t{3},
+        {3, 21},
+        true,
+        {},
+        "traces",
+        "width of the square of traces centred on the output trace (3 gives 3 x 3 traces)"},
+       {"window",
+        ParamType::integer,
+        std::int64_t{9},
+        {1, 1001},
+        true,
+        {},
+        "samples",
+        "length of the centred window along the trace"}}};
+  return spec;
+}
+
+SemblanceOptions SemblanceOptions::from_params(const ParamValues& params) {
+  ParamValues p = resolve(spec(), params);
+  SemblanceOptions options;
+  options.traces = static_cast<int>(get_integer(p, "traces"));
+  options.window = static_cast<int>(get_integer(p, "window"));
+  return options;
+}
+
+ParamValues SemblanceOptions::to_params() const {
+  return {{"traces", std::int64_t{traces}}, {"window", std::int64_t{window}}};
+}
+
+void SemblanceOptions::validate() const {
+  check_integer(spec(), "traces", traces);
+  check_integer(spec(), "window", window);
+}
+
+namespace {
+SemblanceOptions validated(const SemblanceOptions& options) {
+  options.validate();
+  return options;
+}
+} // namespace
+
+Semblance::Semblance(VolumePtr input, const SemblanceOptions& options)
+    : Attribute("semblance", to_string(validated(options).to_params()), {std::move(input)},
+                {(options.traces - 1) / 2, (options.traces - 1) / 2, (options.window - 1) / 2}),
+      options_(options) {}
+
+void Semblance::compute(const Box& box, std::span<float> out) const {
+  const detail::Kernel across = detail::box_kernel(static_cast<int>(halo()[0]));
+  const detail::Kernel along = detail::box_kernel(static_cast<int>(halo()[2]));
+
+  detail::Array3 f = detail::read_mirrored(*inputs().front(), box, halo());
+  detail::Array3 energy(f.shape);
+  {
+    const float* src = f.data.get();
+    float* dst = energy.data.get();
+    for (std::size_t n = 0; n < f.count(); ++n)
+      dst[n] = src[n] * src[n];
+  }
+  // Stack of the traces (sum over the square) and its energy, then both summed over the window.
+  detail::Array3 stack = detail::correlate(detail::correlate(f, 0, across), 1, across);
+  f.reset();
+  for (float& v : stack.span())
+    v = v * v;
+  const detail::Array3 numerator = detail::correlate(stack, 2, along);
+  stack.reset();
+  const detail::Array3 denominator =
+      detail::correlate(detail::correlate(detail::correlate(energy, 0, across), 1, across), 2, along);
+
+  const auto traces = static_cast<float>(options_.traces * options_.traces);
+  const float* num = numerator.data.get();
+  const float* den = denominator.data.get();
+  for (std::size_t n = 0; n < out.size(); ++n) {
+    const float d = traces * den[n];
+    // Cauchy-Schwarz bounds S by 1; rounding may step over it, so clamp.
+    out[n] = d > 0.0f ? std::min(1.0f, num[n] / d) : 1.0f;
+  }
+}
+
+} // namespace geotandem::attributes

@@ -1,0 +1,152 @@
+// geotandem info FILE: what a cube is (format, shape, geometry, value range), for people and scripts.
+
+#include <cmath>
+#include <iomanip>
+#include <iostream>
+#include <limits>
+#include <nlohmann/json.hpp>
+
+#include "command.hpp"
+#include "geotandem/volume/io.hpp"
+
+namespace geotandem::app {
+namespace {
+
+struct Info {
+  std::string path;
+  std::string options_nan;
+  bool json = false;
+  bool no_stats = false;
+};
+
+struct ValueStats {
+  double min = std::numeric_limits<double>::infinity();
+  double max = -std::numeric_limits<double>::infinity();
+  double sum = 0.0, sum2 = 0.0;
+  std::uint64_t count = 0, non_finite = 0;
+};
+
+// Scans the cube by slabs of inlines so that memory stays bounded for any cube size.
+ValueStats scan_values(const volume::Volume& cube, Progress& progress, const CancelToken& cancel) {
+  const auto& g = cube.geometry();
+  std::int64_t slab = std::max<std::int64_t>(1, (64ll << 20) / std::max<std::int64_t>(1, g.shape[1] * g.shape[2] * 4));
+  ValueStats s;
+  progress.begin("scanning values", static_cast<std::uint64_t>(g.shape[0]), "inlines");
+  std::vector<float> buffer;
+  for (std::int64_t i = 0; i < g.shape[0]; i += slab) {
+    cancel.throw_if_cancelled();
+    volume::Box box{{i, 0, 0}, {std::min(g.shape[0], i + slab), g.shape[1], g.shape[2]}};
+    buffer.resize(box.count());
+    cube.read(box, buffer);
+    for (float v : buffer) {
+      if (!std::isfinite(v)) {
+        ++s.non_finite;
+        continue;
+      }
+      s.min = std::min<double>(s.min, v);
+      s.max = std::max<double>(s.max, v);
+      s.sum += v;
+      s.sum2 += static_cast<double>(v) * v;
+      ++s.count;
+    }
+    progress.update(static_cast<std::uint64_t>(box.hi[0]));
+  }
+  progress.end();
+  return s;
+}
+
+nlohmann::json describe(const volume::Volume& cube, const ValueStats* stats) {
+  const auto& g = cube.geometry();
+  nlohmann::json j;
+  j["source"] = cube.source();
+  j["format"] = cube.format();
+  j["shape"] = {{"inline", g.shape[0]}, {"crossline", g.shape[1]}, {"sample", g.shape[2]}};
+  j["inline"] = {
+      {"first", g.inline0}, {"step", g.inline_step}, {"last", g.inline0 + g.inline_step * double(g.shape[0] - 1)}};
+  j["crossline"] = {{"first", g.crossline0},
+                    {"step", g.crossline_step},
+                    {"last", g.crossline0 + g.crossline_step * double(g.shape[1] - 1)}};
+  j["sample"] = {{"first", g.z0},
+                 {"interval", g.dz},
+                 {"unit", volume::to_string(g.z_unit)},
+                 {"last", g.z0 + g.dz * double(g.shape[2] - 1)}};
+  const auto& a = g.affine;
+  j["affine"] = {{"x0", a.x0}, {"xi", a.xi}, {"xj", a.xj}, {"y0", a.y0}, {"yi", a.yi}, {"yj", a.yj}};
+  j["bin_size_m"] = {a.step_i(), a.step_j()};
+  nlohmann::json corners = nlohmann::json::array();
+  for (auto [i, jj] : {std::pair{0.0, 0.0},
+                       {double(g.shape[0] - 1), 0.0},
+                       {0.0, double(g.shape[1] - 1)},
+                       {double(g.shape[0] - 1), double(g.shape[1] - 1)}}) {
+    auto xy = a.apply(i, jj);
+    corners.push_back({{"inline_index", i}, {"crossline_index", jj}, {"x", xy[0]}, {"y", xy[1]}});
+  }
+  j["corners"] = corners;
+  j["samples"] = g.sample_count();
+  if (stats) {
+    double mean = stats->count ? stats->sum / double(stats->count) : 0.0;
+    double var = stats->count ? std::max(0.0, stats->sum2 / double(stats->count) - mean * mean) : 0.0;
+    j["values"] = {{"min", stats->count ? stats->min : 0.0},
+                   {"max", stats->count ? stats->max : 0.0},
+                   {"mean", mean},
+                   {"std", std::sqrt(var)},
+                   {"non_finite", stats->non_finite}};
+  }
+  return j;
+}
+
+void print_text(const nlohmann::json& j) {
+  auto& o = std::cout;
+  o << "file:       " << j["source"].get<std::string>() << "\n";
+  o << "format:     " << j["format"].get<std::string>() << "\n";
+  o << "shape:      " << j["shape"]["inline"] << " inlines x " << j["shape"]["crossline"] << " crosslines x "
+    << j["shape"]["sample"] << " samples (" << j["samples"] << " samples)\n";
+  o << "inlines:    " << j["inline"]["first"] << " to " << j["inline"]["last"] << " step " << j["inline"]["step"]
+    << "\n";
+  o << "crosslines: " << j["crossline"]["first"] << " to " << j["crossline"]["last"] << " step "
+    << j["crossline"]["step"] << "\n";
+  o << "samples:    " << j["sample"]["first"] << " to " << j["sample"]["last"] << " "
+    << j["sample"]["unit"].get<std::string>() << ", interval " << j["sample"]["interval"] << "\n";
+  o << "bins:       " << j["bin_size_m"][0] << " m x " << j["bin_size_m"][1] << " m\n";
+  for (const auto& c : j["corners"])
+    o << "corner:     il index " << c["inline_index"] << ", xl index " << c["crossline_index"] << " -> x " << std::fixed
+      << std::setprecision(2) << c["x"].get<double>() << ", y " << c["y"].get<double>() << "\n"
+      << std::defaultfloat;
+  if (j.contains("values")) {
+    const auto& v = j["values"];
+    o << "values:     min " << v["min"] << ", max " << v["max"] << ", mean " << v["mean"] << ", std " << v["std"];
+    if (v["non_finite"].get<std::uint64_t>() > 0) o << ", " << v["non_finite"] << " NaN or infinite samples";
+    o << "\n";
+  }
+}
+
+} // namespace
+
+void add_info_command(CLI::App& app, Context& context, Runner& run) {
+  auto info = std::make_shared<Info>();
+  auto* cmd = app.add_subcommand("info", "Describe a cube: format, shape, geometry and value range.");
+  cmd->add_option("file", info->path, "the cube (netCDF, HDF5, Zarr, GeoTIFF, ENVI, SEG-Y, raw+json)")->required();
+  cmd->add_flag("--json", info->json, "print JSON for scripts instead of text");
+  cmd->add_flag("--no-stats", info->no_stats, "skip the value scan (fast on huge cubes)");
+  cmd->callback([info, &context, &run] {
+    run = [info, &context] {
+      volume::OpenOptions options;
+      options.nan_policy = volume::NanPolicy::fill; // info reports non-finite samples instead of failing
+      options.fill_value = std::numeric_limits<float>::quiet_NaN();
+      auto cube = volume::open_volume(info->path, options);
+      std::optional<ValueStats> stats;
+      if (!info->no_stats) {
+        auto progress = context.progress();
+        stats = scan_values(*cube, *progress, context.cancel);
+      }
+      auto j = describe(*cube, stats ? &*stats : nullptr);
+      if (info->json)
+        std::cout << j.dump(2) << "\n";
+      else
+        print_text(j);
+      return 0;
+    };
+  });
+}
+
+} // namespace geotandem::app

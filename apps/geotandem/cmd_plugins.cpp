@@ -1,0 +1,89 @@
+// geotandem plugins [NAME] and geotandem validate RECIPE: what a recipe may use, and whether a
+// recipe is right, without running anything.
+
+#include <iomanip>
+#include <iostream>
+
+#include "command.hpp"
+#include "geotandem/workflow/recipe.hpp"
+#include "geotandem/workflow/registry.hpp"
+#include "plugins_setup.hpp"
+
+namespace geotandem::app {
+namespace {
+
+void print_params(const std::vector<workflow::ParamSpec>& specs) {
+  for (const auto& p : specs) {
+    std::cout << "    " << std::left << std::setw(24) << p.name << std::setw(9) << workflow::to_string(p.type);
+    std::cout << (p.default_value ? "default " + *p.default_value : std::string("required"));
+    if (p.min_value && p.max_value) std::cout << ", " << *p.min_value << " to " << *p.max_value;
+    if (!p.choices.empty()) {
+      std::cout << ", one of";
+      for (const auto& c : p.choices)
+        std::cout << ' ' << c;
+    }
+    std::cout << "\n      " << p.help << "\n";
+  }
+}
+
+} // namespace
+
+void add_plugins_command(CLI::App& app, Context& context, Runner& run) {
+  auto name = std::make_shared<std::string>();
+  auto* cmd = app.add_subcommand("plugins", "List the attribute plugins and built-in steps a recipe can use, or "
+                                            "describe one with its parameters.");
+  cmd->add_option("name", *name, "a plugin or step to describe");
+  cmd->callback([name, &context, &run] {
+    run = [name, &context] {
+      auto registry = make_plugin_registry(context.log);
+      if (!name->empty()) {
+        for (const auto& step : workflow::builtin_step_names())
+          if (step == *name) {
+            std::cout << step << " (built-in step)\n  parameters:\n";
+            print_params(workflow::builtin_step_params(step));
+            return 0;
+          }
+        const auto& p = registry.get(*name);
+        std::cout << p.name() << " (attribute, " << p.origin() << ", version " << p.version() << ")\n  " << p.summary()
+                  << "\n  parameters:\n";
+        print_params(p.params());
+        return 0;
+      }
+      std::cout << "attributes:\n";
+      for (const auto* p : registry.list())
+        std::cout << "  " << std::left << std::setw(16) << p->name() << p->summary()
+                  << (p->origin() == "built-in" ? "" : "  [" + p->origin() + "]") << "\n";
+      std::cout << "built-in steps:\n";
+      for (const auto& step : workflow::builtin_step_names())
+        std::cout << "  " << step << "\n";
+      std::cout << "plugin search path: " << workflow::PluginRegistry::default_search_path() << "\n";
+      return 0;
+    };
+  });
+}
+
+void add_validate_command(CLI::App& app, Context& context, Runner& run) {
+  struct Args {
+    std::string recipe;
+    std::vector<std::string> sets;
+  };
+  auto args = std::make_shared<Args>();
+  auto* cmd = app.add_subcommand("validate", "Check a recipe completely (keys, types, ranges, plugins, step order) "
+                                             "without running it.");
+  cmd->add_option("recipe", args->recipe, "the recipe (YAML)")->required();
+  cmd->add_option("--set", args->sets, "override a recipe value, e.g. --set steps.extract.iso=0.4");
+  cmd->callback([args, &context, &run] {
+    run = [args, &context] {
+      auto registry = make_plugin_registry(context.log);
+      auto recipe = workflow::load_recipe(args->recipe, registry, args->sets);
+      std::cout << args->recipe << ": valid, " << recipe.steps.size() << " steps:";
+      for (const auto& s : recipe.steps)
+        std::cout << ' ' << s.name;
+      std::cout << "; scheduler " << recipe.execution.scheduler << " with " << recipe.execution.workers
+                << " worker(s)\n";
+      return 0;
+    };
+  });
+}
+
+} // namespace geotandem::app

@@ -1,0 +1,329 @@
+// geotandem store ls|show|export|runs|selections STORE: look into a component store without
+// reading its raw data (ls, show, runs) and export what a filter selects.
+
+#include <charconv>
+#include <cstdio>
+#include <iostream>
+#include <nlohmann/json.hpp>
+
+#include "command.hpp"
+#include "geotandem/core/error.hpp"
+#include "geotandem/store/export.hpp"
+#include "geotandem/store/store.hpp"
+
+namespace geotandem::app {
+namespace {
+
+// Filter options shared by ls and export. Options that were not given stay unset in the Query.
+struct Filters {
+  double min_volume = 0, max_volume = 0;
+  std::uint64_t min_triangles = 0, max_triangles = 0, min_vertices = 0, max_vertices = 0, limit = 0;
+  std::string azimuth, box, selection, sort = "key";
+  bool closed = false, reverse = false;
+  CLI::Option *min_volume_opt = nullptr, *max_volume_opt = nullptr, *min_triangles_opt = nullptr,
+              *max_triangles_opt = nullptr, *min_vertices_opt = nullptr, *max_vertices_opt = nullptr,
+              *limit_opt = nullptr;
+
+  void add_to(CLI::App* cmd) {
+    min_volume_opt = cmd->add_option("--min-volume", min_volume, "smallest enclosed volume (world units)");
+    max_volume_opt = cmd->add_option("--max-volume", max_volume, "largest enclosed volume (world units)");
+    cmd->add_option("--azimuth", azimuth, "azimuth range A:B in degrees from north, axial; 170:10 wraps past north");
+    cmd->add_option("--box", box, "world box x0,y0,z0,x1,y1,z1 that the component's bounding box must meet");
+    min_triangles_opt = cmd->add_option("--min-triangles", min_triangles, "fewest triangles");
+    max_triangles_opt = cmd->add_option("--max-triangles", max_triangles, "most triangles");
+    min_vertices_opt = cmd->add_option("--min-vertices", min_vertices, "fewest vertices");
+    max_vertices_opt = cmd->add_option("--max-vertices", max_vertices, "most vertices");
+    cmd->add_flag("--closed", closed, "closed surfaces only (not cut by the cube border)");
+    cmd->add_option("--selection", selection, "members of this named selection only");
+    cmd->add_option("--sort", sort, "key, volume (largest first), azimuth, or selection (the selection's own order)")
+        ->capture_default_str();
+    cmd->add_flag("--reverse", reverse, "reverse the sort order");
+    limit_opt = cmd->add_option("--limit", limit, "at most this many components");
+  }
+
+  store::Query query() const {
+    store::Query q;
+    if (min_volume_opt->count()) q.min_volume = min_volume;
+    if (max_volume_opt->count()) q.max_volume = max_volume;
+    if (!azimuth.empty()) q.azimuth = store::parse_azimuth_range(azimuth);
+    if (!box.empty()) q.box = store::parse_world_box(box);
+    if (min_triangles_opt->count()) q.min_triangles = min_triangles;
+    if (max_triangles_opt->count()) q.max_triangles = max_triangles;
+    if (min_vertices_opt->count()) q.min_vertices = min_vertices;
+    if (max_vertices_opt->count()) q.max_vertices = max_vertices;
+    q.closed_only = closed;
+    q.selection = selection;
+    q.sort = store::parse_sort_key(sort);
+    // Volumes are wanted largest first; every other order reads naturally ascending.
+    q.descending = (q.sort == store::SortKey::volume) != reverse;
+    if (limit_opt->count()) q.limit = limit;
+    return q;
+  }
+};
+
+std::uint64_t parse_key(const std::string& text) {
+  std::uint64_t key = 0;
+  auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), key);
+  if (ec != std::errc() || end != text.data() + text.size() || text.empty())
+    throw InvalidArgument("bad component key '" + text + "'", {},
+                          "a key is a non-negative integer, as 'store ls' lists");
+  return key;
+}
+
+nlohmann::json json_text_or_string(const std::string& text) {
+  auto j = nlohmann::json::parse(text, nullptr, false);
+  return j.is_discarded() ? nlohmann::json(text) : j;
+}
+
+nlohmann::json row_json(const store::ComponentRow& r) {
+  const auto& s = r.stats;
+  char checksum[24];
+  std::snprintf(checksum, sizeof checksum, "%016llx", static_cast<unsigned long long>(r.location.checksum));
+  return {{"key", r.key},
+          {"vertex_count", r.location.vertex_count},
+          {"triangle_count", r.location.triangle_count},
+          {"volume", s.volume},
+          {"area", s.area},
+          {"centroid", s.centroid},
+          {"box_min", s.box_min},
+          {"box_max", s.box_max},
+          {"obb", {{"center", s.obb_center}, {"axes", s.obb_axes}, {"half_extents", s.obb_half_extents}}},
+          {"azimuth", s.azimuth},
+          {"dip", s.dip},
+          {"elongation", s.elongation},
+          {"closed", s.closed},
+          {"cut_by_border", s.cut_by_border},
+          {"run", r.run ? nlohmann::json(*r.run) : nlohmann::json(nullptr)},
+          {"shard", r.location.shard},
+          {"offset", r.location.offset},
+          {"length", r.location.length},
+          {"checksum", checksum}};
+}
+
+std::string format_number(double value, const char* format = "%.6g") {
+  char text[48];
+  std::snprintf(text, sizeof text, format, value);
+  return text;
+}
+
+void print_table(const std::vector<store::ComponentRow>& rows, std::uint64_t total, const std::string& unit) {
+  auto& o = std::cout;
+  char line[256];
+  std::snprintf(line, sizeof line, "%20s %14s %8s %6s %10s %10s  %s\n", "key", ("volume " + unit).c_str(), "azimuth",
+                "dip", "vertices", "triangles", "surface");
+  o << line;
+  for (const auto& r : rows) {
+    const auto& s = r.stats;
+    const char* kind = s.cut_by_border ? "cut by border" : s.closed ? "closed" : "open";
+    std::snprintf(line, sizeof line, "%20llu %14s %8.2f %6.2f %10llu %10llu  %s\n",
+                  static_cast<unsigned long long>(r.key), format_number(s.volume).c_str(), s.azimuth, s.dip,
+                  static_cast<unsigned long long>(r.location.vertex_count),
+                  static_cast<unsigned long long>(r.location.triangle_count), kind);
+    o << line;
+  }
+  o << "# " << rows.size() << " of " << total << " components\n";
+}
+
+std::string volume_unit(const volume::Geometry& g) {
+  return g.z_unit == volume::SampleUnit::metres ? "(m3)" : "(m2.ms)";
+}
+
+void print_show(const store::ComponentRow& r, const volume::Geometry& g) {
+  auto& o = std::cout;
+  const auto& s = r.stats;
+  auto triple = [](const std::array<double, 3>& v) {
+    return format_number(v[0], "%.3f") + ", " + format_number(v[1], "%.3f") + ", " + format_number(v[2], "%.3f");
+  };
+  const std::string z = volume::to_string(g.z_unit);
+  o << "key:            " << r.key << "\n";
+  o << "vertices:       " << r.location.vertex_count << "\n";
+  o << "triangles:      " << r.location.triangle_count << "\n";
+  o << "surface:        " << (s.closed ? "closed" : "open") << (s.cut_by_border ? ", cut by the cube border" : "")
+    << "\n";
+  o << "volume:         " << format_number(s.volume) << " " << volume_unit(g) << "\n";
+  o << "area:           " << format_number(s.area) << "\n";
+  o << "centroid:       " << triple(s.centroid) << "  (x m, y m, z " << z << ")\n";
+  o << "box min:        " << triple(s.box_min) << "\n";
+  o << "box max:        " << triple(s.box_max) << "\n";
+  o << "obb center:     " << triple(s.obb_center) << "\n";
+  for (int a = 0; a < 3; ++a)
+    o << "obb axis " << a << ":     " << triple(s.obb_axes[static_cast<std::size_t>(a)]) << "  half extent "
+      << format_number(s.obb_half_extents[static_cast<std::size_t>(a)]) << "\n";
+  o << "azimuth:        " << format_number(s.azimuth, "%.2f") << " deg from north (axial)\n";
+  o << "dip:            " << format_number(s.dip, "%.2f") << " deg\n";
+  o << "elongation:     " << format_number(s.elongation, "%.3f") << "\n";
+  o << "run:            " << (r.run ? std::to_string(*r.run) : std::string("-")) << "\n";
+  o << "record:         shards/" << r.location.shard << ".gts offset " << r.location.offset << ", " << r.location.length
+    << " bytes, xxh64 " << row_json(r)["checksum"].get<std::string>() << "\n";
+}
+
+struct LsArgs {
+  std::string store;
+  Filters filters;
+  bool json = false;
+};
+
+struct ShowArgs {
+  std::string store, key;
+  bool json = false;
+};
+
+struct ExportArgs {
+  std::string store, format, out;
+  Filters filters;
+  bool per_component = false, float32 = false;
+};
+
+struct ListArgs {
+  std::string store;
+  bool json = false;
+};
+
+void add_ls(CLI::App* parent, Runner& run) {
+  auto args = std::make_shared<LsArgs>();
+  auto* cmd = parent->add_subcommand("ls", "List components from the index (no raw data is read).");
+  cmd->add_option("store", args->store, "the store directory")->required();
+  args->filters.add_to(cmd);
+  cmd->add_flag("--json", args->json, "print every index field as JSON");
+  cmd->callback([args, &run] {
+    run = [args] {
+      auto s = store::ComponentStore::open(args->store);
+      auto q = args->filters.query();
+      auto rows = s.query(q);
+      if (args->json) {
+        nlohmann::json list = nlohmann::json::array();
+        for (const auto& r : rows)
+          list.push_back(row_json(r));
+        std::cout << list.dump(2) << "\n";
+      } else {
+        print_table(rows, s.size(), volume_unit(s.geometry()));
+      }
+      return 0;
+    };
+  });
+}
+
+void add_show(CLI::App* parent, Runner& run) {
+  auto args = std::make_shared<ShowArgs>();
+  auto* cmd = parent->add_subcommand("show", "Show every index field of one component.");
+  cmd->add_option("store", args->store, "the store directory")->required();
+  cmd->add_option("key", args->key, "the component key")->required();
+  cmd->add_flag("--json", args->json, "print JSON");
+  cmd->callback([args, &run] {
+    run = [args] {
+      auto s = store::ComponentStore::open(args->store);
+      auto key = parse_key(args->key);
+      auto row = s.find(key);
+      if (!row)
+        throw InvalidArgument("no component with key " + std::to_string(key) + " in the store", {args->store},
+                              "list the keys with 'geotandem store ls'");
+      if (args->json)
+        std::cout << row_json(*row).dump(2) << "\n";
+      else
+        print_show(*row, s.geometry());
+      return 0;
+    };
+  });
+}
+
+void add_export(CLI::App* parent, Context& context, Runner& run) {
+  auto args = std::make_shared<ExportArgs>();
+  auto* cmd = parent->add_subcommand("export", "Export the components a filter selects (all by default).");
+  cmd->add_option("store", args->store, "the store directory")->required();
+  cmd->add_option("--format", args->format, "ply, obj, vtp (ParaView) or ts (GOCAD TSurf)")->required();
+  cmd->add_option("--out", args->out, "the output file, or directory with --per-component")->required();
+  cmd->add_flag("--per-component", args->per_component, "one file per component, named geobody_<key>.<ext>");
+  cmd->add_flag("--float32", args->float32, "PLY: float32 vertices instead of float64");
+  args->filters.add_to(cmd);
+  cmd->callback([args, &context, &run] {
+    run = [args, &context] {
+      store::ExportOptions options;
+      options.format = store::parse_export_format(args->format);
+      options.per_component = args->per_component;
+      options.ply_float32 = args->float32;
+      auto s = store::ComponentStore::open(args->store);
+      auto rows = s.query(args->filters.query());
+      auto progress = context.progress();
+      auto summary = store::export_components(s, rows, args->out, options, *progress, context.cancel);
+      std::cout << "exported " << summary.components << " components (" << summary.vertices << " vertices, "
+                << summary.triangles << " triangles) to " << summary.files.size() << " file"
+                << (summary.files.size() == 1 ? "" : "s") << (args->per_component ? " in " : ": ") << args->out << "\n";
+      return 0;
+    };
+  });
+}
+
+void add_runs(CLI::App* parent, Runner& run) {
+  auto args = std::make_shared<ListArgs>();
+  auto* cmd = parent->add_subcommand("runs", "List the runs that wrote the store, with their statistics.");
+  cmd->add_option("store", args->store, "the store directory")->required();
+  cmd->add_flag("--json", args->json, "print JSON");
+  cmd->callback([args, &run] {
+    run = [args] {
+      auto s = store::ComponentStore::open(args->store);
+      nlohmann::json list = nlohmann::json::array();
+      for (const auto& r : s.runs())
+        list.push_back({{"id", r.id},
+                        {"started", r.started},
+                        {"ended", r.ended.empty() ? nlohmann::json(nullptr) : nlohmann::json(r.ended)},
+                        {"components", r.component_count},
+                        {"parameters", json_text_or_string(r.parameters)},
+                        {"statistics", json_text_or_string(r.statistics)}});
+      if (args->json) {
+        std::cout << list.dump(2) << "\n";
+        return 0;
+      }
+      if (list.empty()) std::cout << "no runs recorded\n";
+      for (const auto& r : list) {
+        std::cout << "run " << r["id"] << ": started " << r["started"].get<std::string>() << ", "
+                  << (r["ended"].is_null() ? std::string("not ended (running, or killed)")
+                                           : "ended " + r["ended"].get<std::string>())
+                  << ", " << r["components"] << " components\n";
+        std::cout << "  parameters: " << r["parameters"].dump() << "\n";
+        std::cout << "  statistics: " << r["statistics"].dump() << "\n";
+      }
+      return 0;
+    };
+  });
+}
+
+void add_selections(CLI::App* parent, Runner& run) {
+  auto args = std::make_shared<ListArgs>();
+  auto* cmd = parent->add_subcommand("selections", "List the named selections (e.g. written by component steps).");
+  cmd->add_option("store", args->store, "the store directory")->required();
+  cmd->add_flag("--json", args->json, "print JSON");
+  cmd->callback([args, &run] {
+    run = [args] {
+      auto s = store::ComponentStore::open(args->store);
+      nlohmann::json list = nlohmann::json::array();
+      for (const auto& sel : s.selections())
+        list.push_back({{"name", sel.name},
+                        {"size", sel.size},
+                        {"created", sel.created},
+                        {"parameters", json_text_or_string(sel.parameters)}});
+      if (args->json) {
+        std::cout << list.dump(2) << "\n";
+        return 0;
+      }
+      if (list.empty()) std::cout << "no selections\n";
+      for (const auto& sel : list)
+        std::cout << sel["name"].get<std::string>() << ": " << sel["size"] << " components, created "
+                  << sel["created"].get<std::string>() << ", " << sel["parameters"].dump() << "\n";
+      return 0;
+    };
+  });
+}
+
+} // namespace
+
+void add_store_command(CLI::App& app, Context& context, Runner& run) {
+  auto* cmd = app.add_subcommand("store", "Query and export a component store (index + raw data shards).");
+  cmd->require_subcommand(1);
+  add_ls(cmd, run);
+  add_show(cmd, run);
+  add_export(cmd, context, run);
+  add_runs(cmd, run);
+  add_selections(cmd, run);
+}
+
+} // namespace geotandem::app

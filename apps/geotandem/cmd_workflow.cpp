@@ -1,0 +1,58 @@
+// geotandem run-workflow RECIPE: what a geophysicist runs.
+
+#include <iostream>
+
+#include "command.hpp"
+#include "geotandem/workflow/recipe.hpp"
+#include "geotandem/workflow/runner.hpp"
+#include "plugins_setup.hpp"
+
+namespace geotandem::app {
+
+void add_workflow_command(CLI::App& app, Context& context, Runner& run) {
+  struct Args {
+    std::string recipe;
+    std::vector<std::string> sets;
+    bool dry_run = false;
+    bool fresh = false;
+    std::string scheduler;
+  };
+  auto args = std::make_shared<Args>();
+  auto* cmd = app.add_subcommand(
+      "run-workflow",
+      "Run a recipe: compute the attribute, extract its isosurface into a component store, remove bubbles, "
+      "sort by azimuth, export and write an HTML report. A rerun reuses the finished steps.");
+  cmd->add_option("recipe", args->recipe, "the recipe (YAML); see docs/recipe-schema.md and workflows/")->required();
+  cmd->add_option("--set", args->sets, "override a recipe value, e.g. --set steps.extract.iso=0.4 (repeatable)");
+  cmd->add_flag("--dry-run", args->dry_run, "validate and build the whole chain, compute nothing");
+  cmd->add_flag("--fresh", args->fresh, "replace a store left in the output directory by other parameters");
+  cmd->add_option("--scheduler", args->scheduler, "local, slurm or lsf (overrides execution.scheduler)");
+  cmd->callback([args, &context, &run] {
+    run = [args, &context] {
+      auto registry = make_plugin_registry(context.log);
+      auto sets = args->sets;
+      if (!args->scheduler.empty()) sets.push_back("execution.scheduler=" + args->scheduler);
+      auto recipe = workflow::load_recipe(args->recipe, registry, sets);
+      if (recipe.execution.scheduler != "local" || recipe.execution.workers > 1)
+        context.log.warning("execution: scheduler '" + recipe.execution.scheduler + "' with " +
+                            std::to_string(recipe.execution.workers) +
+                            " worker(s) is validated, but this build runs the extraction in this process");
+      workflow::RunSettings settings;
+      settings.dry_run = args->dry_run;
+      settings.fresh = args->fresh;
+      settings.progress = [&context] { return context.progress(); };
+      auto outcome = workflow::run_workflow(recipe, registry, settings, context.log, context.cancel);
+      if (args->dry_run) {
+        std::cout << args->recipe << ": valid; nothing computed (dry run)\n";
+        return 0;
+      }
+      std::cout << "components: " << outcome.components << " extracted"
+                << (outcome.extraction_reused ? " (reused)" : "") << ", " << outcome.kept << " kept\n"
+                << "store:      " << outcome.store_dir << "\n"
+                << "report:     " << outcome.report << "\n";
+      return 0;
+    };
+  });
+}
+
+} // namespace geotandem::app

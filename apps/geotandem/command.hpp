@@ -1,0 +1,36 @@
+#pragma once
+// The world main() builds and hands to every subcommand: logger, progress reporter, cancel token.
+// Each subcommand lives in its own cmd_<name>.cpp and is added by an explicit call in main.cpp.
+
+#include <CLI/CLI.hpp>
+
+#include <functional>
+#include <memory>
+
+#include "geotandem/core/cancel.hpp"
+#include "geotandem/core/log.hpp"
+#include "geotandem/core/progress.hpp"
+
+namespace geotandem::app {
+
+struct Context {
+  Logger& log;
+  CancelToken cancel;
+  bool quiet = false;
+  // A fresh progress reporter on stderr (a bar on a terminal, plain lines otherwise).
+  std::unique_ptr<Progress> progress() const { return make_stderr_progress(quiet); }
+};
+
+// A subcommand sets `run` on itself; main calls the one the user chose. It returns the exit code
+// and throws geotandem::Error for failures (main prints them and maps them to exit codes).
+using Runner = std::function<int()>;
+
+void add_synth_command(CLI::App& app, Context& context, Runner& run);
+void add_info_command(CLI::App& app, Context& context, Runner& run);
+void add_extract_command(CLI::App& app, Context& context, Runner& run);
+void add_store_command(CLI::App& app, Context& context, Runner& run);
+void add_plugins_command(CLI::App& app, Context& context, Runner& run);
+void add_validate_command(CLI::App& app, Context& context, Runner& run);
+void add_workflow_command(CLI::App& app, Context& context, Runner& run);
+
+} // namespace geotandem::app

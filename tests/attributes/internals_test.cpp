@@ -1,0 +1,163 @@
+// The machinery under every attribute: mirror padding, filter kernels and passes, and the closed-form
+// eigenvalues, each against an independent computation.
+
+#include <gtest/gtest.h>
+
+#include <Eigen/Eigenvalues>
+#include <cmath>
+#include <numbers>
+
+#include "filters.hpp"
+#include "fixtures.hpp"
+#include "mirror.hpp"
+#include "sym3_eigenvalues.hpp"
+
+namespace geotandem::attributes {
+namespace {
+
+using testing::cube;
+using testing::noise;
+using testing::reflect;
+using volume::Box;
+using volume::Index3;
+
+TEST(Mirror, IndexMatchesRepeatedReflection) {
+  for (int n : {1, 2, 3, 7})
+    for (int m = -40; m < 40; ++m)
+      EXPECT_EQ(detail::mirror_index(m, n), reflect(m, n)) << "m " << m << " n " << n;
+}
+
+TEST(Mirror, PaddedReadEqualsReflectedCube) {
+  const Index3 shape{5, 4, 9};
+  auto u = cube(shape, [](int i, int j, int k) { return 100.0 * i + 10.0 * j + k; });
+  // Halos wider than the cube on two axes force repeated reflections.
+  for (const Box& box : {Box{{0, 0, 0}, {2, 3, 4}}, Box{{1, 1, 2}, {5, 4, 9}}, Box{{0, 0, 0}, shape}}) {
+    const Index3 halo{7, 2, 5};
+    const detail::Array3 padded = detail::read_mirrored(*u, box, halo);
+    const Box grown = box.grown(halo);
+    ASSERT_EQ(padded.shape, grown.shape());
+    std::size_t n = 0;
+    for (auto i = grown.lo[0]; i < grown.hi[0]; ++i)
+      for (auto j = grown.lo[1]; j < grown.hi[1]; ++j)
+        for (auto k = grown.lo[2]; k < grown.hi[2]; ++k, ++n) {
+          const double expected = 100.0 * reflect(static_cast<int>(i), 5) + 10.0 * reflect(static_cast<int>(j), 4) +
+                                  reflect(static_cast<int>(k), 9);
+          ASSERT_EQ(padded.data[n], expected) << "at " << i << ", " << j << ", " << k << " of " << box.to_string();
+        }
+  }
+}
+
+// Reconstructs the full tap array w(-r..r) from a kernel's half.
+std::vector<double> full_taps(const detail::Kernel& kernel) {
+  const int r = kernel.radius();
+  std::vector<double> w(static_cast<std::size_t>(2 * r + 1));
+  for (int t = -r; t <= r; ++t) {
+    const double h = kernel.half[static_cast<std::size_t>(std::abs(t))];
+    w[static_cast<std::size_t>(t + r)] = (t < 0 && kernel.symmetry == detail::Symmetry::odd) ? -h : h;
+  }
+  return w;
+}
+
+TEST(Kernels, GaussianHasUnitSumAndDocumentedRadius) {
+  for (double sigma : {0.2, 1.0, 2.0, 3.0, 4.5}) {
+    const detail::Kernel g = detail::gaussian_kernel(sigma);
+    EXPECT_EQ(g.radius(), std::max(1, static_cast<int>(std::ceil(3.0 * sigma))));
+    double sum = 0.0;
+    for (double w : full_taps(g))
+      sum += w;
+    EXPECT_NEAR(sum, 1.0, 1e-6);
+    for (int t = 1; t <= g.radius(); ++t)
+      EXPECT_LT(g.half[static_cast<std::size_t>(t)], g.half[t - 1u]);
+  }
+}
+
+TEST(Kernels, DerivativeIsExactOnRamps) {
+  for (double sigma : {0.5, 1.0, 2.5}) {
+    const detail::Kernel d = detail::gaussian_derivative_kernel(sigma);
+    const std::vector<double> w = full_taps(d);
+    double sum = 0.0, moment = 0.0;
+    for (int t = -d.radius(); t <= d.radius(); ++t) {
+      sum += w[static_cast<std::size_t>(t + d.radius())];
+      moment += t * w[static_cast<std::size_t>(t + d.radius())];
+    }
+    EXPECT_NEAR(sum, 0.0, 1e-7);
+    EXPECT_NEAR(moment, 1.0, 1e-6);
+  }
+}
+
+// The transformer's gain at f cycles per sample: the response of the odd kernel to sin(2 pi f t).
+double hilbert_gain(const detail::Kernel& h, double f) {
+  double gain = 0.0;
+  for (int t = 1; t <= h.radius(); ++t)
+    gain -= 2.0 * h.half[static_cast<std::size_t>(t)] * std::sin(2 * std::numbers::pi * f * t);
+  return gain;
+}
+
+TEST(Kernels, HilbertGainIsFlatInTheDocumentedBand) {
+  const detail::Kernel h = detail::hilbert_kernel(32);
+  EXPECT_EQ(h.symmetry, detail::Symmetry::odd);
+  for (int t = 0; t <= 32; t += 2)
+    EXPECT_EQ(h.half[static_cast<std::size_t>(t)], 0.0f);
+  for (double f = 0.05; f <= 0.45; f += 0.005)
+    EXPECT_NEAR(hilbert_gain(h, f), 1.0, 4e-4) << "f " << f;
+  // A shorter transformer keeps the same band only roughly: the gain still rises towards 1.
+  EXPECT_LT(std::abs(hilbert_gain(detail::hilbert_kernel(16), 0.25) - 1.0), 0.01);
+}
+
+TEST(Filters, CorrelateMatchesDirectSumOnEveryAxis) {
+  const Index3 shape{9, 8, 11};
+  auto u = cube(shape, [](int i, int j, int k) { return noise(i, j, k); });
+  detail::Array3 in = detail::read_mirrored(*u, u->geometry().bounds(), {0, 0, 0});
+  for (const detail::Kernel& kernel : {detail::gaussian_kernel(1.0), detail::gaussian_derivative_kernel(0.9)})
+    for (int axis = 0; axis < 3; ++axis) {
+      const detail::Array3 out = detail::correlate(in, axis, kernel);
+      const int r = kernel.radius();
+      const std::vector<double> w = full_taps(kernel);
+      Index3 expected_shape = shape;
+      expected_shape[axis] -= 2 * r;
+      ASSERT_EQ(out.shape, expected_shape);
+      std::size_t n = 0;
+      for (int i = 0; i < out.shape[0]; ++i)
+        for (int j = 0; j < out.shape[1]; ++j)
+          for (int k = 0; k < out.shape[2]; ++k, ++n) {
+            double sum = 0.0;
+            for (int t = -r; t <= r; ++t) {
+              int at[3] = {i, j, k};
+              at[axis] += r + t;
+              sum += w[static_cast<std::size_t>(t + r)] * noise(at[0], at[1], at[2]);
+            }
+            ASSERT_NEAR(out.data[n], sum, 1e-5) << "axis " << axis << " at " << i << ", " << j << ", " << k;
+          }
+    }
+}
+
+TEST(Eigenvalues, MatchEigenOnRandomAndDegenerateMatrices) {
+  std::vector<Eigen::Matrix3d> cases;
+  for (int c = 0; c < 200; ++c) {
+    Eigen::Matrix3d g;
+    for (int r = 0; r < 3; ++r)
+      for (int s = 0; s < 3; ++s)
+        g(r, s) = noise(c, r, s, 7);
+    cases.push_back(g * g.transpose()); // positive semi-definite, like a structure tensor
+  }
+  Eigen::Vector3d v(0.3, -0.5, 0.8);
+  cases.push_back(v * v.transpose());                 // rank one: planar
+  cases.push_back(Eigen::Matrix3d::Identity() * 2.5); // isotropic
+  cases.push_back(Eigen::Vector3d(4, 4, 1).asDiagonal());
+  cases.push_back(Eigen::Vector3d(4, 1, 1).asDiagonal());
+  cases.push_back(Eigen::Matrix3d::Zero());
+  for (const Eigen::Matrix3d& a : cases) {
+    Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> solver(a, Eigen::EigenvaluesOnly);
+    const Eigen::Vector3d ascending = solver.eigenvalues();
+    const auto l = detail::sym3_eigenvalues(a(0, 0), a(1, 1), a(2, 2), a(0, 1), a(0, 2), a(1, 2));
+    const double scale = std::max(1.0, std::abs(ascending(2)));
+    EXPECT_NEAR(l[0], ascending(2), 1e-7 * scale);
+    EXPECT_NEAR(l[1], ascending(1), 1e-7 * scale);
+    EXPECT_NEAR(l[2], ascending(0), 1e-7 * scale);
+    EXPECT_GE(l[0], l[1]);
+    EXPECT_GE(l[1], l[2]);
+  }
+}
+
+} // namespace
+} // namespace geotandem::attributes

@@ -1,0 +1,63 @@
+// `geotandem info` on cubes written by `geotandem synth`, as a real child process.
+
+#include <gtest/gtest.h>
+
+#include <nlohmann/json.hpp>
+
+#include "scratch.hpp"
+
+namespace geotandem {
+namespace {
+
+using testing::run_geotandem;
+using testing::ScratchDir;
+
+TEST(InfoCli, ReportsShapeGeometryAndValues) {
+  ScratchDir dir;
+  for (const std::string name : {"a.raw", "a.nc"}) {
+    const std::string cube = dir.file(name);
+    ASSERT_EQ(run_geotandem("-q synth --kind analytic --shape 44 40 48 --out '" + cube + "'").exit_code, 0);
+    auto r = run_geotandem("-q info --json '" + cube + "'");
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    const auto j = nlohmann::json::parse(r.out);
+    EXPECT_EQ(j["shape"]["inline"], 44);
+    EXPECT_EQ(j["shape"]["crossline"], 40);
+    EXPECT_EQ(j["shape"]["sample"], 48);
+    EXPECT_EQ(j["samples"], 44 * 40 * 48);
+    EXPECT_EQ(j["sample"]["interval"], 4.0);
+    EXPECT_EQ(j["sample"]["unit"], "ms");
+    EXPECT_NEAR(j["bin_size_m"][0].get<double>(), 25.0, 1e-9);
+    EXPECT_NEAR(j["bin_size_m"][1].get<double>(), 25.0, 1e-9);
+    EXPECT_EQ(j["format"], name.ends_with(".nc") ? "netCDF-4" : "raw");
+    // The analytic field lies in [0, 1] and reaches 1 inside bodies.
+    EXPECT_GE(j["values"]["min"].get<double>(), 0.0);
+    EXPECT_EQ(j["values"]["max"].get<double>(), 1.0);
+    EXPECT_EQ(j["values"]["non_finite"], 0);
+
+    auto text = run_geotandem("-q info '" + cube + "'");
+    ASSERT_EQ(text.exit_code, 0) << text.err;
+    EXPECT_NE(text.out.find("44 inlines x 40 crosslines x 48 samples"), std::string::npos) << text.out;
+    EXPECT_NE(text.out.find("format:     " + std::string(name.ends_with(".nc") ? "netCDF-4" : "raw")),
+              std::string::npos)
+        << text.out;
+  }
+}
+
+TEST(InfoCli, NoStatsSkipsTheValueScan) {
+  ScratchDir dir;
+  const std::string cube = dir.file("s.raw");
+  ASSERT_EQ(run_geotandem("-q synth --kind seismic --shape 40 40 40 --out '" + cube + "'").exit_code, 0);
+  auto r = run_geotandem("-q info --json --no-stats '" + cube + "'");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_FALSE(nlohmann::json::parse(r.out).contains("values"));
+}
+
+TEST(InfoCli, MissingFileIsAnIoError) {
+  ScratchDir dir;
+  auto r = run_geotandem("info '" + dir.file("nothing.nc") + "'");
+  EXPECT_EQ(r.exit_code, 3) << r.err;
+  EXPECT_NE(r.err.find("nothing.nc"), std::string::npos) << r.err;
+}
+
+} // namespace
+} // namespace geotandem

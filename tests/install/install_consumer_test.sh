@@ -1,0 +1,153 @@
+#!/usr/bin/env bash
+# The installed geotandem as a plugin author sees it:
+#   1. `cmake --install` this build tree into a fresh prefix;
+#   2. configure and build examples/custom_attribute out of tree with find_package(geotandem);
+#   3. the installed geotandem lists the plugin from GEOTANDEM_PLUGIN_PATH, then, once the example
+#      is installed into the prefix, without it;
+#   4. `geotandem validate` accepts the example recipe, and a wrong parameter of the plugin is
+#      reported with its name, the recipe's line and column, and the nearest valid name;
+#   5. `geotandem run-workflow` runs the example recipe and its store holds components computed
+#      from the plugin's attribute.
+# Usage: install_consumer_test.sh CMAKE BUILD_DIR EXAMPLE_SOURCE_DIR
+set -euo pipefail
+
+if [[ $# -ne 3 ]]; then
+  echo "usage: $0 CMAKE BUILD_DIR EXAMPLE_SOURCE_DIR" >&2
+  exit 2
+fi
+cmake=$1
+build=$2
+example=$3
+plugin=avg_abs_amplitude
+
+tmp=$(mktemp -d "${TMPDIR:-/tmp}/geotandem-install-test.XXXXXX")
+trap 'rm -rf "$tmp"' EXIT
+prefix=$tmp/prefix
+example_build=$tmp/example-build
+log=$tmp/log
+
+fail() {
+  echo "install_consumer: FAIL: $*" >&2
+  exit 1
+}
+# Runs a step quietly; on failure shows its output and stops.
+step() {
+  local what=$1
+  shift
+  echo "install_consumer: $what"
+  if ! "$@" >"$log" 2>&1; then
+    cat "$log" >&2
+    fail "$what: '$*' exited non-zero"
+  fi
+}
+# expect_in TEXT NEEDLE WHAT: TEXT contains NEEDLE literally.
+expect_in() {
+  [[ $1 == *"$2"* ]] || fail "$3: expected to find '$2' in:"$'\n'"$1"
+}
+
+# Nothing from the caller's environment may point the installed program elsewhere.
+unset GEOTANDEM_PLUGIN_PATH LD_LIBRARY_PATH CMAKE_PREFIX_PATH geotandem_DIR
+
+step "install the build tree into $prefix" "$cmake" --install "$build" --prefix "$prefix"
+geotandem=$prefix/bin/geotandem
+[[ -x $geotandem ]] || fail "no geotandem executable at $geotandem"
+[[ -f $prefix/include/geotandem/workflow/plugin_abi.h ]] || fail "plugin_abi.h is not installed"
+[[ -f $prefix/lib/cmake/geotandem/geotandemConfig.cmake ]] || fail "the package config is not installed"
+# The installed program must run on the installed libraries, not on the build tree's.
+if ldd "$geotandem" | grep -E "not found|$build" >"$log"; then
+  cat "$log" >&2
+  fail "the installed geotandem resolves libraries outside $prefix"
+fi
+
+generator=()
+if command -v ninja >/dev/null; then generator=(-G Ninja); fi
+step "configure the example against the installed package" "$cmake" -S "$example" -B "$example_build" \
+  "${generator[@]}" -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_PREFIX_PATH="$prefix" -DCMAKE_CXX_FLAGS=-Werror
+grep -q "geotandem_DIR:PATH=$prefix/" "$example_build/CMakeCache.txt" ||
+  fail "find_package(geotandem) did not find the package in $prefix"
+step "build the example" "$cmake" --build "$example_build" -j2
+library=$example_build/geotandem_$plugin.so
+[[ -f $library ]] || fail "the example did not produce $library"
+nm -D --defined-only "$library" | grep -q " geotandem_plugin_entry$" || fail "$library does not export the entry point"
+
+check_listing() { # check_listing OUTPUT ORIGIN
+  expect_in "$1" "$plugin (attribute, $2, version 1.0)" "plugins $plugin"
+  expect_in "$1" "half_window" "plugins $plugin"
+  expect_in "$1" "default 5, 0 to 500" "plugins $plugin"
+  expect_in "$1" "half_traces" "plugins $plugin"
+  expect_in "$1" "default 0, 0 to 50" "plugins $plugin"
+  expect_in "$1" "in samples" "plugins $plugin"
+}
+
+echo "install_consumer: the installed geotandem finds the plugin through GEOTANDEM_PLUGIN_PATH"
+out=$(GEOTANDEM_PLUGIN_PATH=$example_build "$geotandem" plugins "$plugin" 2>&1) ||
+  fail "geotandem plugins $plugin failed with GEOTANDEM_PLUGIN_PATH: $out"
+check_listing "$out" "$library"
+
+echo "install_consumer: without the path and before installing the example, the plugin is unknown"
+if out=$("$geotandem" plugins "$plugin" 2>&1); then fail "the plugin was found before it was installed: $out"; fi
+expect_in "$out" "unknown plugin '$plugin'" "plugins $plugin before install"
+
+step "install the example into the prefix" "$cmake" --install "$example_build" --prefix "$prefix"
+installed=$prefix/lib/geotandem/plugins/geotandem_$plugin.so
+[[ -f $installed ]] || fail "the example did not install to $installed"
+out=$("$geotandem" plugins "$plugin" 2>&1) || fail "geotandem plugins $plugin failed after install: $out"
+check_listing "$out" "$installed"
+out=$("$geotandem" plugins 2>&1) || fail "geotandem plugins failed: $out"
+expect_in "$out" "$plugin" "plugins"
+
+echo "install_consumer: validate the example recipe"
+recipe=$tmp/recipe.yaml
+cp "$example/recipe.yaml" "$recipe"
+out=$("$geotandem" validate "$recipe" 2>&1) || fail "the example recipe does not validate: $out"
+expect_in "$out" "valid, 2 steps: $plugin extract" "validate"
+
+# bad_recipe KEY_LINE: the example recipe with its half_window line replaced by KEY_LINE.
+bad_recipe() {
+  grep -q "^    half_window: " "$example/recipe.yaml" || fail "the example recipe has no half_window line"
+  sed "s/^    half_window: .*/    $1/" "$example/recipe.yaml" >"$recipe"
+}
+# position NEEDLE: "line:column" of the first NEEDLE in the recipe (1-based).
+position() {
+  awk -v s="$1" '{ c = index($0, s); if (c > 0) { print NR ":" c; exit } }' "$recipe"
+}
+validate_fails() {
+  if out=$("$geotandem" validate "$recipe" 2>&1); then fail "a bad recipe was accepted:"$'\n'"$(cat "$recipe")"; fi
+}
+
+echo "install_consumer: a misspelt parameter of the plugin names it, its place and the right name"
+bad_recipe "half_windw: 2"
+validate_fails
+expect_in "$out" "$recipe:$(position half_windw): unknown key 'half_windw' in step 1 ($plugin)" "misspelt parameter"
+expect_in "$out" "did you mean 'half_window'?" "misspelt parameter"
+
+echo "install_consumer: a parameter of the plugin out of its range names it and its place"
+bad_recipe "half_window: 9999"
+validate_fails
+expect_in "$out" "$recipe:$(position 9999):" "out-of-range parameter"
+expect_in "$out" "half_window" "out-of-range parameter"
+expect_in "$out" "9999" "out-of-range parameter"
+
+echo "install_consumer: a parameter of the wrong type names it and its place"
+bad_recipe "half_window: wide"
+validate_fails
+expect_in "$out" "$recipe:$(position wide):" "wrongly typed parameter"
+expect_in "$out" "half_window" "wrongly typed parameter"
+
+echo "install_consumer: run the example recipe (48^3 analytic cube, the plugin, extraction)"
+cp "$example/recipe.yaml" "$recipe"
+run=$tmp/run
+mkdir "$run"
+# From a directory of its own, so that nothing is written into the caller's working directory.
+out=$(cd "$run" && "$geotandem" -q run-workflow "$recipe" --set "output.directory=$run/out" 2>&1) ||
+  fail "run-workflow failed on the example recipe: $out"
+components=$(sed -n 's/^components: \([0-9]*\) extracted.*/\1/p' <<<"$out")
+[[ -n $components && $components -gt 0 ]] || fail "run-workflow extracted no components: $out"
+store=$run/out/store
+[[ -d $store ]] || fail "run-workflow wrote no store at $store: $out"
+out=$("$geotandem" store ls "$store" 2>&1) || fail "store ls failed: $out"
+expect_in "$out" "# $components of $components components" "store ls"
+out=$("$geotandem" store runs "$store" 2>&1) || fail "store runs failed: $out"
+expect_in "$out" "\"source\":\"$plugin(" "store runs (the extraction read the plugin's attribute)"
+
+echo "install_consumer: passed"

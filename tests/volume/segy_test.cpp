@@ -1,0 +1,475 @@
+// SEG-Y: files written here through segyio itself (not through our writer) with known line
+// numbers, coordinates and samples, read back through open_volume; our writer's files read back
+// by us and by segyio; broken files refused with messages that name the file.
+
+#include <gtest/gtest.h>
+#include <segyio/segy.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <filesystem>
+#include <functional>
+#include <memory>
+#include <random>
+#include <string>
+#include <tuple>
+#include <vector>
+
+#include "geotandem/core/error.hpp"
+#include "geotandem/volume/io.hpp"
+#include "io_fixtures.hpp"
+#include "scratch.hpp"
+
+namespace fs = std::filesystem;
+using namespace geotandem;
+using namespace geotandem::volume;
+using geotandem::testing::ScratchDir;
+using geotandem::volume::testing::formula;
+using geotandem::volume::testing::formula_cube;
+using geotandem::volume::testing::formula_samples;
+using geotandem::volume::testing::probe_boxes;
+using geotandem::volume::testing::sample_geometry;
+
+namespace {
+
+// What the test writes through segyio's C API.
+struct SegySpec {
+  int ni = 7, nj = 9, ns = 50;
+  int il0 = 100, il_step = 2, xl0 = 300, xl_step = 1;
+  int format = SEGY_IEEE_FLOAT_4_BYTE;
+  bool crossline_sorted = false;
+  int interval_us = 4000;
+  int delay_ms = 0;
+  int scalar = -100;
+  bool coordinates = true;
+  SurveyAffine affine{500000.25, 10.0, -6.0, 6700000.5, 8.0, 7.5};
+  int offsets = 1;
+  std::vector<std::array<int, 2>> missing;   // (i, j) of traces left out
+  bool swap_two_traces = false;              // trade the places of two inner traces
+  bool shuffle = false;                      // traces in a random order
+  bool gap_in_inlines = false;               // skip one inline number halfway
+  int extended_headers = 0;                  // extended textual headers after the binary header
+  bool counts_in_trace_headers_only = false; // binary header samples and interval left at 0
+
+  long trace0() const { return 3600L + 3200L * extended_headers; }
+  int inline_number(int i) const { return il0 + (i + (gap_in_inlines && i >= ni / 2 ? 1 : 0)) * il_step; }
+};
+
+double stored_factor(int scalar) {
+  return scalar == 0 ? 1.0 : scalar > 0 ? 1.0 / scalar : -scalar;
+}
+
+void write_with_segyio(const std::string& path, const SegySpec& s) {
+  segy_file* fp = segy_open(path.c_str(), "w+b");
+  ASSERT_NE(fp, nullptr);
+  std::string text(3200, ' ');
+  text.replace(0, 20, "C01 TEST CUBE SEGYIO");
+  ASSERT_EQ(segy_write_textheader(fp, 0, text.c_str()), SEGY_OK);
+  std::array<char, SEGY_BINARY_HEADER_SIZE> bin{};
+  if (!s.counts_in_trace_headers_only) {
+    segy_set_bfield(bin.data(), SEGY_BIN_INTERVAL, s.interval_us);
+    segy_set_bfield(bin.data(), SEGY_BIN_SAMPLES, s.ns);
+  }
+  segy_set_bfield(bin.data(), SEGY_BIN_FORMAT, s.format);
+  segy_set_bfield(bin.data(), SEGY_BIN_EXT_HEADERS, s.extended_headers);
+  ASSERT_EQ(segy_write_binheader(fp, bin.data()), SEGY_OK);
+  for (int n = 0; n < s.extended_headers; ++n)
+    ASSERT_EQ(segy_write_textheader(fp, n + 1, text.c_str()), SEGY_OK);
+  // Unsupported codes are laid out as 4-byte IEEE: only the code in the binary header matters.
+  const int layout = s.format == SEGY_SIGNED_SHORT_2_BYTE ? SEGY_IEEE_FLOAT_4_BYTE : s.format;
+  const int bytes = segy_trsize(layout, s.ns);
+
+  // Positions in file order.
+  std::vector<std::array<int, 2>> order;
+  for (int outer = 0; outer < (s.crossline_sorted ? s.nj : s.ni); ++outer)
+    for (int inner = 0; inner < (s.crossline_sorted ? s.ni : s.nj); ++inner) {
+      std::array<int, 2> ij = s.crossline_sorted ? std::array<int, 2>{inner, outer} : std::array<int, 2>{outer, inner};
+      bool skip = false;
+      for (const auto& m : s.missing)
+        skip = skip || m == ij;
+      if (!skip) order.push_back(ij);
+    }
+  if (s.swap_two_traces) std::swap(order[order.size() / 2], order[order.size() / 2 + 1]);
+  if (s.shuffle) std::shuffle(order.begin(), order.end(), std::mt19937(7));
+
+  int trace = 0;
+  const double factor = stored_factor(s.scalar);
+  for (const auto& [i, j] : order)
+    for (int offset = 1; offset <= s.offsets; ++offset, ++trace) {
+      std::array<char, SEGY_TRACE_HEADER_SIZE> h{};
+      segy_set_field(h.data(), SEGY_TR_INLINE, s.inline_number(i));
+      segy_set_field(h.data(), SEGY_TR_CROSSLINE, s.xl0 + j * s.xl_step);
+      segy_set_field(h.data(), SEGY_TR_OFFSET, offset);
+      segy_set_field(h.data(), SEGY_TR_SAMPLE_COUNT, s.ns);
+      segy_set_field(h.data(), SEGY_TR_SAMPLE_INTER, s.interval_us);
+      segy_set_field(h.data(), SEGY_TR_DELAY_REC_TIME, s.delay_ms);
+      if (s.coordinates) {
+        auto xy = s.affine.apply(i, j);
+        segy_set_field(h.data(), SEGY_TR_SOURCE_GROUP_SCALAR, s.scalar);
+        segy_set_field(h.data(), SEGY_TR_CDP_X, static_cast<int>(std::lround(xy[0] * factor)));
+        segy_set_field(h.data(), SEGY_TR_CDP_Y, static_cast<int>(std::lround(xy[1] * factor)));
+      }
+      ASSERT_EQ(segy_write_traceheader(fp, trace, h.data(), s.trace0(), bytes), SEGY_OK);
+      std::vector<float> samples(static_cast<std::size_t>(s.ns));
+      for (int k = 0; k < s.ns; ++k)
+        samples[static_cast<std::size_t>(k)] = formula(i, j, k);
+      segy_from_native(layout, s.ns, samples.data());
+      ASSERT_EQ(segy_writetrace(fp, trace, samples.data(), s.trace0(), bytes), SEGY_OK);
+    }
+  ASSERT_EQ(segy_close(fp), SEGY_OK);
+}
+
+template <class E> std::string message_of(const std::function<void()>& action) {
+  try {
+    action();
+  } catch (const E& e) {
+    return e.what();
+  } catch (const std::exception& e) {
+    ADD_FAILURE() << "wrong exception type: " << e.what();
+    return {};
+  }
+  ADD_FAILURE() << "no exception";
+  return {};
+}
+
+// ---- Files written by segyio, read by us --------------------------------------------------------
+
+// format x sorting x inline numbering (ascending, descending)
+class SegyReadTest : public ::testing::TestWithParam<std::tuple<int, bool, int>> {};
+
+TEST_P(SegyReadTest, GeometryAndSamplesComeBackFromSegyioFiles) {
+  ScratchDir dir;
+  SegySpec s;
+  s.format = std::get<0>(GetParam());
+  s.crossline_sorted = std::get<1>(GetParam());
+  s.il_step = std::get<2>(GetParam());
+  s.delay_ms = 24;
+  const std::string path = dir.file("cube.sgy");
+  write_with_segyio(path, s);
+
+  EXPECT_EQ(detect_format(path), "SEG-Y");
+  auto volume = open_volume(path);
+  EXPECT_EQ(volume->format(), "SEG-Y");
+  EXPECT_EQ(volume->source(), path);
+  const Geometry& g = volume->geometry();
+  EXPECT_EQ(g.shape, (Index3{s.ni, s.nj, s.ns}));
+  EXPECT_EQ(g.inline0, s.il0);
+  EXPECT_EQ(g.inline_step, s.il_step);
+  EXPECT_EQ(g.crossline0, s.xl0);
+  EXPECT_EQ(g.crossline_step, s.xl_step);
+  EXPECT_EQ(g.dz, 4.0);
+  EXPECT_EQ(g.z0, 24.0);
+  EXPECT_EQ(g.z_unit, SampleUnit::milliseconds);
+  geotandem::volume::testing::expect_near_affine(g.affine, s.affine, 1e-6);
+  for (double i : {0.0, s.ni - 1.0})
+    for (double j : {0.0, s.nj - 1.0}) {
+      auto w = g.world(i, j, 10);
+      auto expected = s.affine.apply(i, j);
+      EXPECT_NEAR(w[0], expected[0], 1e-6) << i << "," << j;
+      EXPECT_NEAR(w[1], expected[1], 1e-6) << i << "," << j;
+      EXPECT_DOUBLE_EQ(w[2], 24.0 + 4.0 * 10);
+    }
+
+  const auto whole = volume->read(g.bounds());
+  EXPECT_EQ(whole, formula_samples(g.bounds()));
+  for (const Box& box : probe_boxes(g.shape)) {
+    std::vector<float> expected(box.count());
+    copy_region(whole.data(), g.bounds(), expected.data(), box, box);
+    EXPECT_EQ(volume->read(box), expected) << box.to_string();
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(FormatsAndSortings, SegyReadTest,
+                         ::testing::Combine(::testing::Values(SEGY_IBM_FLOAT_4_BYTE, SEGY_IEEE_FLOAT_4_BYTE),
+                                            ::testing::Bool(), ::testing::Values(2, -3)));
+
+TEST(SegyRead, CoordinateScalarMultipliesWhenPositiveAndIsOneWhenZero) {
+  ScratchDir dir;
+  for (int scalar : {10, 0, 1, -10}) {
+    SegySpec s;
+    s.scalar = scalar;
+    s.affine = SurveyAffine{500000, 20, -10, 6700000, 10, 30};
+    const std::string path = dir.file("scalar" + std::to_string(scalar) + ".sgy");
+    write_with_segyio(path, s);
+    auto volume = open_volume(path);
+    geotandem::volume::testing::expect_near_affine(volume->geometry().affine, s.affine, 1e-6);
+  }
+}
+
+TEST(SegyRead, SingleInlineGetsAPerpendicularInlineDirection) {
+  ScratchDir dir;
+  SegySpec s;
+  s.ni = 1;
+  s.affine = SurveyAffine{1000, 0, 0, 2000, 0, 12.5}; // crosslines run north
+  const std::string path = dir.file("line.sgy");
+  write_with_segyio(path, s);
+  auto volume = open_volume(path);
+  const SurveyAffine& a = volume->geometry().affine;
+  EXPECT_NEAR(a.xj, 0.0, 1e-9);
+  EXPECT_NEAR(a.yj, 12.5, 1e-9);
+  EXPECT_NEAR(a.xi * a.xj + a.yi * a.yj, 0.0, 1e-9); // perpendicular
+  EXPECT_NEAR(a.step_i(), a.step_j(), 1e-9);
+  EXPECT_EQ(volume->read(volume->geometry().bounds()), formula_samples(volume->geometry().bounds()));
+}
+
+TEST(SegyRead, ExtendedTextualHeadersAreSkipped) {
+  ScratchDir dir;
+  SegySpec s;
+  s.extended_headers = 2;
+  const std::string path = dir.file("extended.sgy");
+  write_with_segyio(path, s);
+  ASSERT_EQ(fs::file_size(path), 3600u + 2 * 3200u + 63u * (240u + 200u));
+  auto volume = open_volume(path);
+  EXPECT_EQ(volume->geometry().shape, (Index3{7, 9, 50}));
+  EXPECT_EQ(volume->read(volume->geometry().bounds()), formula_samples(volume->geometry().bounds()));
+}
+
+TEST(SegyRead, SampleCountAndIntervalFallBackToTheTraceHeader) {
+  ScratchDir dir;
+  SegySpec s;
+  s.counts_in_trace_headers_only = true;
+  s.interval_us = 2500;
+  const std::string path = dir.file("zeros.sgy");
+  write_with_segyio(path, s);
+  auto volume = open_volume(path);
+  EXPECT_EQ(volume->geometry().shape, (Index3{7, 9, 50}));
+  EXPECT_EQ(volume->geometry().dz, 2.5);
+  EXPECT_EQ(volume->read(volume->geometry().bounds()), formula_samples(volume->geometry().bounds()));
+}
+
+TEST(SegyRead, FilesWithoutCoordinatesGetTheDefaultGrid) {
+  ScratchDir dir;
+  SegySpec s;
+  s.coordinates = false;
+  const std::string path = dir.file("nocoords.sgy");
+  write_with_segyio(path, s);
+  auto volume = open_volume(path);
+  EXPECT_EQ(volume->geometry().affine, SurveyAffine{});
+}
+
+// ---- Our writer ---------------------------------------------------------------------------------
+
+TEST(SegyWrite, RoundTripKeepsGeometryAndSamples) {
+  ScratchDir dir;
+  Geometry g = sample_geometry();
+  g.z0 = 7.5; // needs the rev 1 time scalar
+  auto cube = formula_cube(g);
+  const std::string path = dir.file("out.segy");
+  write_volume(*cube, path);
+
+  auto back = open_volume(path);
+  const Geometry& b = back->geometry();
+  EXPECT_EQ(b.shape, g.shape);
+  EXPECT_EQ(b.inline0, g.inline0);
+  EXPECT_EQ(b.inline_step, g.inline_step);
+  EXPECT_EQ(b.crossline0, g.crossline0);
+  EXPECT_EQ(b.crossline_step, g.crossline_step);
+  EXPECT_EQ(b.dz, g.dz);
+  EXPECT_EQ(b.z0, g.z0);
+  EXPECT_EQ(b.z_unit, g.z_unit);
+  // Coordinates are stored in centimetres: corners within half a centimetre.
+  for (double i : {0.0, g.shape[0] - 1.0})
+    for (double j : {0.0, g.shape[1] - 1.0}) {
+      auto expected = g.affine.apply(i, j), got = b.affine.apply(i, j);
+      EXPECT_NEAR(got[0], expected[0], 0.011);
+      EXPECT_NEAR(got[1], expected[1], 0.011);
+    }
+  EXPECT_EQ(back->read(b.bounds()), cube->samples());
+}
+
+TEST(SegyWrite, DepthCubeComesBackInMetres) {
+  ScratchDir dir;
+  Geometry g = sample_geometry({3, 4, 20});
+  g.z_unit = SampleUnit::metres;
+  g.dz = 2.5;
+  g.z0 = 1500;
+  auto cube = formula_cube(g);
+  const std::string path = dir.file("depth.sgy");
+  write_volume(*cube, path);
+  auto back = open_volume(path);
+  EXPECT_EQ(back->geometry().z_unit, SampleUnit::metres);
+  EXPECT_EQ(back->geometry().dz, 2.5);
+  EXPECT_EQ(back->geometry().z0, 1500.0);
+  EXPECT_EQ(back->read(g.bounds()), cube->samples());
+}
+
+TEST(SegyWrite, SegyioReadsOurFile) {
+  ScratchDir dir;
+  const Geometry g = sample_geometry();
+  auto cube = formula_cube(g);
+  const std::string path = dir.file("out.sgy");
+  write_volume(*cube, path);
+
+  segy_file* fp = segy_open(path.c_str(), "rb");
+  ASSERT_NE(fp, nullptr);
+  std::array<char, SEGY_BINARY_HEADER_SIZE> bin{};
+  ASSERT_EQ(segy_binheader(fp, bin.data()), SEGY_OK);
+  EXPECT_EQ(segy_format(bin.data()), SEGY_IEEE_FLOAT_4_BYTE);
+  EXPECT_EQ(segy_samples(bin.data()), g.shape[2]);
+  std::int32_t interval = 0, revision = 0;
+  segy_get_bfield(bin.data(), SEGY_BIN_INTERVAL, &interval);
+  segy_get_bfield(bin.data(), SEGY_BIN_SEGY_REVISION, &revision);
+  EXPECT_EQ(interval, 2000);
+  EXPECT_EQ(revision, 0x0100);
+  const long trace0 = segy_trace0(bin.data());
+  const int bytes = segy_trsize(SEGY_IEEE_FLOAT_4_BYTE, static_cast<int>(g.shape[2]));
+  int traces = 0, sorting = 0, offsets = 0, il_count = 0, xl_count = 0;
+  ASSERT_EQ(segy_traces(fp, &traces, trace0, bytes), SEGY_OK);
+  EXPECT_EQ(traces, g.shape[0] * g.shape[1]);
+  ASSERT_EQ(segy_sorting(fp, 189, 193, 37, &sorting, trace0, bytes), SEGY_OK);
+  EXPECT_EQ(sorting, SEGY_INLINE_SORTING);
+  ASSERT_EQ(segy_offsets(fp, 189, 193, traces, &offsets, trace0, bytes), SEGY_OK);
+  EXPECT_EQ(offsets, 1);
+  ASSERT_EQ(segy_lines_count(fp, 189, 193, sorting, offsets, &il_count, &xl_count, trace0, bytes), SEGY_OK);
+  EXPECT_EQ(il_count, g.shape[0]);
+  EXPECT_EQ(xl_count, g.shape[1]);
+  std::vector<int> inlines(static_cast<std::size_t>(il_count)), crosslines(static_cast<std::size_t>(xl_count));
+  ASSERT_EQ(segy_inline_indices(fp, 189, sorting, il_count, xl_count, 1, inlines.data(), trace0, bytes), SEGY_OK);
+  ASSERT_EQ(segy_crossline_indices(fp, 193, sorting, il_count, xl_count, 1, crosslines.data(), trace0, bytes), SEGY_OK);
+  for (int i = 0; i < il_count; ++i)
+    EXPECT_EQ(inlines[static_cast<std::size_t>(i)], g.inline0 + i * g.inline_step);
+  for (int j = 0; j < xl_count; ++j)
+    EXPECT_EQ(crosslines[static_cast<std::size_t>(j)], g.crossline0 + j * g.crossline_step);
+
+  // Trace (i, j) = (4, 6): coordinates with the scalar applied, and its samples.
+  const int i = 4, j = 6, trace = i * xl_count + j;
+  std::array<char, SEGY_TRACE_HEADER_SIZE> h{};
+  ASSERT_EQ(segy_traceheader(fp, trace, h.data(), trace0, bytes), SEGY_OK);
+  std::int32_t x = 0, y = 0, scalar = 0;
+  segy_get_field(h.data(), SEGY_TR_CDP_X, &x);
+  segy_get_field(h.data(), SEGY_TR_CDP_Y, &y);
+  segy_get_field(h.data(), SEGY_TR_SOURCE_GROUP_SCALAR, &scalar);
+  ASSERT_LT(scalar, 0);
+  auto xy = g.affine.apply(i, j);
+  EXPECT_NEAR(x / static_cast<double>(-scalar), xy[0], 0.006);
+  EXPECT_NEAR(y / static_cast<double>(-scalar), xy[1], 0.006);
+  std::vector<float> samples(static_cast<std::size_t>(g.shape[2]));
+  ASSERT_EQ(segy_readtrace(fp, trace, samples.data(), trace0, bytes), SEGY_OK);
+  segy_to_native(SEGY_IEEE_FLOAT_4_BYTE, static_cast<long long>(samples.size()), samples.data());
+  for (int k = 0; k < g.shape[2]; ++k)
+    EXPECT_EQ(samples[static_cast<std::size_t>(k)], formula(i, j, k)) << k;
+
+  // The textual header is EBCDIC ('C' is 0xC3) and says who wrote it and the shape.
+  std::array<char, SEGY_TEXT_HEADER_SIZE + 1> text{};
+  ASSERT_EQ(segy_read_textheader(fp, text.data()), SEGY_OK);
+  std::string header(text.data());
+  EXPECT_NE(header.find("GEOTANDEM"), std::string::npos) << header;
+  EXPECT_NE(header.find("7 INLINES X 9 CROSSLINES X 50 SAMPLES"), std::string::npos) << header;
+  segy_close(fp);
+  EXPECT_EQ(static_cast<unsigned char>(geotandem::volume::testing::read_bytes(path)[0]), 0xC3);
+}
+
+TEST(SegyWrite, RefusesWhatSegyCannotHoldAndLeavesNoFile) {
+  ScratchDir dir;
+  Geometry fractional = sample_geometry({2, 2, 4});
+  fractional.inline0 = 10.5;
+  Geometry odd_interval = sample_geometry({2, 2, 4});
+  odd_interval.dz = 1.0 / 3.0;
+  for (const Geometry& g : {fractional, odd_interval}) {
+    const std::string path = dir.file("bad.sgy");
+    auto cube = formula_cube(g);
+    EXPECT_THROW(write_volume(*cube, path), InvalidArgument);
+    EXPECT_FALSE(fs::exists(path));
+  }
+}
+
+// ---- Broken files -------------------------------------------------------------------------------
+
+TEST(SegyBroken, TruncatedFileNamesTheFileAndBothSizes) {
+  ScratchDir dir;
+  const std::string path = dir.file("truncated.sgy");
+  write_with_segyio(path, SegySpec{});
+  const auto full = fs::file_size(path);
+  fs::resize_file(path, full - 100);
+  const std::string message = message_of<FormatError>([&] { open_volume(path); });
+  EXPECT_NE(message.find(path), std::string::npos) << message;
+  EXPECT_NE(message.find(std::to_string(full - 100)), std::string::npos) << message;
+  EXPECT_NE(message.find(std::to_string(full)), std::string::npos) << message;
+
+  // Cut at a trace boundary inside the second inline: whole traces, but not a whole grid.
+  fs::resize_file(path, 3600 + 14 * (240 + 200));
+  const std::string cut = message_of<FormatError>([&] { open_volume(path); });
+  EXPECT_NE(cut.find("cut short"), std::string::npos) << cut;
+  EXPECT_NE(cut.find(path), std::string::npos) << cut;
+}
+
+TEST(SegyBroken, UnevenLineNumbersAreNamed) {
+  ScratchDir dir;
+  SegySpec s;
+  s.gap_in_inlines = true; // 100, 102, 104, 108, ...
+  const std::string path = dir.file("gap.sgy");
+  write_with_segyio(path, s);
+  const std::string message = message_of<FormatError>([&] { open_volume(path); });
+  EXPECT_NE(message.find("104 then 108"), std::string::npos) << message;
+  EXPECT_NE(message.find(path), std::string::npos) << message;
+}
+
+TEST(SegyBroken, PreStackFileIsRefusedWithTheOffsetCount) {
+  ScratchDir dir;
+  SegySpec s;
+  s.offsets = 3;
+  const std::string path = dir.file("gathers.sgy");
+  write_with_segyio(path, s);
+  const std::string message = message_of<FormatError>([&] { open_volume(path); });
+  EXPECT_NE(message.find("pre-stack"), std::string::npos) << message;
+  EXPECT_NE(message.find("3 traces"), std::string::npos) << message;
+  EXPECT_NE(message.find(path), std::string::npos) << message;
+}
+
+TEST(SegyBroken, MissingTracesAreRefused) {
+  ScratchDir dir;
+  for (bool crossline_sorted : {false, true}) {
+    SegySpec s;
+    s.crossline_sorted = crossline_sorted;
+    s.missing = {{3, 4}};
+    const std::string path = dir.file(crossline_sorted ? "xl.sgy" : "il.sgy");
+    write_with_segyio(path, s);
+    const std::string message = message_of<FormatError>([&] { open_volume(path); });
+    EXPECT_NE(message.find(path), std::string::npos) << message;
+    EXPECT_NE(message.find("pad"), std::string::npos) << message;
+  }
+}
+
+TEST(SegyBroken, MisplacedTraceIsCaughtWhenRead) {
+  ScratchDir dir;
+  SegySpec s;
+  s.swap_two_traces = true;
+  const std::string path = dir.file("swapped.sgy");
+  write_with_segyio(path, s);
+  // The corners are in place, so opening works; the swapped traces must not be read as if they
+  // were where the grid says.
+  auto volume = open_volume(path);
+  const std::string message = message_of<FormatError>([&] { volume->read(volume->geometry().bounds()); });
+  EXPECT_NE(message.find(path), std::string::npos) << message;
+  EXPECT_NE(message.find("trace"), std::string::npos) << message;
+  // Boxes away from the swapped pair still read.
+  EXPECT_EQ(volume->read(Box{{0, 0, 0}, {1, 9, 50}}), formula_samples(Box{{0, 0, 0}, {1, 9, 50}}));
+}
+
+TEST(SegyBroken, ShuffledTracesAreRefused) {
+  ScratchDir dir;
+  SegySpec s;
+  s.shuffle = true;
+  const std::string path = dir.file("shuffled.sgy");
+  write_with_segyio(path, s);
+  // Refused at open or, at the latest, when the traces are read: never read into the wrong place.
+  const std::string message = message_of<FormatError>([&] {
+    auto volume = open_volume(path);
+    volume->read(volume->geometry().bounds());
+  });
+  EXPECT_NE(message.find(path), std::string::npos) << message;
+}
+
+TEST(SegyBroken, UnsupportedSampleFormatIsNamed) {
+  ScratchDir dir;
+  SegySpec s;
+  s.format = SEGY_SIGNED_SHORT_2_BYTE;
+  const std::string path = dir.file("int16.sgy");
+  write_with_segyio(path, s);
+  const std::string message = message_of<FormatError>([&] { open_volume(path); });
+  EXPECT_NE(message.find("format code 3"), std::string::npos) << message;
+  EXPECT_NE(message.find(path), std::string::npos) << message;
+}
+
+} // namespace

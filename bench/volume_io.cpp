@@ -1,0 +1,120 @@
+// bench_volume_io: write and read throughput of the SEG-Y and raw formats.
+//
+//   bench_volume_io [NI NJ NK] [DIR]
+//
+// Generates a procedural cube (default 256 x 256 x 400 float32, 100 MiB) without holding it in
+// memory, writes it as SEG-Y and raw into DIR (default: a fresh directory under the system's temp
+// directory, removed at the end), then times box reads: the whole cube, 64^3 blocks tiling the
+// cube, one inline, one crossline and one sample slice. The files were just written, so reads
+// come mostly from the page cache: the figures measure the readers, not the disk. Reads go
+// through open_volume, so they include the NaN check.
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "geotandem/volume/io.hpp"
+
+namespace fs = std::filesystem;
+using namespace geotandem::volume;
+
+namespace {
+
+// Samples computed on demand, so that the generator costs little next to the I/O.
+class Procedural final : public Volume {
+public:
+  explicit Procedural(Geometry g) : geometry_(std::move(g)) {}
+  const Geometry& geometry() const override { return geometry_; }
+  std::string format() const override { return "procedural"; }
+  std::string source() const override { return "procedural benchmark cube"; }
+
+protected:
+  void read_box(const Box& box, std::span<float> out) const override {
+    std::size_t n = 0;
+    for (std::int64_t i = box.lo[0]; i < box.hi[0]; ++i)
+      for (std::int64_t j = box.lo[1]; j < box.hi[1]; ++j)
+        for (std::int64_t k = box.lo[2]; k < box.hi[2]; ++k)
+          out[n++] = static_cast<float>((i * 7 + j * 13 + k * 3) % 1024) * 0.25f;
+  }
+
+private:
+  Geometry geometry_;
+};
+
+double seconds_since(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+double mib(std::size_t samples) {
+  return static_cast<double>(samples) * sizeof(float) / (1024.0 * 1024.0);
+}
+
+void report(const char* format, const char* what, std::size_t samples, double seconds) {
+  std::printf("%-6s %-26s %10.1f MiB %9.3f s %9.1f MiB/s\n", format, what, mib(samples), seconds,
+              mib(samples) / seconds);
+}
+
+void time_reads(const char* name, const Volume& volume) {
+  const Geometry& g = volume.geometry();
+  const Index3 s = g.shape;
+  // One buffer for every read, allocated and touched before the clock starts: the figures are
+  // the readers', not the allocator's.
+  std::vector<float> buffer(g.sample_count(), 0.0f);
+  auto timed = [&](const char* what, const std::vector<Box>& boxes) {
+    std::size_t samples = 0;
+    double checksum = 0;
+    auto start = std::chrono::steady_clock::now();
+    for (const Box& box : boxes) {
+      std::span<float> values(buffer.data(), box.count());
+      volume.read(box, values);
+      samples += values.size();
+      checksum += values.front();
+    }
+    const double seconds = seconds_since(start);
+    report(name, what, samples, seconds);
+    if (!std::isfinite(checksum)) std::printf("(checksum %g)\n", checksum);
+  };
+  timed("whole cube", {g.bounds()});
+  std::vector<Box> blocks;
+  for (std::int64_t i = 0; i < s[0]; i += 64)
+    for (std::int64_t j = 0; j < s[1]; j += 64)
+      for (std::int64_t k = 0; k < s[2]; k += 64)
+        blocks.push_back(Box{{i, j, k}, {i + 64, j + 64, k + 64}}.intersection(g.bounds()));
+  timed("64^3 blocks", blocks);
+  timed("one inline", {Box{{s[0] / 2, 0, 0}, {s[0] / 2 + 1, s[1], s[2]}}});
+  timed("one crossline", {Box{{0, s[1] / 2, 0}, {s[0], s[1] / 2 + 1, s[2]}}});
+  timed("one sample slice", {Box{{0, 0, s[2] / 2}, {s[0], s[1], s[2] / 2 + 1}}});
+}
+
+} // namespace
+
+int main(int argc, char** argv) {
+  Geometry g;
+  g.shape = {256, 256, 400};
+  if (argc >= 4) g.shape = {std::stoll(argv[1]), std::stoll(argv[2]), std::stoll(argv[3])};
+  const bool own_dir = argc < 5;
+  const fs::path dir = own_dir ? fs::temp_directory_path() /
+                                     ("geotandem-bench-volume-io-" +
+                                      std::to_string(std::chrono::steady_clock::now().time_since_epoch().count()))
+                               : fs::path(argv[4]);
+  fs::create_directories(dir);
+  const Procedural cube(g);
+  std::printf("cube %lld x %lld x %lld float32 (%.1f MiB) in %s\n", static_cast<long long>(g.shape[0]),
+              static_cast<long long>(g.shape[1]), static_cast<long long>(g.shape[2]), mib(g.sample_count()),
+              dir.c_str());
+
+  WriteOptions overwrite;
+  overwrite.overwrite = true;
+  for (const char* name : {"raw", "segy"}) {
+    const std::string path = (dir / (std::string("cube.") + name)).string();
+    auto start = std::chrono::steady_clock::now();
+    write_volume(cube, path, overwrite);
+    report(name, "write", g.sample_count(), seconds_since(start));
+    time_reads(name, *open_volume(path));
+  }
+  if (own_dir) fs::remove_all(dir);
+  return 0;
+}

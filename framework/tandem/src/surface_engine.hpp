@@ -22,6 +22,7 @@
 #include "geotandem/tandem/simplify.hpp"
 #include "id_map.hpp"
 #include "indexed_heap.hpp"
+#include "surface_state.hpp"
 #include "working_mesh.hpp"
 
 namespace geotandem::tandem {
@@ -45,6 +46,19 @@ public:
   std::size_t waiting_edge_count() const { return delayed_.size() + parked_.size(); }
   const SimplifyCounters& counters() const { return counters_; }
   mesh::SurfaceMesh snapshot() const;
+
+  // The surface as plain data, live elements only, densely numbered (surface_state.cpp).
+  detail::SurfaceState export_state() const;
+  // Fills a freshly constructed engine (same cube, region, axis and options as the state) with
+  // `state`: the mesh, the records, the queues and the components. Throws DataError when the state
+  // is inconsistent (an index out of range, a triangle that would make the surface non-manifold,
+  // an edge that is not in the mesh).
+  void import_state(detail::SurfaceState&& state);
+  // The union of two surfaces of disjoint regions of the same cube, both past their sweep, welded
+  // by lattice ids; its parked edges are not placed again yet (surface_merge.cpp). Throws
+  // InvalidArgument when the surfaces do not fit together and DataError when two vertices with the
+  // same lattice id differ in position.
+  static std::unique_ptr<Engine> merged(const Engine& a, const Engine& b);
 
 private:
   using VH = detail::VH;

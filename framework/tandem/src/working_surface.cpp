@@ -21,6 +21,7 @@ void SimplifyOptions::validate() const {
 WorkingSurface::WorkingSurface(const volume::Geometry& cube, Region region, int axis, const SimplifyOptions& options,
                                mesh::ComponentSink* sink, CollapseObserver* observer)
     : engine_(std::make_unique<Engine>(cube, std::move(region), axis, options, sink, observer)) {}
+WorkingSurface::WorkingSurface(std::unique_ptr<Engine> engine) : engine_(std::move(engine)) {}
 WorkingSurface::~WorkingSurface() = default;
 WorkingSurface::WorkingSurface(WorkingSurface&&) noexcept = default;
 WorkingSurface& WorkingSurface::operator=(WorkingSurface&&) noexcept = default;
@@ -44,6 +45,16 @@ void WorkingSurface::finish(const CancelToken* cancel) {
 }
 void WorkingSurface::set_region(Region region) {
   engine_->set_region(std::move(region));
+}
+std::size_t WorkingSurface::merge(WorkingSurface&& other, const CancelToken* cancel) {
+  if (&other == this || !other.engine_ || !engine_)
+    throw InvalidArgument("merge: a surface merges with another, non-empty surface");
+  engine_ = Engine::merged(*engine_, *other.engine_);
+  const WorkingSurface gone = std::move(other); // frees the other side now
+  // The region grew: the edges parked by faces that are now inside it are placed again.
+  engine_->set_region(engine_->region());
+  engine_->simplify(cancel);
+  return engine_->dump();
 }
 
 const Region& WorkingSurface::region() const {

@@ -20,6 +20,10 @@
 
 namespace geotandem::tandem {
 
+namespace detail {
+struct SurfaceAccess; // the wire format (serialize.hpp) reads and rebuilds the engine
+} // namespace detail
+
 // Defaults and their reasons are in docs/algorithm.md.
 struct SimplifyOptions {
   // E0: a collapse is refused when the shape error sqrt(h_c(c)) of its vertex exceeds this,
@@ -118,6 +122,21 @@ public:
   void finish(const CancelToken* cancel = nullptr);
   // The region grows (a merge): edges parked by the open faces are tested again.
   void set_region(Region region);
+  // Merge (the seed's section 3.2; docs/algorithm.md, "Blocks"): takes in the partial surface of
+  // an adjacent region of the same cube. The meshes are united and the vertices both sides
+  // carry on their common faces (original marching-cubes vertices, named by the same lattice-edge
+  // id, at bit-identical positions) are welded into one, with their shape quadrics added; heights
+  // and radii are kept; components joined through the seam become one (key: the smaller). The
+  // region becomes the union of both regions (which may be L-shaped); the edges parked by the old
+  // open faces are tested again against the new ones (extended time lag), the surface is
+  // simplified, and every finished component is dumped. Returns the number dumped.
+  // Both surfaces must be past their sweep (front +infinity: run_tandem and extract_block leave
+  // them so) and share the cube, the axis and the simplify options; their regions must not
+  // overlap. `other` keeps the sink and observer of *this; afterwards `other` is empty and may
+  // only be destroyed or assigned to. Throws InvalidArgument when the surfaces do not fit
+  // together, DataError when a shared lattice edge has different positions on the two sides, and
+  // Cancelled. After everything is merged: finish().
+  std::size_t merge(WorkingSurface&& other, const CancelToken* cancel = nullptr);
 
   const Region& region() const;
   double front() const;
@@ -132,6 +151,8 @@ public:
 
 private:
   class Engine;
+  friend struct detail::SurfaceAccess;
+  explicit WorkingSurface(std::unique_ptr<Engine> engine);
   std::unique_ptr<Engine> engine_;
 };
 

@@ -1,0 +1,166 @@
+// The block tree driven in one process (blocks.hpp): leaves by extract_block, brothers merged
+// bottom-up, every partial surface shipped through its wire form before a merge.
+#include <algorithm>
+#include <chrono>
+#include <limits>
+#include <string>
+
+#include "geotandem/core/error.hpp"
+#include "geotandem/tandem/block_tree.hpp"
+#include "geotandem/tandem/blocks.hpp"
+#include "geotandem/tandem/marching_cubes.hpp"
+#include "geotandem/tandem/serialize.hpp"
+
+namespace geotandem::tandem {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+double seconds_since(Clock::time_point t) {
+  return std::chrono::duration<double>(Clock::now() - t).count();
+}
+
+// Forwards the units of each leaf's task to the one task of the whole extraction (extract_block
+// begins and ends a task per block; the user sees one).
+class ForwardingProgress final : public Progress {
+public:
+  explicit ForwardingProgress(Progress* to) : to_(to) {}
+  void begin(const std::string&, std::uint64_t, const std::string&) override { done_ = 0; }
+  void update(std::uint64_t done) override {
+    if (done <= done_) return;
+    if (to_) to_->advance(done - done_);
+    done_ = done;
+  }
+  void end() override {}
+
+private:
+  Progress* to_;
+};
+
+class Driver {
+public:
+  Driver(const volume::Volume& volume, const BlockTree& tree, const TandemOptions& options, mesh::ComponentSink* sink,
+         bool brute)
+      : volume_(volume), tree_(tree), options_(options), sink_(sink), brute_(brute), forward_(options.progress) {
+    leaf_options_ = options;
+    leaf_options_.progress = options.progress ? &forward_ : nullptr;
+  }
+
+  std::unique_ptr<WorkingSurface> run(NodeId id) {
+    const BlockNode& node = tree_.node(id);
+    if (node.is_leaf()) return leaf(node);
+    std::unique_ptr<WorkingSurface> low = run(node.children[0]);
+    held_ += low->triangle_count();
+    std::unique_ptr<WorkingSurface> high = run(node.children[1]);
+    held_ -= low->triangle_count();
+    low = ship(*low);
+    high = ship(*high);
+    if (options_.cancel) options_.cancel->throw_if_cancelled();
+    const auto t = Clock::now();
+    const SimplifyCounters before = low->counters(), other = high->counters();
+    stats_.components_at_merges += low->merge(std::move(*high), options_.cancel);
+    stats_.seam_collapses += low->counters().collapses - before.collapses - other.collapses;
+    stats_.seconds_merge += seconds_since(t);
+    ++stats_.merges;
+    note(low->triangle_count());
+    if (options_.progress) options_.progress->advance();
+    return low;
+  }
+
+  BlocksStats& stats() { return stats_; }
+
+private:
+  std::unique_ptr<WorkingSurface> leaf(const BlockNode& node) {
+    const auto t = Clock::now();
+    std::unique_ptr<WorkingSurface> surface;
+    const TandemStats s = extract_block(volume_, node.cells, leaf_options_, sink_, &surface, brute_);
+    stats_.seconds_leaves += seconds_since(t);
+    ++stats_.leaves;
+    TandemStats& total = stats_.tandem;
+    total.layers.insert(total.layers.end(), s.layers.begin(), s.layers.end());
+    for (const LayerStats& layer : s.layers)
+      note(layer.triangles_in_memory);
+    note(s.final_pass.triangles_in_memory);
+    return surface;
+  }
+
+  // What a worker would send: the surface as a record, and the surface the receiver rebuilds.
+  std::unique_ptr<WorkingSurface> ship(const WorkingSurface& surface) {
+    const auto t = Clock::now();
+    const std::vector<std::byte> record = serialize(surface);
+    auto received = std::make_unique<WorkingSurface>(deserialize(record, sink_, options_.observer));
+    stats_.seconds_wire += seconds_since(t);
+    stats_.wire_bytes += record.size();
+    stats_.largest_record = std::max<std::uint64_t>(stats_.largest_record, record.size());
+    return received;
+  }
+
+  void note(std::uint64_t triangles) {
+    stats_.tandem.peak_triangles = std::max(stats_.tandem.peak_triangles, triangles);
+    stats_.peak_held_triangles = std::max(stats_.peak_held_triangles, held_ + triangles);
+  }
+
+  const volume::Volume& volume_;
+  const BlockTree& tree_;
+  const TandemOptions& options_;
+  TandemOptions leaf_options_;
+  mesh::ComponentSink* sink_;
+  bool brute_;
+  ForwardingProgress forward_;
+  std::uint64_t held_ = 0;
+  BlocksStats stats_;
+};
+
+} // namespace
+
+BlocksStats extract_blocks(const volume::Volume& volume, const volume::Box& cells, std::int64_t block_size,
+                           const TandemOptions& options, mesh::ComponentSink* sink,
+                           std::unique_ptr<WorkingSurface>* remaining, bool brute) {
+  const auto start = Clock::now();
+  options.simplify.validate();
+  const volume::Box cube = cube_cells(volume.geometry().shape);
+  if (cells.empty() || !cube.contains(cells))
+    throw InvalidArgument("extract blocks: cells " + cells.to_string() + " are empty or leave the cube's cells " +
+                              cube.to_string(),
+                          {.block = cells.to_string()});
+  const std::int64_t largest = std::max({cells.size(0), cells.size(1), cells.size(2)});
+  const BlockTree tree(cells, block_size <= 0 ? largest : block_size);
+
+  if (options.progress) {
+    std::uint64_t units = 0;
+    for (NodeId leaf : tree.leaves())
+      units += static_cast<std::uint64_t>(tree.node(leaf).cells.size(options.axis));
+    units += tree.leaves().size() - 1; // one per merge
+    options.progress->begin("tandem, " + std::to_string(tree.leaves().size()) + " block" +
+                                (tree.leaves().size() == 1 ? "" : "s"),
+                            units, "layers+merges");
+  }
+  Driver driver(volume, tree, options, sink, brute);
+  std::unique_ptr<WorkingSurface> root = driver.run(tree.root());
+
+  BlocksStats& stats = driver.stats();
+  TandemStats& total = stats.tandem;
+  const auto t = Clock::now();
+  const SimplifyCounters before = root->counters();
+  LayerStats& f = total.final_pass;
+  f.rank = total.layers.empty() ? 0 : total.layers.back().rank + 1;
+  root->finish(options.cancel);
+  const SimplifyCounters& after = root->counters();
+  f.collapses = after.collapses - before.collapses;
+  f.rejected_shape = after.rejected_shape - before.rejected_shape;
+  f.rejected_link = after.rejected_link - before.rejected_link;
+  f.rejected_flip = after.rejected_flip - before.rejected_flip;
+  f.components_dumped = after.components_dumped - before.components_dumped;
+  f.triangles_in_memory = root->triangle_count();
+  f.vertices_in_memory = root->vertex_count();
+  f.seconds_simplify = seconds_since(t);
+  stats.seconds_merge += f.seconds_simplify;
+  stats.components_at_merges += f.components_dumped;
+  total.counters = after;
+  total.remaining_triangles = root->triangle_count();
+  total.seconds_total = seconds_since(start);
+  if (options.progress) options.progress->end();
+  if (remaining) *remaining = std::move(root);
+  return stats;
+}
+
+} // namespace geotandem::tandem

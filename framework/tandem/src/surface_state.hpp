@@ -1,0 +1,50 @@
+#pragma once
+// A working surface as plain data: everything an engine needs to continue, with only the live
+// elements, densely numbered. It is what the wire format (surface_wire.cpp) encodes and what a
+// merge (surface_merge.cpp) welds; WorkingSurface::Engine exports and imports it.
+
+#include <array>
+#include <cstdint>
+#include <utility>
+#include <vector>
+
+#include "geotandem/tandem/region.hpp"
+#include "geotandem/tandem/simplify.hpp"
+#include "geotandem/volume/geometry.hpp"
+#include "working_mesh.hpp"
+
+namespace geotandem::tandem::detail {
+
+// An edge that is not idle, named by its endpoints (indices into SurfaceState::points), with its
+// record (state, key, candidate, stamp).
+struct StateEdge {
+  std::uint32_t v0 = 0, v1 = 0;
+  EdgeRecord record;
+};
+
+struct SurfaceState {
+  volume::Geometry cube;
+  Region region;
+  int axis = 0;
+  SimplifyOptions options;
+  double front = 0.0;
+  std::int64_t last_rank = 0;
+  Vec3 origin{0.0, 0.0, 0.0};
+  SimplifyCounters counters;
+
+  std::vector<Vec3> points;
+  // Per vertex; `component` is an index into component_keys.
+  std::vector<VertexRecord> vertices;
+  // Oriented outward, into points; each with the terms it added to its corners.
+  std::vector<std::array<std::uint32_t, 3>> triangles;
+  std::vector<FaceRecord> faces;
+  std::vector<StateEdge> edges;
+  // The key (smallest lattice id ever born in it) of every live component.
+  std::vector<std::uint64_t> component_keys;
+  // Lattice id -> vertex for the last layer (the next layer may repeat them), and vertices of the
+  // last layer that no triangle uses yet. Both empty after the sweep.
+  std::vector<std::pair<std::uint64_t, std::uint32_t>> previous_ids;
+  std::vector<std::uint32_t> isolated;
+};
+
+} // namespace geotandem::tandem::detail

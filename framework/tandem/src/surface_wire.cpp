@@ -1,0 +1,401 @@
+// The wire form of a working surface (serialize.hpp; layout in docs/algorithm.md): a fixed header
+// (magic, version, flags, payload length, XXH64 of the payload) and the payload, the fields of a
+// SurfaceState in a fixed order, little-endian, without padding.
+#include "geotandem/tandem/serialize.hpp"
+
+#include <xxhash.h>
+
+#include <bit>
+#include <cstring>
+#include <string>
+#include <type_traits>
+
+#include "geotandem/core/error.hpp"
+#include "surface_engine.hpp"
+
+namespace geotandem::tandem {
+
+static_assert(std::endian::native == std::endian::little, "the wire format is little-endian");
+
+namespace detail {
+
+// Friend of WorkingSurface: reaches the engine to export and import its state.
+struct SurfaceAccess {
+  static SurfaceState state(const WorkingSurface& s) { return s.engine_->export_state(); }
+  static WorkingSurface make(SurfaceState&& state, mesh::ComponentSink* sink, CollapseObserver* observer) {
+    auto engine =
+        std::make_unique<WorkingSurface::Engine>(state.cube, state.region, state.axis, state.options, sink, observer);
+    engine->import_state(std::move(state));
+    return WorkingSurface(std::move(engine));
+  }
+};
+
+} // namespace detail
+
+namespace {
+
+constexpr char kMagic[8] = {'G', 'T', 'W', 'S', 'U', 'R', 'F', 'L'}; // L: little-endian
+
+class Writer {
+public:
+  template <class T> void put(T v) {
+    static_assert(std::is_arithmetic_v<T>);
+    const auto at = out_.size();
+    out_.resize(at + sizeof(T));
+    std::memcpy(out_.data() + at, &v, sizeof(T));
+  }
+  void put(const detail::Vec3& v) {
+    for (double x : v)
+      put(x);
+  }
+  void count(std::size_t n) { put(static_cast<std::uint64_t>(n)); }
+  std::vector<std::byte>& bytes() { return out_; }
+
+private:
+  std::vector<std::byte> out_;
+};
+
+class Reader {
+public:
+  explicit Reader(std::span<const std::byte> in) : in_(in) {}
+  template <class T> T get() {
+    static_assert(std::is_arithmetic_v<T>);
+    need(sizeof(T));
+    T v;
+    std::memcpy(&v, in_.data() + at_, sizeof(T));
+    at_ += sizeof(T);
+    return v;
+  }
+  detail::Vec3 vec() {
+    detail::Vec3 v;
+    for (double& x : v)
+      x = get<double>();
+    return v;
+  }
+  // A count of items of at least `item_size` bytes each: refused when the rest cannot hold them
+  // (so a corrupt count never makes us allocate wildly).
+  std::size_t count(std::size_t item_size, const char* what) {
+    const auto n = get<std::uint64_t>();
+    if (item_size > 0 && n > (in_.size() - at_) / item_size)
+      throw DataError(std::string("working-surface record: the count of ") + what + " (" + std::to_string(n) +
+                      ") does not fit in the payload");
+    return static_cast<std::size_t>(n);
+  }
+  bool done() const { return at_ == in_.size(); }
+  std::size_t offset() const { return at_; }
+
+private:
+  void need(std::size_t n) const {
+    if (in_.size() - at_ < n)
+      throw DataError("working-surface record: the payload ends at byte " + std::to_string(in_.size()) +
+                      " in the middle of a field");
+  }
+  std::span<const std::byte> in_;
+  std::size_t at_ = 0;
+};
+
+void put_box(Writer& w, const volume::Box& b) {
+  for (int a = 0; a < 3; ++a)
+    w.put(b.lo[a]);
+  for (int a = 0; a < 3; ++a)
+    w.put(b.hi[a]);
+}
+volume::Box get_box(Reader& r) {
+  volume::Box b;
+  for (int a = 0; a < 3; ++a)
+    b.lo[a] = r.get<std::int64_t>();
+  for (int a = 0; a < 3; ++a)
+    b.hi[a] = r.get<std::int64_t>();
+  return b;
+}
+
+void put_counters(Writer& w, const SimplifyCounters& c) {
+  for (std::uint64_t v : {c.input_triangles, c.collapses, c.evaluations, c.rejected_shape, c.rejected_link,
+                          c.rejected_flip, c.rejected_border, c.retried, c.distrusted, c.blocked_by_faces,
+                          c.components_dumped, c.triangles_dumped, c.garbage_collections})
+    w.put(v);
+}
+SimplifyCounters get_counters(Reader& r) {
+  SimplifyCounters c;
+  for (std::uint64_t* v : {&c.input_triangles, &c.collapses, &c.evaluations, &c.rejected_shape, &c.rejected_link,
+                           &c.rejected_flip, &c.rejected_border, &c.retried, &c.distrusted, &c.blocked_by_faces,
+                           &c.components_dumped, &c.triangles_dumped, &c.garbage_collections})
+    *v = r.get<std::uint64_t>();
+  return c;
+}
+
+void put_isotropy(Writer& w, const detail::Isotropy& i) {
+  w.put(i.area);
+  w.put(i.s);
+  w.put(i.q);
+}
+detail::Isotropy get_isotropy(Reader& r) {
+  detail::Isotropy i;
+  i.area = r.get<double>();
+  i.s = r.vec();
+  i.q = r.get<double>();
+  return i;
+}
+
+// Bytes per item, for the count checks.
+constexpr std::size_t kVertexBytes = 31 * 8 + 8 + 4 + 1 + 4;
+constexpr std::size_t kFaceBytes = 3 * 4 + 9 * 8;
+constexpr std::size_t kEdgeBytes = 4 + 4 + 1 + 1 + 4 + 8 + 3 * 8;
+
+void encode(Writer& w, const detail::SurfaceState& s) {
+  // Geometry of the cube.
+  const volume::Geometry& g = s.cube;
+  for (int a = 0; a < 3; ++a)
+    w.put(g.shape[a]);
+  for (double v : {g.inline0, g.inline_step, g.crossline0, g.crossline_step, g.z0, g.dz})
+    w.put(v);
+  w.put(static_cast<std::uint8_t>(g.z_unit));
+  for (double v : {g.affine.x0, g.affine.xi, g.affine.xj, g.affine.y0, g.affine.yi, g.affine.yj})
+    w.put(v);
+  // Axis and options.
+  w.put(static_cast<std::int32_t>(s.axis));
+  w.put(s.options.max_error);
+  w.put(s.options.isotropy);
+  w.put(static_cast<std::uint8_t>((s.options.time_lag ? 1u : 0u) | (s.options.extended_time_lag ? 2u : 0u) |
+                                  (s.options.preserve_volume ? 4u : 0u)));
+  w.put(static_cast<std::uint64_t>(s.options.compaction_min_dead));
+  // Region.
+  put_box(w, s.region.cube());
+  w.count(s.region.blocks().size());
+  for (const volume::Box& b : s.region.blocks())
+    put_box(w, b);
+  // Sweep and counters.
+  w.put(s.front);
+  w.put(s.last_rank);
+  w.put(s.origin);
+  put_counters(w, s.counters);
+  // Components.
+  w.count(s.component_keys.size());
+  for (std::uint64_t k : s.component_keys)
+    w.put(k);
+  // Vertices.
+  w.count(s.points.size());
+  for (std::size_t i = 0; i < s.points.size(); ++i) {
+    const detail::VertexRecord& v = s.vertices[i];
+    w.put(s.points[i]);
+    for (double x : v.shape.m)
+      w.put(x);
+    w.put(v.weight);
+    put_isotropy(w, v.isotropy);
+    w.put(v.det_sum);
+    w.put(v.cross_sum);
+    w.put(v.link_sum);
+    w.put(v.normal_sum);
+    w.put(v.height);
+    w.put(v.rad);
+    w.put(v.lattice_id);
+    w.put(static_cast<std::int32_t>(v.component));
+    w.put(v.border);
+    w.put(v.version);
+  }
+  // Triangles.
+  w.count(s.triangles.size());
+  for (std::size_t t = 0; t < s.triangles.size(); ++t) {
+    for (std::uint32_t v : s.triangles[t])
+      w.put(v);
+    put_isotropy(w, s.faces[t].isotropy);
+    w.put(s.faces[t].det);
+    w.put(s.faces[t].normal);
+  }
+  // Edges that are not idle.
+  w.count(s.edges.size());
+  for (const detail::StateEdge& e : s.edges) {
+    w.put(e.v0);
+    w.put(e.v1);
+    w.put(static_cast<std::uint8_t>(e.record.state));
+    w.put(static_cast<std::uint8_t>((e.record.retried ? 1u : 0u) | (e.record.dirty ? 2u : 0u)));
+    w.put(e.record.stamp);
+    w.put(e.record.key);
+    w.put(e.record.target);
+  }
+  // The last layer's ids and its unused vertices.
+  w.count(s.previous_ids.size());
+  for (const auto& [id, v] : s.previous_ids) {
+    w.put(id);
+    w.put(v);
+  }
+  w.count(s.isolated.size());
+  for (std::uint32_t v : s.isolated)
+    w.put(v);
+}
+
+detail::SurfaceState decode(Reader& r) {
+  detail::SurfaceState s;
+  volume::Geometry& g = s.cube;
+  for (int a = 0; a < 3; ++a)
+    g.shape[a] = r.get<std::int64_t>();
+  for (double* v : {&g.inline0, &g.inline_step, &g.crossline0, &g.crossline_step, &g.z0, &g.dz})
+    *v = r.get<double>();
+  const auto unit = r.get<std::uint8_t>();
+  if (unit > static_cast<std::uint8_t>(volume::SampleUnit::metres))
+    throw DataError("working-surface record: unknown sample unit " + std::to_string(unit));
+  g.z_unit = static_cast<volume::SampleUnit>(unit);
+  for (double* v : {&g.affine.x0, &g.affine.xi, &g.affine.xj, &g.affine.y0, &g.affine.yi, &g.affine.yj})
+    *v = r.get<double>();
+
+  s.axis = r.get<std::int32_t>();
+  s.options.max_error = r.get<double>();
+  s.options.isotropy = r.get<double>();
+  const auto flags = r.get<std::uint8_t>();
+  s.options.time_lag = (flags & 1u) != 0;
+  s.options.extended_time_lag = (flags & 2u) != 0;
+  s.options.preserve_volume = (flags & 4u) != 0;
+  s.options.compaction_min_dead = static_cast<std::size_t>(r.get<std::uint64_t>());
+
+  const volume::Box cube = get_box(r);
+  std::vector<volume::Box> blocks(r.count(48, "blocks"));
+  for (volume::Box& b : blocks)
+    b = get_box(r);
+  try {
+    s.region = Region(cube, std::move(blocks));
+  } catch (const InvalidArgument& e) {
+    throw DataError("working-surface record: invalid region: " + e.message());
+  }
+
+  s.front = r.get<double>();
+  s.last_rank = r.get<std::int64_t>();
+  s.origin = r.vec();
+  s.counters = get_counters(r);
+
+  s.component_keys.resize(r.count(8, "components"));
+  for (std::uint64_t& k : s.component_keys)
+    k = r.get<std::uint64_t>();
+
+  const std::size_t nv = r.count(kVertexBytes, "vertices");
+  s.points.resize(nv);
+  s.vertices.resize(nv);
+  for (std::size_t i = 0; i < nv; ++i) {
+    detail::VertexRecord& v = s.vertices[i];
+    s.points[i] = r.vec();
+    for (double& x : v.shape.m)
+      x = r.get<double>();
+    v.weight = r.get<double>();
+    v.isotropy = get_isotropy(r);
+    v.det_sum = r.get<double>();
+    v.cross_sum = r.vec();
+    v.link_sum = r.vec();
+    v.normal_sum = r.vec();
+    v.height = r.get<double>();
+    v.rad = r.get<double>();
+    v.lattice_id = r.get<std::uint64_t>();
+    v.component = r.get<std::int32_t>();
+    v.border = r.get<std::uint8_t>();
+    v.version = r.get<std::uint32_t>();
+    v.alive = true;
+  }
+
+  const std::size_t nt = r.count(kFaceBytes, "triangles");
+  s.triangles.resize(nt);
+  s.faces.resize(nt);
+  for (std::size_t t = 0; t < nt; ++t) {
+    for (std::uint32_t& v : s.triangles[t])
+      v = r.get<std::uint32_t>();
+    s.faces[t].isotropy = get_isotropy(r);
+    s.faces[t].det = r.get<double>();
+    s.faces[t].normal = r.vec();
+    s.faces[t].alive = true;
+  }
+
+  s.edges.resize(r.count(kEdgeBytes, "edges"));
+  for (detail::StateEdge& e : s.edges) {
+    e.v0 = r.get<std::uint32_t>();
+    e.v1 = r.get<std::uint32_t>();
+    const auto state = r.get<std::uint8_t>();
+    if (state > static_cast<std::uint8_t>(detail::EdgeState::parked))
+      throw DataError("working-surface record: unknown edge state " + std::to_string(state));
+    e.record.state = static_cast<detail::EdgeState>(state);
+    const auto edge_flags = r.get<std::uint8_t>();
+    e.record.retried = (edge_flags & 1u) != 0;
+    e.record.dirty = (edge_flags & 2u) != 0;
+    e.record.stamp = r.get<std::uint32_t>();
+    e.record.key = r.get<double>();
+    e.record.target = r.vec();
+    e.record.alive = true;
+  }
+
+  s.previous_ids.resize(r.count(12, "last-layer ids"));
+  for (auto& [id, v] : s.previous_ids) {
+    id = r.get<std::uint64_t>();
+    v = r.get<std::uint32_t>();
+  }
+  s.isolated.resize(r.count(4, "isolated vertices"));
+  for (std::uint32_t& v : s.isolated)
+    v = r.get<std::uint32_t>();
+  if (!r.done())
+    throw DataError("working-surface record: " + std::to_string(r.offset()) +
+                    " payload bytes decoded but the header announces more");
+  return s;
+}
+
+std::string hex(std::uint64_t v) {
+  static constexpr char kDigits[] = "0123456789abcdef";
+  std::string s(16, '0');
+  for (int i = 15; i >= 0; --i, v >>= 4)
+    s[static_cast<std::size_t>(i)] = kDigits[v & 15u];
+  return s;
+}
+
+} // namespace
+
+std::vector<std::byte> serialize(const WorkingSurface& surface) {
+  const detail::SurfaceState state = detail::SurfaceAccess::state(surface);
+  Writer w;
+  for (char c : kMagic)
+    w.put(static_cast<std::uint8_t>(c));
+  w.put(kSurfaceWireVersion);
+  w.put(std::uint32_t{0}); // flags, none defined
+  w.put(std::uint64_t{0}); // payload length, filled in below
+  w.put(std::uint64_t{0}); // checksum, filled in below
+  encode(w, state);
+  std::vector<std::byte>& out = w.bytes();
+  const std::uint64_t length = out.size() - kSurfaceWireHeaderSize;
+  const std::uint64_t hash = XXH64(out.data() + kSurfaceWireHeaderSize, length, 0);
+  std::memcpy(out.data() + 16, &length, 8);
+  std::memcpy(out.data() + 24, &hash, 8);
+  return std::move(out);
+}
+
+WorkingSurface deserialize(std::span<const std::byte> record, mesh::ComponentSink* sink, CollapseObserver* observer) {
+  if (record.size() < kSurfaceWireHeaderSize)
+    throw DataError("working-surface record: " + std::to_string(record.size()) + " bytes, shorter than its " +
+                        std::to_string(kSurfaceWireHeaderSize) + "-byte header (truncated)",
+                    {}, "the record was cut in transit or in storage: ship it again");
+  if (std::memcmp(record.data(), kMagic, sizeof(kMagic)) != 0)
+    throw DataError("working-surface record: wrong magic (not a geotandem working-surface record, or not "
+                    "little-endian)");
+  Reader header(record.subspan(8, kSurfaceWireHeaderSize - 8));
+  const auto version = header.get<std::uint32_t>();
+  const auto flags = header.get<std::uint32_t>();
+  const auto length = header.get<std::uint64_t>();
+  const auto hash = header.get<std::uint64_t>();
+  if (version != kSurfaceWireVersion)
+    throw DataError("working-surface record: format version " + std::to_string(version) + ", this build reads " +
+                        std::to_string(kSurfaceWireVersion),
+                    {}, "run the same geotandem version on the manager and every worker");
+  if (flags != 0) throw DataError("working-surface record: unknown flags " + std::to_string(flags));
+  const std::size_t present = record.size() - kSurfaceWireHeaderSize;
+  if (length != present)
+    throw DataError("working-surface record: the header announces " + std::to_string(length) + " payload bytes but " +
+                        std::to_string(present) + " follow" + (length > present ? " (truncated)" : " (trailing bytes)"),
+                    {}, "the record was cut or padded in transit or in storage");
+  const std::span<const std::byte> payload = record.subspan(kSurfaceWireHeaderSize);
+  const std::uint64_t actual = XXH64(payload.data(), payload.size(), 0);
+  if (actual != hash)
+    throw DataError("working-surface record: checksum mismatch (XXH64 " + hex(actual) + ", header says " + hex(hash) +
+                        "): the record is corrupt",
+                    {}, "the record was damaged in transit or in storage: ship it again");
+  Reader r(payload);
+  detail::SurfaceState state = decode(r);
+  try {
+    return detail::SurfaceAccess::make(std::move(state), sink, observer);
+  } catch (const InvalidArgument& e) {
+    throw DataError("working-surface record: " + e.message());
+  }
+}
+
+} // namespace geotandem::tandem

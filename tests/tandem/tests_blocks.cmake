@@ -1,0 +1,4 @@
+# Blocks, merging and the wire format of partial surfaces.
+geotandem_add_test(tandem_blocks_test SOURCES tandem_blocks_test.cpp DEPS geotandem_simplify_fixtures LABELS tandem)
+geotandem_add_test(tandem_serialize_test SOURCES tandem_serialize_test.cpp
+                   DEPS geotandem_simplify_fixtures xxhash::xxhash LABELS tandem)

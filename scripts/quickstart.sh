@@ -1,16 +1,20 @@
 #!/usr/bin/env bash
 # The README's first command: sets up (packages, build), then runs the main job on an embedded
-# default: a synthetic analytic cube with known bodies is generated, described, and its
-# isosurface extracted into a component store, whose largest components are listed.
-# Output goes to ./quickstart-out (override with GEOTANDEM_QUICKSTART_OUT).
+# default: workflows/quickstart.yaml, a synthetic seismic cube with planted channels and lobes of
+# known azimuth -> chaos x normalised envelope -> extraction -> bubble removal -> azimuth sorting
+# -> exports and an HTML report.
+# Output goes to ./quickstart-out (override with GEOTANDEM_QUICKSTART_OUT). A second run reuses the
+# finished extraction; pass --fresh to start over.
 set -euo pipefail
 here="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 "$here/scripts/setup.sh" release
 out="${GEOTANDEM_QUICKSTART_OUT:-$PWD/quickstart-out}"
 bin="$here/build/release/bin/geotandem"
-mkdir -p "$out"
 
-echo "== generating a synthetic analytic cube with planted bodies ($out/cube.nc)"
-"$bin" synth --kind analytic --shape 160 160 128 --seed 7 --out "$out/cube.nc" --overwrite
-echo "== describing it"
-"$bin" info "$out/cube.nc"
+echo "== running $here/workflows/quickstart.yaml into $out"
+"$bin" run-workflow "$here/workflows/quickstart.yaml" --set "output.directory=$out" "$@"
+echo
+echo "== the ten largest bodies kept"
+"$bin" store ls "$out/store" --selection sorted --sort volume --limit 10
+echo
+echo "quickstart: done. Open $out/report.html in a browser; exports are in $out."

@@ -19,12 +19,15 @@ static int compute_box(const gt_params* params, const gt_cube_info* cube, const 
                        const gt_box* ob, char* error, size_t size) {
   double factor = params->values[0].float_value;
   int64_t ni = ib->hi[0] - ib->lo[0], nj = ib->hi[1] - ib->lo[1], nk = ib->hi[2] - ib->lo[2];
-  (void)cube;
 #ifdef GT_TEST_FAILING
-  snprintf(error, size, "refusing box starting at inline %lld", (long long)ob->lo[0]);
-  return 1;
+  /* Refuses the second half of the cube only, so that a run sweeping inline by inline has finished
+   * and committed the components of the first half when it fails. */
+  if (2 * ob->lo[0] >= cube->shape[0]) {
+    snprintf(error, size, "refusing box starting at inline %lld", (long long)ob->lo[0]);
+    return 1;
+  }
 #endif
-  (void)error; (void)size;
+  (void)cube; (void)error; (void)size;
   size_t n = 0;
   for (int64_t i = ob->lo[0]; i < ob->hi[0]; ++i)
     for (int64_t j = ob->lo[1]; j < ob->hi[1]; ++j)

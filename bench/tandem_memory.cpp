@@ -10,7 +10,7 @@
 // planted geobodies and tiny bubbles, docs/synthetic.md), computed cross-section by cross-section
 // as marching cubes asks for it: no sample array is held, so the peak RSS is the algorithm's.
 // Printed: per route, peak RSS, input and output triangles, most triangles held, CPU time, input
-// triangles per CPU second (one thread: per core) and collapses per second of simplification;
+// triangles per CPU second (one thread: per core) and collapses per CPU second of simplification;
 // the triangles held after every layer (a sample of the layers as a table, all of them in the
 // SVG plot); the ratio of the tandem-with-dumping peak RSS to the brute-force one.
 #include <algorithm>
@@ -22,6 +22,7 @@
 #include <cstring>
 #include <ctime>
 #include <fstream>
+#include <limits>
 #include <sstream>
 #include <stdexcept>
 #include <string>
@@ -75,7 +76,9 @@ public:
 
 // What a child reports through its pipe.
 struct Summary {
-  double rss_start_mib = 0, peak_mib = 0, cpu = 0, seconds_simplify = 0;
+  // seconds_simplify and seconds_phases (extract + insert + simplify + dump) are wall-clock
+  // times of the route's phases; the simplification's CPU share is scaled from them.
+  double rss_start_mib = 0, peak_mib = 0, cpu = 0, seconds_simplify = 0, seconds_phases = 0;
   std::uint64_t input_triangles = 0, output_triangles = 0, components = 0, collapses = 0, peak_triangles = 0;
   std::uint64_t layers = 0;
   int peak_reset = 0;
@@ -133,8 +136,11 @@ bool read_all(int fd, void* data, std::size_t size) {
     s.collapses = stats.counters.collapses;
     s.peak_triangles = stats.peak_triangles;
     s.seconds_simplify = stats.final_pass.seconds_simplify;
-    for (const tandem::LayerStats& l : stats.layers)
+    s.seconds_phases = stats.final_pass.seconds_simplify + stats.final_pass.seconds_dump;
+    for (const tandem::LayerStats& l : stats.layers) {
       s.seconds_simplify += l.seconds_simplify;
+      s.seconds_phases += l.seconds_extract + l.seconds_insert + l.seconds_simplify + l.seconds_dump;
+    }
     s.layers = stats.layers.size();
     write_all(fd, &s, sizeof s);
     for (const tandem::LayerStats& l : stats.layers) {
@@ -191,18 +197,22 @@ void write_svg(const std::string& path, const std::vector<Result>& results, cons
   const double W = 820, H = 520, left = 90, right = 200, top = 50, bottom = 70;
   const double pw = W - left - right, ph = H - top - bottom;
   std::int64_t x_max = 1;
-  std::uint64_t y_top = 10;
+  std::uint64_t y_top = 10, y_low = std::numeric_limits<std::uint64_t>::max();
   for (const Result& r : results) {
     for (std::int64_t k : r.ranks)
       x_max = std::max(x_max, k);
-    for (std::uint64_t y : r.in_memory)
+    for (std::uint64_t y : r.in_memory) {
       y_top = std::max(y_top, y);
+      y_low = std::min(y_low, std::max<std::uint64_t>(y, 1));
+    }
   }
   const int dec_hi = static_cast<int>(std::ceil(std::log10(static_cast<double>(y_top))));
-  const int dec_lo = 0; // 10^0 = 1: a route holding nothing is drawn at 1
+  // From the decade of the smallest count; a layer holding nothing is drawn at 1.
+  const int dec_lo =
+      std::min(dec_hi - 1, static_cast<int>(std::floor(std::log10(static_cast<double>(std::min(y_low, y_top))))));
   auto X = [&](double k) { return left + pw * k / static_cast<double>(x_max); };
   auto Y = [&](double v) {
-    const double l = std::log10(std::max(v, 1.0));
+    const double l = std::max(std::log10(std::max(v, 1.0)), static_cast<double>(dec_lo));
     return top + ph * (1.0 - (l - dec_lo) / (dec_hi - dec_lo));
   };
   std::ostringstream svg;
@@ -318,12 +328,15 @@ int main(int argc, char** argv) {
               "out-tris", "comps", "held-peak", "cpu-s", "Mtri/s/core", "kcoll/s");
   for (const Result& r : results) {
     const Summary& s = r.s;
+    // CPU seconds of the simplification: its wall-clock share of the phases times the CPU time
+    // (they differ only by preemption on a shared machine).
+    const double simplify_cpu = s.seconds_phases > 0 ? s.cpu * s.seconds_simplify / s.seconds_phases : 0.0;
     std::printf("%-12s %7.0f MiB %5.0f MiB %12llu %10llu %7llu %11llu %8.1f %11.3f %10.1f\n", r.mode.c_str(),
                 s.peak_mib, s.rss_start_mib, static_cast<unsigned long long>(s.input_triangles),
                 static_cast<unsigned long long>(s.output_triangles), static_cast<unsigned long long>(s.components),
                 static_cast<unsigned long long>(s.peak_triangles), s.cpu,
                 1e-6 * static_cast<double>(s.input_triangles) / s.cpu,
-                s.seconds_simplify > 0 ? 1e-3 * static_cast<double>(s.collapses) / s.seconds_simplify : 0.0);
+                simplify_cpu > 0 ? 1e-3 * static_cast<double>(s.collapses) / simplify_cpu : 0.0);
     if (!s.peak_reset) std::printf("  (could not reset VmHWM in the child: its peak includes the parent's pages)\n");
   }
 

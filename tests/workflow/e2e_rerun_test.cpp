@@ -1,0 +1,90 @@
+// Reruns: a second run of the same recipe reuses the finished extraction and is much faster; a
+// changed component-step parameter recomputes that step and the ones after it; a changed
+// extraction parameter is refused without --fresh and recomputed with it.
+
+#include <gtest/gtest.h>
+
+#include <fstream>
+
+#include "e2e_support.hpp"
+
+namespace fs = std::filesystem;
+using namespace geotandem;
+using namespace geotandem::testing;
+
+namespace {
+
+// The quickstart chain on a smaller cube: the test is about reuse, not about the bodies.
+const std::vector<std::string> small = {"input.synthetic.shape=[96, 96, 64]", "input.synthetic.seed=5"};
+
+std::vector<std::string> with(std::vector<std::string> sets, const std::string& more) {
+  sets.push_back(more);
+  return sets;
+}
+
+nlohmann::json selection_parameters(const fs::path& store_dir, const std::string& name) {
+  auto store = store::ComponentStore::open(store_dir);
+  return nlohmann::json::parse(store.load_selection(name).parameters);
+}
+
+} // namespace
+
+TEST(WorkflowRerun, SecondRunReusesTheExtractionAndChangedStepsAreRecomputed) {
+  ScratchDir dir;
+  fs::path out = dir.path() / "out";
+  std::string recipe = workflow_recipe("quickstart.yaml");
+
+  auto first = run_workflow(recipe, out, small);
+  ASSERT_EQ(first.command.exit_code, 0) << first.command.err;
+  EXPECT_EQ(first.command.out.find("(reused)"), std::string::npos) << first.command.out;
+  auto state = read_json(out / "state.json");
+  ASSERT_TRUE(state.at("extract").at("done").get<bool>()) << state.dump(2);
+  std::string fingerprint = state.at("extract").at("fingerprint");
+  std::uint64_t components = state.at("extract").at("components");
+  auto kept_before = store::ComponentStore::open(out / "store").load_selection("kept").keys;
+
+  auto second = run_workflow(recipe, out, small);
+  ASSERT_EQ(second.command.exit_code, 0) << second.command.err;
+  EXPECT_NE(second.command.out.find("(reused)"), std::string::npos) << second.command.out;
+  EXPECT_NE(second.command.err.find("reusing the finished extraction"), std::string::npos) << second.command.err;
+  EXPECT_LT(second.seconds, 0.5 * first.seconds)
+      << "first " << first.seconds << " s, second " << second.seconds << " s";
+  state = read_json(out / "state.json");
+  EXPECT_EQ(state.at("extract").at("fingerprint"), fingerprint);
+  {
+    auto store = store::ComponentStore::open(out / "store");
+    EXPECT_EQ(store.runs().size(), 1u) << "the rerun extracted again";
+    EXPECT_EQ(store.size(), components);
+    EXPECT_EQ(store.load_selection("kept").keys, kept_before);
+  }
+  std::ifstream report_in(out / "report.html");
+  std::string report((std::istreambuf_iterator<char>(report_in)), std::istreambuf_iterator<char>());
+  EXPECT_NE(report.find("reused from a previous run"), std::string::npos);
+
+  // A stricter bubble rule: the extraction is reused, remove_bubbles and sort_by_azimuth are
+  // recomputed from it.
+  auto stricter = run_workflow(recipe, out, with(small, "steps.remove_bubbles.min_volume_fraction=0.3"));
+  ASSERT_EQ(stricter.command.exit_code, 0) << stricter.command.err;
+  EXPECT_NE(stricter.command.out.find("(reused)"), std::string::npos) << stricter.command.out;
+  auto kept = selection_parameters(out / "store", "kept");
+  EXPECT_DOUBLE_EQ(kept.at("min_volume_fraction").get<double>(), 0.3);
+  EXPECT_LT(kept.at("after").get<std::uint64_t>(), kept_before.size());
+  auto sorted = selection_parameters(out / "store", "sorted");
+  EXPECT_EQ(sorted.at("from"), "kept");
+  EXPECT_EQ(sorted.at("ranking").size(), kept.at("after").get<std::size_t>());
+
+  // Another isovalue changes the extraction: refused while the old store is there ...
+  auto refused = run_workflow(recipe, out, with(small, "steps.extract.iso=0.35"));
+  EXPECT_NE(refused.command.exit_code, 0);
+  EXPECT_NE(refused.command.err.find("--fresh"), std::string::npos) << refused.command.err;
+  // ... and recomputed, with everything after it, with --fresh.
+  auto fresh = run_workflow(recipe, out, with(small, "steps.extract.iso=0.35"), "--fresh");
+  ASSERT_EQ(fresh.command.exit_code, 0) << fresh.command.err;
+  EXPECT_EQ(fresh.command.out.find("(reused)"), std::string::npos) << fresh.command.out;
+  state = read_json(out / "state.json");
+  EXPECT_NE(state.at("extract").at("fingerprint"), fingerprint);
+  auto store = store::ComponentStore::open(out / "store");
+  EXPECT_EQ(store.runs().size(), 1u);
+  EXPECT_NE(store.size(), components);
+  EXPECT_NEAR(nlohmann::json::parse(store.runs().front().parameters).at("iso").get<double>(), 0.35, 1e-6); // a float
+}

@@ -148,9 +148,12 @@ std::string svg_series(const std::vector<std::uint64_t>& values, const std::stri
   }
   s << "\"/><text x=\"" << left - 4 << "\" y=\"" << top + 10 << "\" text-anchor=\"end\" font-size=\"10\">"
     << static_cast<std::uint64_t>(peak) << "</text><text x=\"" << left - 4 << "\" y=\"" << top + ph
-    << "\" text-anchor=\"end\" font-size=\"10\">0</text><text x=\"" << left + pw / 2 << "\" y=\"" << H - 8
-    << "\" text-anchor=\"middle\" font-size=\"12\">" << x_label << " (" << values.size()
-    << ")</text><text x=\"14\" y=\"" << top + ph / 2
+    << "\" text-anchor=\"end\" font-size=\"10\">0</text>"
+    // The first and last x values, so the axis reads without counting.
+    << "<text x=\"" << left << "\" y=\"" << top + ph + 14 << "\" text-anchor=\"start\" font-size=\"10\">1</text>"
+    << "<text x=\"" << left + pw << "\" y=\"" << top + ph + 14 << "\" text-anchor=\"end\" font-size=\"10\">"
+    << values.size() << "</text><text x=\"" << left + pw / 2 << "\" y=\"" << H - 8
+    << "\" text-anchor=\"middle\" font-size=\"12\">" << x_label << "</text><text x=\"14\" y=\"" << top + ph / 2
     << "\" text-anchor=\"middle\" font-size=\"12\" transform=\"rotate(-90 14 " << top + ph / 2 << ")\">" << y_label
     << "</text></svg>";
   return s.str();

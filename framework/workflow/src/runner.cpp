@@ -315,6 +315,7 @@ RunOutcome run_workflow(const Recipe& recipe, const PluginRegistry& plugins, con
     report.components.push_back(c);
   }
   report.outputs.push_back(recipe.output.store + "/");
+  if (recipe.input.synthetic) report.outputs.push_back("truth.json"); // written by open_input
   report.total_seconds = since(started);
   report.peak_rss_kb = peak_rss_kb();
   fs::path report_path = out_dir / recipe.output.report;

@@ -105,11 +105,11 @@ void write_svg(const std::string& path, const std::vector<Curve>& curves, const 
       lo = std::min({lo, p.anisotropy, p.body_anisotropy});
       hi = std::max({hi, p.anisotropy, p.body_anisotropy});
     }
-  // y range: rounded outwards to 0.02, at least 0.1 wide.
-  lo = std::floor((lo - 0.01) / 0.02) * 0.02;
-  hi = std::ceil((hi + 0.01) / 0.02) * 0.02;
+  // y range: a margin of 0.01, rounded outwards to the tick step, at least 0.1 wide.
+  const double y_step = hi - lo > 0.2 ? 0.05 : 0.02;
+  lo = std::max(0.0, std::floor((lo - 0.01) / y_step) * y_step);
+  hi = std::ceil((hi + 0.01) / y_step) * y_step;
   if (hi - lo < 0.1) hi = lo + 0.1;
-  lo = std::max(lo, 0.0);
   auto X = [&](double a) { return left + pw * a; };
   auto Y = [&](double v) { return top + ph * (1.0 - (v - lo) / (hi - lo)); };
   std::ostringstream svg;
@@ -117,7 +117,6 @@ void write_svg(const std::string& path, const std::vector<Curve>& curves, const 
       << "\" font-family=\"sans-serif\" font-size=\"13\">\n<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n"
       << "<text x=\"" << left + pw / 2 << "\" y=\"28\" text-anchor=\"middle\" font-size=\"16\">" << title
       << "</text>\n";
-  const double y_step = hi - lo > 0.25 ? 0.05 : 0.02;
   for (double v = lo; v <= hi + 1e-9; v += y_step)
     svg << "<line x1=\"" << left << "\" x2=\"" << left + pw << "\" y1=\"" << Y(v) << "\" y2=\"" << Y(v)
         << "\" stroke=\"#ddd\"/>\n<text x=\"" << left - 8 << "\" y=\"" << Y(v) + 4 << "\" text-anchor=\"end\">"

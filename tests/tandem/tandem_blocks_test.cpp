@@ -34,9 +34,9 @@ SimplifyOptions fine() {
 }
 
 void run_blocks(BlocksRun& run, const volume::Volume& volume, std::int64_t block_size,
-                SimplifyOptions simplify = fine(), CollapseObserver* observer = nullptr) {
+                SimplifyOptions simplify = fine(), CollapseObserver* observer = nullptr, int axis = 0) {
   TandemOptions options;
-  options.axis = 0;
+  options.axis = axis;
   options.simplify = simplify;
   options.observer = observer;
   std::unique_ptr<WorkingSurface> remaining;
@@ -101,6 +101,17 @@ SeamQuality seam_quality(const std::vector<mesh::Component>& components, double 
     }
   }
   return {mesh::anisotropy(near), mesh::small_angle_share(near, 10.0), near.triangle_count()};
+}
+
+TEST(TandemBlocks, SameComponentsAlongAnotherAxis) {
+  // Extracted along k, the sweep crosses the k-planes of the tree instead of running along them.
+  const auto volume = blocks_test::sample(blocks_test::bodies(), kShape);
+  BlocksRun one, eight;
+  run_blocks(one, *volume, 0, fine(), nullptr, 2);
+  run_blocks(eight, *volume, 32, fine(), nullptr, 2);
+  ASSERT_EQ(one.sink.components.size(), blocks_test::kBodies);
+  EXPECT_EQ(eight.stats.leaves, 8u);
+  blocks_test::expect_same_components(one.sink.components, eight.sink.components);
 }
 
 TEST(TandemBlocks, ExtendedTimeLagKeepsTheSeamsGood) {

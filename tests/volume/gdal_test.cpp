@@ -9,6 +9,7 @@
 #include <filesystem>
 #include <fstream>
 #include <functional>
+#include <limits>
 #include <ostream>
 #include <random>
 #include <thread>
@@ -487,3 +488,75 @@ TEST(GdalThreads, OneVolumePerThreadReadsCorrectlyAndQuietly) {
 }
 
 } // namespace
+
+// ---- MEM: a dataset handed over without a file --------------------------------------------------
+
+namespace {
+
+// A MEM multidimensional dataset with one (inline, crossline, time) Float32 array of value
+// 1000 i + 10 j + k, the time axis in seconds with a coordinate variable, and `bad` NaN samples.
+GDALDataset* make_mem_cube(int bad) {
+  GDALAllRegister();
+  GDALDriver* driver = GetGDALDriverManager()->GetDriverByName("MEM");
+  if (!driver) return nullptr;
+  GDALDataset* dataset = driver->CreateMultiDimensional("in-memory", nullptr, nullptr);
+  auto root = dataset->GetRootGroup();
+  auto il = root->CreateDimension("inline", "", "", 5);
+  auto xl = root->CreateDimension("crossline", "", "", 4);
+  auto t = root->CreateDimension("time", "", "", 6);
+  auto time = root->CreateMDArray("time", {t}, GDALExtendedDataType::Create(GDT_Float64));
+  time->SetUnit("s");
+  std::vector<double> seconds = {0.1, 0.104, 0.108, 0.112, 0.116, 0.12};
+  const GUInt64 start0 = 0;
+  const std::size_t count0 = seconds.size();
+  time->Write(&start0, &count0, nullptr, nullptr, GDALExtendedDataType::Create(GDT_Float64), seconds.data());
+  t->SetIndexingVariable(time);
+  auto array = root->CreateMDArray("amplitude", {il, xl, t}, GDALExtendedDataType::Create(GDT_Float32));
+  std::vector<float> values(5 * 4 * 6);
+  for (int i = 0; i < 5; ++i)
+    for (int j = 0; j < 4; ++j)
+      for (int k = 0; k < 6; ++k)
+        values[static_cast<std::size_t>((i * 4 + j) * 6 + k)] = static_cast<float>(1000 * i + 10 * j + k);
+  for (int n = 0; n < bad; ++n)
+    values[static_cast<std::size_t>(7 + n)] = std::numeric_limits<float>::quiet_NaN();
+  const GUInt64 start[3] = {0, 0, 0};
+  const std::size_t count[3] = {5, 4, 6};
+  array->Write(start, count, nullptr, nullptr, GDALExtendedDataType::Create(GDT_Float32), values.data());
+  return dataset;
+}
+
+} // namespace
+
+TEST(GdalMem, AnInMemoryDatasetIsACubeLikeAFile) {
+  GDALDataset* dataset = make_mem_cube(0);
+  ASSERT_NE(dataset, nullptr) << "GDAL has no MEM driver";
+  auto cube = gv::open_gdal_dataset(dataset, "in-memory cube");
+  EXPECT_EQ(cube->format(), "MEM");
+  EXPECT_EQ(cube->source(), "in-memory cube");
+  const auto& g = cube->geometry();
+  EXPECT_EQ(g.shape[0], 5);
+  EXPECT_EQ(g.shape[1], 4);
+  EXPECT_EQ(g.shape[2], 6);
+  EXPECT_NEAR(g.z0, 100.0, 1e-9); // seconds became milliseconds
+  EXPECT_NEAR(g.dz, 4.0, 1e-9);
+  gv::Box box{{1, 2, 3}, {4, 4, 6}};
+  auto samples = cube->read(box);
+  std::size_t n = 0;
+  for (int i = 1; i < 4; ++i)
+    for (int j = 2; j < 4; ++j)
+      for (int k = 3; k < 6; ++k)
+        EXPECT_EQ(samples[n++], static_cast<float>(1000 * i + 10 * j + k)) << i << ' ' << j << ' ' << k;
+}
+
+TEST(GdalMem, NanPolicyAppliesToDatasetsToo) {
+  GDALDataset* dataset = make_mem_cube(2);
+  ASSERT_NE(dataset, nullptr);
+  auto cube = gv::open_gdal_dataset(dataset, "in-memory cube");
+  try {
+    cube->read(cube->geometry().bounds());
+    FAIL() << "NaN samples were read without an error";
+  } catch (const geotandem::DataError& e) {
+    EXPECT_NE(std::string(e.what()).find("in-memory cube"), std::string::npos) << e.what();
+  }
+  EXPECT_THROW(gv::open_gdal_dataset(nullptr, "nothing"), geotandem::InvalidArgument);
+}

@@ -88,6 +88,18 @@ TEST(Detect, EveryFormatFromItsSignatureNotItsName) {
   EXPECT_EQ(open_volume(dir.file("cube.dat"))->read(cube->geometry().bounds()), cube->samples());
 }
 
+TEST(Detect, ASignatureWinsOverAJsonFileBesideIt) {
+  // Other tools leave FILE.json metadata beside cubes; only files without a signature of their own
+  // are raw.
+  ScratchDir dir;
+  write_bytes(dir.file("survey.nc"), padded("\x89HDF\r\n\x1a\n"));
+  write_bytes(dir.file("survey.nc.json"), "{\"source\": \"some other tool\"}");
+  write_bytes(dir.file("slices.tif"), padded(std::string("II*\0", 4)));
+  write_bytes(dir.file("slices.tif.json"), "{}");
+  EXPECT_EQ(detect_format(dir.file("survey.nc")), "netCDF-4");
+  EXPECT_EQ(detect_format(dir.file("slices.tif")), "GeoTIFF");
+}
+
 TEST(Detect, RandomBytesAreAnUnknownFormatNamingTheFile) {
   ScratchDir dir;
   std::mt19937 random(20240611);

@@ -19,6 +19,8 @@ const char* format_name(Format format);
 
 // GDAL multidimensional API: netCDF-4, HDF5 (read only), Zarr. (gdal_md.cpp)
 std::unique_ptr<Volume> open_gdal_md(const std::string& path, Format format, const OpenOptions& options);
+// open_gdal_dataset without the NaN guard and the geometry check.
+std::unique_ptr<Volume> open_gdal_dataset(GDALDataset* dataset, const std::string& name, const OpenOptions& options);
 void write_gdal_md(const Volume& volume, const std::string& path, Format format, const WriteOptions& options,
                    Progress& progress, const CancelToken& cancel);
 

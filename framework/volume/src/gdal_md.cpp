@@ -79,15 +79,16 @@ std::string format_of(GDALDataset& dataset, Format format) {
   if (name == "HDF5") return format_name(Format::hdf5);
   if (name == "Zarr") return format_name(Format::zarr);
   if (name == "netCDF") return format_name(Format::netcdf);
+  if (name == "MEM") return "MEM";
   return format_name(format);
 }
 
 } // namespace
 
-std::unique_ptr<Volume> open_gdal_md(const std::string& path, Format format, const OpenOptions& options) {
-  const char* driver = driver_of(format);
-  if (!driver) throw InvalidArgument(std::string("not a multidimensional format: ") + format_name(format), {path});
-  gdal::DatasetPtr dataset = gdal::open_dataset(path, GDAL_OF_MULTIDIM_RASTER, driver, format_name(format));
+namespace {
+
+std::unique_ptr<Volume> volume_of(gdal::DatasetPtr dataset, const std::string& path, Format format,
+                                  const OpenOptions& options) {
   gdal::ErrorCapture errors;
   std::shared_ptr<GDALGroup> root = dataset->GetRootGroup();
   if (!root)
@@ -100,6 +101,21 @@ std::unique_ptr<Volume> open_gdal_md(const std::string& path, Format format, con
   stored.reset();
   return std::make_unique<GdalMdVolume>(path, std::move(name), std::move(dataset), std::move(root), std::move(cube),
                                         std::move(geometry));
+}
+
+} // namespace
+
+std::unique_ptr<Volume> open_gdal_md(const std::string& path, Format format, const OpenOptions& options) {
+  const char* driver = driver_of(format);
+  if (!driver) throw InvalidArgument(std::string("not a multidimensional format: ") + format_name(format), {path});
+  return volume_of(gdal::open_dataset(path, GDAL_OF_MULTIDIM_RASTER, driver, format_name(format)), path, format,
+                   options);
+}
+
+std::unique_ptr<Volume> open_gdal_dataset(GDALDataset* dataset, const std::string& name, const OpenOptions& options) {
+  gdal::DatasetPtr owned(dataset);
+  if (!owned) throw InvalidArgument("no GDAL dataset given", {name});
+  return volume_of(std::move(owned), name, Format::netcdf, options);
 }
 
 } // namespace geotandem::volume::detail

@@ -96,9 +96,6 @@ Format sniff_format(const std::string& path) {
       if (fs::exists(fs::path(path) / marker)) return Format::zarr;
     throw FormatError("a directory that is not a Zarr store (no .zgroup, .zarray or zarr.json inside)", {path});
   }
-  if (fs::exists(path + ".json")) return Format::raw;
-  if (envi_header_beside(path)) return Format::envi;
-
   std::ifstream in(path, std::ios::binary);
   if (!in) throw IoError("cannot open the file for reading", {path}, "check its permissions");
   std::array<unsigned char, 16> head{};
@@ -113,6 +110,10 @@ Format sniff_format(const std::string& path) {
   if (starts_with(head, got, std::string_view("II*\0", 4)) || starts_with(head, got, std::string_view("MM\0*", 4)) ||
       starts_with(head, got, std::string_view("II+\0", 4)) || starts_with(head, got, std::string_view("MM\0+", 4)))
     return Format::geotiff;
+  // Files with a signature win over sidecars: a netCDF or TIFF with some other tool's FILE.json
+  // beside it is still what its first bytes say. Raw float32 has no signature of its own.
+  if (fs::exists(path + ".json")) return Format::raw;
+  if (envi_header_beside(path)) return Format::envi;
   if (looks_like_segy(path, fs::file_size(path, ec))) return Format::segy;
   return Format::unknown;
 }
@@ -153,6 +154,16 @@ std::unique_ptr<Volume> open_volume(const std::string& path, const OpenOptions& 
   } catch (const InvalidArgument& e) {
     // The geometry came from the file, not from the caller: a broken file, not a bad argument.
     throw FormatError("the file describes an invalid geometry: " + e.message(), {path}, e.hint());
+  }
+  return detail::guard_nan(std::move(volume), options);
+}
+
+std::unique_ptr<Volume> open_gdal_dataset(GDALDataset* dataset, const std::string& name, const OpenOptions& options) {
+  std::unique_ptr<Volume> volume = detail::open_gdal_dataset(dataset, name, options);
+  try {
+    volume->geometry().validate();
+  } catch (const InvalidArgument& e) {
+    throw FormatError("the dataset describes an invalid geometry: " + e.message(), {name}, e.hint());
   }
   return detail::guard_nan(std::move(volume), options);
 }

@@ -17,6 +17,8 @@
 #include "geotandem/core/progress.hpp"
 #include "geotandem/volume/volume.hpp"
 
+class GDALDataset; // GDAL's dataset handle (gdal_priv.h)
+
 namespace geotandem::volume {
 
 // What to do with NaN or infinite samples.
@@ -36,6 +38,15 @@ struct OpenOptions {
 // Opens a cube; throws IoError (missing, unreadable) or FormatError (unknown or broken format),
 // naming the file and what to do.
 std::unique_ptr<Volume> open_volume(const std::string& path, const OpenOptions& options = {});
+
+// A cube held by a GDAL multidimensional dataset that the caller has already opened or built, with
+// any driver: MEM (GDAL's in-memory driver, how other programs hand over arrays without a file),
+// or a netCDF/Zarr/HDF5 dataset opened with options of their own. Takes ownership of `dataset` (it is
+// closed with the volume, also on error). `name` stands for the file in messages and source().
+// Geometry, array choice and the NaN policy are as for open_volume. Throws FormatError when the
+// dataset holds no usable cube.
+std::unique_ptr<Volume> open_gdal_dataset(GDALDataset* dataset, const std::string& name,
+                                          const OpenOptions& options = {});
 
 // The format open_volume would use for `path` ("netCDF-4", "Zarr", "SEG-Y", ...), or throws.
 std::string detect_format(const std::string& path);

@@ -45,7 +45,8 @@ int main(int argc, char** argv) {
   try {
     cli.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
-    return cli.exit(e);
+    // CLI11 prints the message (or the help text); any usage error exits 2, like InvalidArgument.
+    return cli.exit(e) == 0 ? 0 : 2;
   }
 
   g_cancel_flag = context.cancel.raw_flag();

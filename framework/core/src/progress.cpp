@@ -23,7 +23,7 @@ void StreamProgress::begin(const std::string& label, std::uint64_t total, const 
   unit_ = unit;
   total_ = total;
   done_ = 0;
-  last_decile_ = -1;
+  last_decile_ = 0; // the "started" line stands for 0 %
   start_ = last_draw_ = std::chrono::steady_clock::now();
   if (!interactive_) {
     *out_ << label_ << ": started";

@@ -55,7 +55,7 @@ struct ExportSpec {
 };
 
 struct OutputSpec {
-  std::string directory;       // relative paths are relative to the recipe's directory
+  std::string directory;       // relative paths are relative to the working directory (CWD)
   std::string store = "store"; // relative to directory
   std::string report = "report.html";
   std::string attribute_file; // when set, the final attribute cube is written there too

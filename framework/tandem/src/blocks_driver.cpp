@@ -1,5 +1,5 @@
 // The block tree driven in one process (blocks.hpp): leaves by extract_block, brothers merged
-// bottom-up, every partial surface shipped through its wire form before a merge.
+// bottom-up, the smaller of two brothers shipped through its wire form before their merge.
 #include <algorithm>
 #include <chrono>
 #include <limits>
@@ -52,8 +52,11 @@ public:
     held_ += low->triangle_count();
     std::unique_ptr<WorkingSurface> high = run(node.children[1]);
     held_ -= low->triangle_count();
-    low = ship(*low);
-    high = ship(*high);
+    // The runtime sends one brother to the worker holding the other: the smaller one travels.
+    if (low->triangle_count() < high->triangle_count())
+      low = ship(*low);
+    else
+      high = ship(*high);
     if (options_.cancel) options_.cancel->throw_if_cancelled();
     const auto t = Clock::now();
     const SimplifyCounters before = low->counters(), other = high->counters();

@@ -126,7 +126,24 @@ Region Region::merged_with(const Region& other) const {
                           other.cube_.to_string());
   std::vector<volume::Box> all = blocks_;
   all.insert(all.end(), other.blocks_.begin(), other.blocks_.end());
-  return Region(cube_, std::move(all));
+  Region merged(cube_, std::move(all)); // checks that the blocks are disjoint
+  // A union that fills its bounding box (two brothers) is that box: one block, whose open faces
+  // are whole rectangles, instead of one rectangle per face of every merged leaf (the distance to
+  // the open faces is computed for every placed edge).
+  volume::Box bounds = merged.blocks_.front();
+  std::size_t cells = 0;
+  for (const volume::Box& b : merged.blocks_) {
+    for (int a = 0; a < 3; ++a) {
+      bounds.lo[a] = std::min(bounds.lo[a], b.lo[a]);
+      bounds.hi[a] = std::max(bounds.hi[a], b.hi[a]);
+    }
+    cells +=
+        static_cast<std::size_t>(b.size(0)) * static_cast<std::size_t>(b.size(1)) * static_cast<std::size_t>(b.size(2));
+  }
+  const std::size_t box_cells = static_cast<std::size_t>(bounds.size(0)) * static_cast<std::size_t>(bounds.size(1)) *
+                                static_cast<std::size_t>(bounds.size(2));
+  if (cells == box_cells) return Region(cube_, {bounds});
+  return merged;
 }
 
 std::string Region::to_string() const {

@@ -1,9 +1,9 @@
 #pragma once
 // The block-parallel route of the seed (section 3.2), run in one process: the cube's cells split
 // into a binary block tree, each leaf extracted with the tandem loop (extract_block), brother
-// surfaces merged bottom-up in tree order (WorkingSurface::merge), and the root finished. Every
-// partial surface travels through its wire form (serialize.hpp) before a merge, as it will
-// between the workers of the manager/worker runtime.
+// surfaces merged bottom-up in tree order (WorkingSurface::merge), and the root finished. Before
+// each merge the smaller of the two brothers travels through its wire form (serialize.hpp), as it
+// will between the workers of the manager/worker runtime.
 //
 // The same components come out whatever the leaf size (the same keys; volumes and quality within
 // the simplification's tolerance): the extended time lag keeps every vertex a neighbour welds to,

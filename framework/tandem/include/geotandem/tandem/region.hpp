@@ -60,8 +60,9 @@ public:
   // Whether p lies in the region (closed boxes).
   bool contains(const std::array<double, 3>& p) const;
 
-  // The union with a region of the same cube. Throws InvalidArgument when the cubes differ or the
-  // blocks overlap.
+  // The union with a region of the same cube; when the union fills its bounding box (brothers),
+  // it is that box as a single block. Throws InvalidArgument when the cubes differ or the blocks
+  // overlap.
   Region merged_with(const Region& other) const;
 
   // "cube [..] blocks {[..], [..]} open faces N", for messages.

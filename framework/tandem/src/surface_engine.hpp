@@ -54,11 +54,20 @@ public:
   // is inconsistent (an index out of range, a triangle that would make the surface non-manifold,
   // an edge that is not in the mesh).
   void import_state(detail::SurfaceState&& state);
-  // The union of two surfaces of disjoint regions of the same cube, both past their sweep, welded
-  // by lattice ids; its parked edges are not placed again yet (surface_merge.cpp). Throws
-  // InvalidArgument when the surfaces do not fit together and DataError when two vertices with the
-  // same lattice id differ in position.
-  static std::unique_ptr<Engine> merged(const Engine& a, const Engine& b);
+  // Takes in the surface of a disjoint region of the same cube (both past their sweep), welded by
+  // lattice ids; the region becomes the union, but the parked edges are not placed again yet
+  // (surface_merge.cpp). Throws InvalidArgument when the surfaces do not fit together and
+  // DataError when two vertices with the same lattice id differ in position; the engine is then
+  // in an unspecified state.
+  void absorb(const Engine& other);
+  // The union of both regions; throws InvalidArgument as absorb() does when the two do not fit.
+  Region merge_region(const Engine& other) const;
+  mesh::ComponentSink* sink_of() const { return sink_; }
+  CollapseObserver* observer_of() const { return observer_; }
+  void set_outputs(mesh::ComponentSink* sink, CollapseObserver* observer) {
+    sink_ = sink;
+    observer_ = observer;
+  }
 
 private:
   using VH = detail::VH;
@@ -93,6 +102,9 @@ private:
   void try_collapse(EH e, double cost);
   void collapse(HH h, const detail::Vec3& target, double cost);
   void report_collapse(HH h, const detail::Vec3& target, double cost);
+
+  // Puts the edge ab back in its queue with `record`'s state, key and candidate (surface_state.cpp).
+  void restore_edge(VH a, VH b, const detail::EdgeRecord& record, std::size_t index);
 
   // Dumping and compaction (surface_dump.cpp).
   void dump_component(std::int32_t root);

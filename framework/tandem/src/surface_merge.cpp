@@ -1,7 +1,9 @@
 // Merging two partial surfaces of adjacent regions (the seed's section 3.2; ALGORITHM.md, "Blocks
-// and merging"): the union of the meshes, vertices on the common faces welded by lattice-edge id,
-// quadrics, heights and radii kept, components joined through the seam. The caller then tests
-// the parked edges against the merged region, simplifies and dumps (WorkingSurface::merge).
+// and merging"): the other surface's vertices, triangles and queue states are appended to this
+// one, vertices on the common faces welded by lattice-edge id, quadrics, heights and radii kept,
+// components joined through the seam. The caller then tests the parked edges against the merged
+// region, simplifies and dumps (WorkingSurface::merge). Appending in place costs O(other); the
+// larger surface absorbs the smaller.
 #include <algorithm>
 #include <cmath>
 #include <cstring>
@@ -9,6 +11,7 @@
 
 #include "geotandem/core/error.hpp"
 #include "surface_engine.hpp"
+#include "triangle_insert.hpp"
 
 namespace geotandem::tandem {
 
@@ -19,120 +22,128 @@ bool same_options(const SimplifyOptions& a, const SimplifyOptions& b) {
          a.extended_time_lag == b.extended_time_lag && a.preserve_volume == b.preserve_volume;
 }
 
-// Union-find over the components of both sides, to join those the seam connects.
-struct Joiner {
-  std::vector<std::int32_t> parent;
-  std::int32_t find(std::int32_t c) {
-    while (parent[static_cast<std::size_t>(c)] != c) {
-      parent[static_cast<std::size_t>(c)] = parent[static_cast<std::size_t>(parent[static_cast<std::size_t>(c)])];
-      c = parent[static_cast<std::size_t>(c)];
-    }
-    return c;
-  }
-  void unite(std::int32_t a, std::int32_t b) {
-    a = find(a);
-    b = find(b);
-    if (a == b) return;
-    if (a > b) std::swap(a, b);
-    parent[static_cast<std::size_t>(b)] = a;
-  }
-};
-
 std::string where(const Region& a, const Region& b) {
   return "merging {" + a.to_string() + "} with {" + b.to_string() + "}";
 }
 
 } // namespace
 
-std::unique_ptr<WorkingSurface::Engine> WorkingSurface::Engine::merged(const Engine& a, const Engine& b) {
-  if (!(a.cube_ == b.cube_))
+Region WorkingSurface::Engine::merge_region(const Engine& b) const {
+  if (!(cube_ == b.cube_))
     throw InvalidArgument("merge: the two surfaces belong to different cubes", {.block = b.region_.to_string()});
-  if (a.axis_ != b.axis_)
-    throw InvalidArgument("merge: the surfaces were extracted along axes " + std::to_string(a.axis_) + " and " +
+  if (axis_ != b.axis_)
+    throw InvalidArgument("merge: the surfaces were extracted along axes " + std::to_string(axis_) + " and " +
                           std::to_string(b.axis_));
-  if (!same_options(a.options_, b.options_))
+  if (!same_options(options_, b.options_))
     throw InvalidArgument("merge: the surfaces were simplified with different options (E0, alpha, time lags)", {},
                           "extract every block with the same SimplifyOptions");
-  if (!std::isinf(a.front_) || !std::isinf(b.front_) || a.front_ < 0.0 || b.front_ < 0.0)
+  if (!std::isinf(front_) || !std::isinf(b.front_) || front_ < 0.0 || b.front_ < 0.0)
     throw InvalidArgument("merge: both surfaces must be past their sweep", {.block = b.region_.to_string()},
                           "run the last layer and activate(+inf) (run_tandem does) before merging");
-  const Region region = a.region_.merged_with(b.region_); // throws when the blocks overlap
+  return region_.merged_with(b.region_); // throws when the blocks overlap
+}
 
-  detail::SurfaceState s = a.export_state();
-  detail::SurfaceState t = b.export_state();
-  const std::size_t na = s.points.size();
-  const auto ca = static_cast<std::int32_t>(s.component_keys.size());
+void WorkingSurface::Engine::absorb(const Engine& b) {
+  const Region region = merge_region(b);
+  const std::string where_ = where(region_, b.region_);
+  const detail::SurfaceState t = b.export_state();
+  const std::size_t nb = t.points.size(), nt = t.triangles.size();
 
-  // Lattice id -> vertex of a, for the original marching-cubes vertices (those on open faces are
-  // the ones b can share).
+  // Lattice id -> live original vertex of this surface (those on open faces are the ones the other
+  // side can share).
   detail::IdMap ids;
-  for (std::size_t i = 0; i < na; ++i)
-    if (s.vertices[i].lattice_id != detail::kNoLatticeId)
-      ids.insert(s.vertices[i].lattice_id, static_cast<std::int32_t>(i));
+  for (std::size_t i = 0; i < mesh_->n_vertices(); ++i)
+    if (vrec_[i].alive && vrec_[i].lattice_id != detail::kNoLatticeId)
+      ids.insert(vrec_[i].lattice_id, static_cast<std::int32_t>(i));
 
-  Joiner join;
-  join.parent.resize(s.component_keys.size() + t.component_keys.size());
-  for (std::size_t c = 0; c < join.parent.size(); ++c)
-    join.parent[c] = static_cast<std::int32_t>(c);
+  // The other side's components join the table; those the seam touches are united below.
+  std::vector<std::int32_t> component(t.component_keys.size());
+  for (std::size_t c = 0; c < component.size(); ++c)
+    component[c] = components_.create(t.component_keys[c], -1);
 
-  std::vector<std::uint32_t> map(t.points.size());
-  for (std::size_t i = 0; i < t.points.size(); ++i) {
-    detail::VertexRecord r = t.vertices[i];
-    r.component += ca;
+  // Vertices: welded to an original vertex with the same lattice id, or appended.
+  std::vector<VH> vertex(nb);
+  std::size_t next = mesh_->n_vertices();
+  for (std::size_t i = 0; i < nb; ++i) {
+    const detail::VertexRecord& r = t.vertices[i];
+    if (r.component < 0 || static_cast<std::size_t>(r.component) >= component.size())
+      throw DataError(where_ + ": vertex " + std::to_string(i) + " of the other side has no component");
     const std::int32_t j = r.lattice_id == detail::kNoLatticeId ? -1 : ids.find(r.lattice_id);
     if (j < 0) {
-      map[i] = static_cast<std::uint32_t>(s.points.size());
-      s.points.push_back(t.points[i]);
-      s.vertices.push_back(r);
+      vertex[i] = VH(static_cast<int>(next++));
       continue;
     }
-    // The same lattice edge seen from both sides: one vertex. Both are original marching-cubes
-    // vertices (height = rank at birth, rad = 1); positions are interpolated from the edge's
-    // lower end by both blocks, so they must agree to the bit.
-    detail::VertexRecord& w = s.vertices[static_cast<std::size_t>(j)];
-    if (std::memcmp(s.points[static_cast<std::size_t>(j)].data(), t.points[i].data(), sizeof(detail::Vec3)) != 0)
-      throw DataError(where(a.region_, b.region_) + ": lattice edge " + std::to_string(r.lattice_id) +
-                          " has different positions on the two sides",
-                      {.block = b.region_.to_string()}, "both blocks must come from the same volume and isovalue");
-    w.shape += r.shape;
-    w.weight += r.weight;
-    w.border |= r.border;
-    w.version = std::max(w.version, r.version) + 1; // candidates computed on either side are stale
-    join.unite(w.component, r.component);
-    map[i] = static_cast<std::uint32_t>(j);
+    vertex[i] = VH(j);
   }
-  for (std::size_t k = 0; k < t.triangles.size(); ++k) {
-    const auto& tri = t.triangles[k];
-    s.triangles.push_back({map[tri[0]], map[tri[1]], map[tri[2]]});
-    s.faces.push_back(t.faces[k]);
-  }
-  for (detail::StateEdge e : t.edges) {
-    e.v0 = map[e.v0];
-    e.v1 = map[e.v1];
-    s.edges.push_back(e);
-  }
-
-  // Components: the roots of the union, renumbered in order, keeping the smallest key.
-  std::vector<std::uint64_t> keys = s.component_keys;
-  keys.insert(keys.end(), t.component_keys.begin(), t.component_keys.end());
-  std::vector<std::int32_t> renumber(keys.size(), -1);
-  std::vector<std::uint64_t> merged_keys;
-  for (std::size_t c = 0; c < keys.size(); ++c) {
-    const auto root = static_cast<std::size_t>(join.find(static_cast<std::int32_t>(c)));
-    if (renumber[root] < 0) {
-      renumber[root] = static_cast<std::int32_t>(merged_keys.size());
-      merged_keys.push_back(keys[root]);
+  const std::size_t first_new = mesh_->n_vertices(), edges_before = mesh_->n_edges(), faces_before = mesh_->n_faces();
+  mesh_->resize(next, edges_before + 3 * nt, faces_before + nt);
+  refresh();
+  for (std::size_t i = 0; i < nb; ++i) {
+    const detail::VertexRecord& r = t.vertices[i];
+    const VH v = vertex[i];
+    const std::int32_t c = component[static_cast<std::size_t>(r.component)];
+    detail::VertexRecord& w = vrec(v);
+    if (static_cast<std::size_t>(v.idx()) >= first_new) {
+      w = r;
+      w.component = c;
+      w.alive = true;
+      // The face sums are rebuilt from this side's origin when the triangles go in.
+      w.isotropy = detail::Isotropy{};
+      w.det_sum = 0.0;
+      w.cross_sum = w.link_sum = w.normal_sum = {0.0, 0.0, 0.0};
+      points_[v.idx()] = detail::TriMesh::Point(t.points[i][0], t.points[i][1], t.points[i][2]);
+      ++live_vertices_;
+    } else {
+      // The same lattice edge seen from both sides: one vertex. Both are original marching-cubes
+      // vertices (height = rank at birth, rad = 1); both blocks interpolate from the edge's lower
+      // end, so the positions must agree to the bit.
+      const detail::Vec3 p = position(v);
+      if (std::memcmp(p.data(), t.points[i].data(), sizeof(detail::Vec3)) != 0)
+        throw DataError(where_ + ": lattice edge " + std::to_string(r.lattice_id) +
+                            " has different positions on the two sides",
+                        {.block = b.region_.to_string()}, "both blocks must come from the same volume and isovalue");
+      w.shape += r.shape;
+      w.weight += r.weight;
+      w.border |= r.border;
+      w.version = std::max(w.version, r.version) + 1; // candidates computed on either side are stale
+      components_.unite(w.component, c);
     }
-    std::uint64_t& key = merged_keys[static_cast<std::size_t>(renumber[root])];
-    key = std::min(key, keys[c]);
-    renumber[c] = renumber[root];
+    detail::ComponentRecord& cr = components_.at(c);
+    if (cr.member < 0) cr.member = v.idx();
   }
-  for (detail::VertexRecord& r : s.vertices)
-    r.component = renumber[static_cast<std::size_t>(r.component)];
-  s.component_keys = std::move(merged_keys);
 
-  // Counters add up; the candidates of both sides are stale where they touch the seam.
-  SimplifyCounters& c = s.counters;
+  // Triangles: the seam's boundary edges, present on both sides, become interior edges.
+  detail::ElementPool pool{static_cast<int>(edges_before), static_cast<int>(faces_before)};
+  std::vector<FH> faces;
+  faces.reserve(nt);
+  for (std::size_t k = 0; k < nt; ++k) {
+    const auto& tri = t.triangles[k];
+    const FH f = detail::insert_triangle(*mesh_, vertex[tri[0]], vertex[tri[1]], vertex[tri[2]], &pool);
+    if (!f.is_valid())
+      throw DataError(where_ + ": triangle " + std::to_string(k) +
+                          " of the other side would make the surface non-manifold",
+                      {.block = b.region_.to_string()},
+                      "the two surfaces must be the partial surfaces of adjacent blocks of one extraction");
+    faces.push_back(f);
+  }
+  mesh_->resize(mesh_->n_vertices(), static_cast<std::size_t>(pool.next_edge),
+                static_cast<std::size_t>(pool.next_face));
+  refresh();
+  for (std::size_t i = edges_before; i < mesh_->n_edges(); ++i) {
+    erec_[i] = detail::EdgeRecord{};
+    erec_[i].alive = true;
+  }
+  // The other side's face terms were relative to its own origin: computed again from this one's,
+  // which also completes the sums of the welded vertices.
+  for (FH f : faces)
+    add_face_terms(f);
+  live_faces_ += nt;
+
+  // The other side's queue states (the seam's edges are parked on both sides).
+  for (std::size_t i = 0; i < t.edges.size(); ++i)
+    restore_edge(vertex[t.edges[i].v0], vertex[t.edges[i].v1], t.edges[i].record, i);
+
+  SimplifyCounters& c = counters_;
   const SimplifyCounters& o = t.counters;
   c.input_triangles += o.input_triangles;
   c.collapses += o.collapses;
@@ -147,22 +158,11 @@ std::unique_ptr<WorkingSurface::Engine> WorkingSurface::Engine::merged(const Eng
   c.components_dumped += o.components_dumped;
   c.triangles_dumped += o.triangles_dumped;
   c.garbage_collections += o.garbage_collections;
-  s.last_rank = std::max(s.last_rank, t.last_rank);
-  s.region = region;
-  s.previous_ids.clear();
-  s.isolated.clear();
-
-  auto out = std::make_unique<Engine>(a.cube_, region, a.axis_, a.options_, a.sink_, a.observer_);
-  try {
-    out->import_state(std::move(s));
-  } catch (const DataError& e) {
-    throw DataError(where(a.region_, b.region_) + ": " + e.message(), {.block = b.region_.to_string()},
-                    "the two surfaces must be the partial surfaces of adjacent blocks of one extraction");
-  }
-  // The volume and isotropy terms were taken from each side's origin, and the welded vertices
-  // have triangles of both sides: compute them again.
-  out->recompute_face_terms();
-  return out;
+  last_rank_ = std::max(last_rank_, t.last_rank);
+  region_ = region;
+  // Any component of the other side may be finished now (its waiting edges were re-counted).
+  for (std::int32_t id : component)
+    components_.requeue(components_.find(id));
 }
 
 } // namespace geotandem::tandem

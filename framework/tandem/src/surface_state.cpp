@@ -82,18 +82,24 @@ detail::SurfaceState WorkingSurface::Engine::export_state() const {
   return s;
 }
 
-namespace {
-detail::HH find_halfedge(const detail::TriMesh& m, detail::VH from, detail::VH to) {
-  const detail::HH start = m.halfedge_handle(from);
-  if (!start.is_valid()) return detail::HH();
-  detail::HH g = start;
-  do {
-    if (m.to_vertex_handle(g) == to) return g;
-    g = detail::next_outgoing(m, g);
-  } while (g != start);
-  return detail::HH();
+void WorkingSurface::Engine::restore_edge(VH a, VH b, const detail::EdgeRecord& record, std::size_t index) {
+  const HH h = a != b ? detail::find_halfedge(*mesh_, a, b) : HH();
+  if (!h.is_valid())
+    throw DataError("working surface state: edge " + std::to_string(index) + " (" + std::to_string(a.idx()) + ", " +
+                    std::to_string(b.idx()) + ") is not an edge of the surface");
+  const EdgeState state = record.state;
+  if (state != EdgeState::idle && state != EdgeState::candidate && state != EdgeState::delayed &&
+      state != EdgeState::parked)
+    throw DataError("working surface state: edge " + std::to_string(index) + " has an unknown state");
+  const EH e = mesh_->edge_handle(h);
+  if (erec(e).state != EdgeState::idle) set_state(e, EdgeState::idle, 0.0);
+  detail::EdgeRecord& r = erec(e);
+  r.target = record.target;
+  r.stamp = record.stamp;
+  r.retried = record.retried;
+  r.dirty = record.dirty;
+  set_state(e, state, record.key);
 }
-} // namespace
 
 void WorkingSurface::Engine::import_state(detail::SurfaceState&& s) {
   const std::size_t nv = s.points.size(), nt = s.triangles.size();
@@ -158,24 +164,10 @@ void WorkingSurface::Engine::import_state(detail::SurfaceState&& s) {
   // Queues: every edge that is not idle goes back to its place with its key.
   for (std::size_t i = 0; i < s.edges.size(); ++i) {
     const detail::StateEdge& se = s.edges[i];
-    const HH h = se.v0 < nv && se.v1 < nv && se.v0 != se.v1
-                     ? find_halfedge(*mesh_, VH(static_cast<int>(se.v0)), VH(static_cast<int>(se.v1)))
-                     : HH();
-    if (!h.is_valid())
-      throw DataError("working surface state: edge " + std::to_string(i) + " (" + std::to_string(se.v0) + ", " +
-                      std::to_string(se.v1) + ") is not an edge of the surface");
-    const EH e = mesh_->edge_handle(h);
-    if (erec(e).state != EdgeState::idle) set_state(e, EdgeState::idle, 0.0);
-    const EdgeState state = se.record.state;
-    if (state != EdgeState::idle && state != EdgeState::candidate && state != EdgeState::delayed &&
-        state != EdgeState::parked)
-      throw DataError("working surface state: edge " + std::to_string(i) + " has an unknown state");
-    detail::EdgeRecord& r = erec(e);
-    r.target = se.record.target;
-    r.stamp = se.record.stamp;
-    r.retried = se.record.retried;
-    r.dirty = se.record.dirty;
-    set_state(e, state, se.record.key);
+    if (se.v0 >= nv || se.v1 >= nv)
+      throw DataError("working surface state: edge " + std::to_string(i) + " refers to a vertex beyond the " +
+                      std::to_string(nv));
+    restore_edge(VH(static_cast<int>(se.v0)), VH(static_cast<int>(se.v1)), se.record, i);
   }
 
   previous_ids_.clear();

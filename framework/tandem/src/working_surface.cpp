@@ -49,7 +49,13 @@ void WorkingSurface::set_region(Region region) {
 std::size_t WorkingSurface::merge(WorkingSurface&& other, const CancelToken* cancel) {
   if (&other == this || !other.engine_ || !engine_)
     throw InvalidArgument("merge: a surface merges with another, non-empty surface");
-  engine_ = Engine::merged(*engine_, *other.engine_);
+  engine_->merge_region(*other.engine_); // refuses surfaces that do not fit before anything moves
+  // The larger surface takes in the smaller one; the result keeps this surface's sink and observer.
+  if (engine_->triangle_count() < other.engine_->triangle_count()) {
+    other.engine_->set_outputs(engine_->sink_of(), engine_->observer_of());
+    std::swap(engine_, other.engine_);
+  }
+  engine_->absorb(*other.engine_);
   const WorkingSurface gone = std::move(other); // frees the other side now
   // The region grew: the edges parked by faces that are now inside it are placed again.
   engine_->set_region(engine_->region());

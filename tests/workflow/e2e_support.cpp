@@ -1,5 +1,7 @@
 #include "e2e_support.hpp"
 
+#include <sys/resource.h>
+
 #include <chrono>
 #include <cmath>
 #include <fstream>
@@ -22,6 +24,14 @@ std::string quoted(const std::string& text) {
 constexpr double margin_ij = 4.0;
 constexpr double margin_k = 8.0;
 
+// CPU time of every waited-for child so far (the shell std::system starts, and its geotandem).
+double children_cpu_seconds() {
+  rusage usage{};
+  ::getrusage(RUSAGE_CHILDREN, &usage);
+  auto seconds = [](const timeval& t) { return static_cast<double>(t.tv_sec) + 1e-6 * static_cast<double>(t.tv_usec); };
+  return seconds(usage.ru_utime) + seconds(usage.ru_stime);
+}
+
 } // namespace
 
 WorkflowRun run_workflow(const std::string& recipe, const std::filesystem::path& out,
@@ -31,9 +41,11 @@ WorkflowRun run_workflow(const std::string& recipe, const std::filesystem::path&
     args += " --set " + quoted(s);
   if (!extra.empty()) args += " " + extra;
   auto start = std::chrono::steady_clock::now();
+  double cpu_before = children_cpu_seconds();
   WorkflowRun run;
   run.command = run_geotandem(args);
   run.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  run.cpu_seconds = children_cpu_seconds() - cpu_before;
   return run;
 }
 

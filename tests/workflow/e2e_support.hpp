@@ -18,7 +18,8 @@ namespace geotandem::testing {
 
 struct WorkflowRun {
   CommandResult command;
-  double seconds = 0.0; // wall time of the child process
+  double seconds = 0.0;     // wall time of the child process
+  double cpu_seconds = 0.0; // its user + system CPU time: steadier than wall time on a busy machine
 };
 
 // Runs `geotandem run-workflow RECIPE --set output.directory=OUT --set ... EXTRA`.

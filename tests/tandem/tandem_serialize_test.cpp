@@ -162,6 +162,15 @@ TEST(TandemSerialize, DamagedRecordsAreRefused) {
   fix_checksum(lying);
   expect_refused(lying, "does not fit");
 
+  std::uint64_t components = 0;
+  std::memcpy(&components, good.data() + components_at, 8);
+  const std::size_t first_vertex = components_at + 8 + 8 * components + 8;
+  std::vector<std::byte> not_finite = good;
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  std::memcpy(not_finite.data() + first_vertex, &nan, 8);
+  fix_checksum(not_finite);
+  expect_refused(not_finite, "non-finite position");
+
   std::vector<std::byte> axis = good;
   set_u32(axis, kSurfaceWireHeaderSize + 121, 7);
   fix_checksum(axis);

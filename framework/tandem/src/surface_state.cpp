@@ -1,6 +1,7 @@
 // The working surface as plain data and back (surface_state.hpp): what the wire format encodes and
 // what a merge welds.
 #include <algorithm>
+#include <cmath>
 #include <string>
 #include <utility>
 
@@ -127,6 +128,8 @@ void WorkingSurface::Engine::import_state(detail::SurfaceState&& s) {
     r.alive = true;
     vrec_[i] = r;
     const detail::Vec3& p = s.points[i];
+    if (!std::isfinite(p[0]) || !std::isfinite(p[1]) || !std::isfinite(p[2]))
+      throw DataError("working surface state: vertex " + std::to_string(i) + " has a non-finite position");
     points_[i] = detail::TriMesh::Point(p[0], p[1], p[2]);
     detail::ComponentRecord& c = components_.at(r.component);
     if (c.member < 0) c.member = static_cast<std::int32_t>(i);

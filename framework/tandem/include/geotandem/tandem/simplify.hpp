@@ -132,9 +132,11 @@ public:
   // simplified, and every finished component is dumped. Returns the number dumped.
   // Both surfaces must be past their sweep (front +infinity: run_tandem and extract_block leave
   // them so) and share the cube, the axis and the simplify options; their regions must not
-  // overlap. `other` keeps the sink and observer of *this; afterwards `other` is empty and may
-  // only be destroyed or assigned to. Throws InvalidArgument when the surfaces do not fit
-  // together, DataError when a shared lattice edge has different positions on the two sides, and
+  // overlap. The larger of the two takes in the smaller in place (O(smaller) plus the seam's
+  // simplification); the result, held by *this, keeps the sink and observer of *this; afterwards
+  // `other` is empty and may only be destroyed or assigned to. Throws InvalidArgument when the
+  // surfaces do not fit together (nothing is changed then), DataError when a shared lattice edge
+  // has different positions on the two sides (*this is then in an unspecified state: drop it), and
   // Cancelled. After everything is merged: finish().
   std::size_t merge(WorkingSurface&& other, const CancelToken* cancel = nullptr);
 

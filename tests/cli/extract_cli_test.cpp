@@ -1,0 +1,78 @@
+// `geotandem extract` as a real child process: one block and the in-process block tree give the
+// same components; bad requests exit with their reason and leave no store behind.
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <map>
+
+#include <nlohmann/json.hpp>
+
+#include "scratch.hpp"
+
+namespace geotandem {
+namespace {
+
+using testing::run_geotandem;
+using testing::ScratchDir;
+
+// key -> volume of every component in a store, through `store ls --json`.
+std::map<std::int64_t, double> volumes_in(const std::string& store) {
+  auto r = run_geotandem("store ls --json '" + store + "'");
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  std::map<std::int64_t, double> out;
+  for (const auto& row : nlohmann::json::parse(r.out))
+    out[row["key"].get<std::int64_t>()] = row["volume"].get<double>();
+  return out;
+}
+
+TEST(ExtractCli, BlocksGiveTheSameComponentsAsOneBlock) {
+  ScratchDir dir;
+  const std::string cube = dir.file("cube.raw");
+  ASSERT_EQ(run_geotandem("-q synth --kind analytic --shape 64 56 48 --seed 3 --out '" + cube + "'").exit_code, 0);
+  auto one = run_geotandem("-q extract '" + cube + "' --iso 0.5 --out '" + dir.file("one") + "'");
+  ASSERT_EQ(one.exit_code, 0) << one.err;
+  auto blocks = run_geotandem("-q extract '" + cube + "' --iso 0.5 --block-size 16 --out '" + dir.file("blocks") + "'");
+  ASSERT_EQ(blocks.exit_code, 0) << blocks.err;
+
+  const auto a = volumes_in(dir.file("one"));
+  const auto b = volumes_in(dir.file("blocks"));
+  ASSERT_GT(a.size(), 3u) << "the analytic cube has several bodies";
+  ASSERT_EQ(a.size(), b.size());
+  for (const auto& [key, volume] : a) {
+    ASSERT_TRUE(b.count(key)) << "component " << key << " missing from the block run";
+    EXPECT_NEAR(b.at(key), volume, 0.005 * std::abs(volume) + 1e-9) << "component " << key;
+  }
+  // The run is recorded in the store with its statistics.
+  auto runs = run_geotandem("store runs --json '" + dir.file("blocks") + "'");
+  ASSERT_EQ(runs.exit_code, 0) << runs.err;
+  EXPECT_NE(runs.out.find("block"), std::string::npos) << runs.out;
+}
+
+TEST(ExtractCli, BadRequestsExitWithTheirReason) {
+  ScratchDir dir;
+  const std::string cube = dir.file("cube.raw");
+  ASSERT_EQ(run_geotandem("-q synth --kind analytic --shape 40 40 40 --out '" + cube + "'").exit_code, 0);
+  struct Bad {
+    std::string args;
+    int code;
+    std::string mention;
+  };
+  const std::vector<Bad> cases = {
+      {"extract '" + cube + "' --iso 0.5 --block-size 4 --out '" + dir.file("s1") + "'", 2, "block-size"},
+      {"extract '" + dir.file("missing.sgy") + "' --iso 0.5 --out '" + dir.file("s2") + "'", 3, "missing.sgy"},
+      {"extract '" + cube + "' --iso 0.5 --mode fast --out '" + dir.file("s3") + "'", 2, "fast"},
+      {"extract '" + cube + "' --iso 0.5 --isotropy 2 --out '" + dir.file("s4") + "'", 2, "2"},
+      {"extract '" + cube + "' --out '" + dir.file("s5") + "'", 2, "--iso"},
+  };
+  for (const auto& c : cases) {
+    auto r = run_geotandem(c.args);
+    EXPECT_EQ(r.exit_code, c.code) << c.args << "\n" << r.err;
+    EXPECT_NE(r.err.find(c.mention), std::string::npos) << c.args << ": '" << c.mention << "' missing from\n" << r.err;
+  }
+  for (const char* store : {"s1", "s2", "s3", "s5"})
+    EXPECT_FALSE(std::filesystem::exists(dir.file(store))) << store << ": a refused request left a store behind";
+}
+
+} // namespace
+} // namespace geotandem

@@ -5,6 +5,8 @@
 
 #include "geotandem/core/error.hpp"
 #include "geotandem/store/local_sink.hpp"
+#include "geotandem/tandem/blocks.hpp"
+#include "geotandem/tandem/marching_cubes.hpp"
 #include "geotandem/tandem/tandem.hpp"
 
 namespace geotandem::workflow {
@@ -46,6 +48,10 @@ ExtractResult extract_to_store(const volume::Volume& volume, store::ComponentSto
   if (!(store.geometry() == volume.geometry()))
     throw InvalidArgument("the store was made for another cube geometry", {store.directory().string()},
                           "extract into a new store directory");
+  if (settings.block_size != 0 && settings.block_size < 8)
+    throw InvalidArgument("block size must be 0 (one block) or at least 8 cells, got " +
+                              std::to_string(settings.block_size),
+                          {}, "blocks of 64 to 256 cells are typical");
   auto start = std::chrono::steady_clock::now();
   tandem::TandemOptions options;
   options.iso = settings.iso;
@@ -75,26 +81,27 @@ ExtractResult extract_to_store(const volume::Volume& volume, store::ComponentSto
   store::LocalSink sink(store, sink_options);
   log.info("extracting in this process (the manager/worker runtime is not part of this build)");
 
-  const auto& g = volume.geometry();
-  volume::Box cells{{0, 0, 0}, {g.shape[0] - 1, g.shape[1] - 1, g.shape[2] - 1}};
-  tandem::TandemStats stats;
-  stats = tandem::extract_block(volume, cells, options, &sink, nullptr, settings.mode == ExtractMode::brute);
+  // One block (block_size 0), or the block tree: leaves one after the other, brothers merged
+  // bottom-up, each partial surface through its wire form as the runtime will ship it.
+  const volume::Box cells = tandem::cube_cells(volume.geometry().shape);
+  const bool brute = settings.mode == ExtractMode::brute;
+  tandem::BlocksStats blocks;
+  if (settings.block_size > 0) {
+    log.info("block tree with leaves of at most " + std::to_string(settings.block_size) + " cells per axis");
+    blocks = tandem::extract_blocks(volume, cells, settings.block_size, options, &sink, nullptr, brute);
+  } else {
+    blocks.tandem = tandem::extract_block(volume, cells, options, &sink, nullptr, brute);
+    blocks.leaves = 1;
+  }
   sink.close();
+  const tandem::TandemStats& stats = blocks.tandem;
 
   result.components = sink.committed();
   result.duplicates = sink.duplicates();
-  for (const auto& layer : stats.layers) {
+  double extract_s = 0, insert_s = 0, simplify_s = 0, dump_s = 0;
+  for (const auto& layer : stats.layers) { // with blocks: every leaf's layers in tree order
     result.input_triangles += layer.input_triangles;
     result.triangles_per_layer.push_back(layer.triangles_in_memory);
-    result.collapses += layer.collapses;
-  }
-  result.collapses += stats.final_pass.collapses;
-  result.peak_triangles = stats.peak_triangles;
-  result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  result.peak_rss_kb = peak_rss_kb();
-
-  double extract_s = 0, insert_s = 0, simplify_s = 0, dump_s = 0;
-  for (const auto& layer : stats.layers) {
     extract_s += layer.seconds_extract;
     insert_s += layer.seconds_insert;
     simplify_s += layer.seconds_simplify;
@@ -102,17 +109,33 @@ ExtractResult extract_to_store(const volume::Volume& volume, store::ComponentSto
   }
   simplify_s += stats.final_pass.seconds_simplify;
   dump_s += stats.final_pass.seconds_dump;
+  result.collapses = stats.counters.collapses; // leaves, seams and the final pass
+  result.peak_triangles = stats.peak_triangles;
+  result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  result.peak_rss_kb = peak_rss_kb();
+  result.blocks = {
+      {"block_size", settings.block_size},
+      {"leaves", blocks.leaves},
+      {"merges", blocks.merges},
+      {"seam_collapses", blocks.seam_collapses},
+      {"components_at_merges", blocks.components_at_merges},
+      {"peak_held_triangles", blocks.peak_held_triangles},
+      {"wire_bytes", blocks.wire_bytes},
+      {"largest_record", blocks.largest_record},
+      {"seconds", {{"leaves", blocks.seconds_leaves}, {"wire", blocks.seconds_wire}, {"merge", blocks.seconds_merge}}}};
   result.statistics = {{"components", result.components},
                        {"duplicates", result.duplicates},
                        {"input_triangles", result.input_triangles},
                        {"peak_triangles", result.peak_triangles},
                        {"collapses", result.collapses},
                        {"triangles_per_layer", result.triangles_per_layer},
-                       {"seconds", {{"total", result.seconds},
-                                    {"marching_cubes", extract_s},
-                                    {"insert", insert_s},
-                                    {"simplify", simplify_s},
-                                    {"dump", dump_s}}},
+                       {"blocks", result.blocks},
+                       {"seconds",
+                        {{"total", result.seconds},
+                         {"marching_cubes", extract_s},
+                         {"insert", insert_s},
+                         {"simplify", simplify_s},
+                         {"dump", dump_s}}},
                        {"peak_rss_kb", result.peak_rss_kb}};
   store.end_run(result.run, result.statistics.dump());
   return result;

@@ -23,10 +23,10 @@ const char* to_string(ExtractMode mode);
 
 struct ExtractSettings {
   float iso = 0.0f;
-  double max_error = 0.5; // E0, voxels
-  double isotropy = 0.4;  // alpha
-  int axis = 0;           // 0 = i (inline), 1 = j, 2 = k
-  std::int64_t block_size = 128; // leaf edge of the block tree, in cells
+  double max_error = 0.5;      // E0, voxels
+  double isotropy = 0.4;       // alpha
+  int axis = 0;                // 0 = i (inline), 1 = j, 2 = k
+  std::int64_t block_size = 0; // leaf edge of the block tree, in cells (0: one block)
   ExtractMode mode = ExtractMode::tandem_dump;
   bool extended_time_lag = true;
   nlohmann::json parameters; // extra description recorded with the run (the recipe, the command)
@@ -39,7 +39,8 @@ struct ExtractResult {
   std::uint64_t input_triangles = 0; // produced by marching cubes
   std::uint64_t peak_triangles = 0;  // most held in memory at a layer boundary
   std::uint64_t collapses = 0;
-  std::vector<std::uint64_t> triangles_per_layer;
+  std::vector<std::uint64_t> triangles_per_layer; // with blocks: every leaf's layers in tree order
+  nlohmann::json blocks;                          // leaves, merges, seam collapses, bytes shipped, seconds per phase
   double seconds = 0.0;
   std::int64_t peak_rss_kb = 0;
   nlohmann::json statistics; // what was recorded in the store's run table
@@ -49,7 +50,8 @@ struct ExtractResult {
 int parse_axis(const std::string& text);
 
 // Extracts the isosurface of `volume` at settings.iso into `store` (which must be writable and
-// have the volume's geometry). Components are committed as they finish, so an interrupted run
+// have the volume's geometry), as one block or, with settings.block_size > 0, through the block
+// tree (tandem::extract_blocks). Components are committed as they finish, so an interrupted run
 // keeps them; running again commits the rest (keys are deterministic). Throws what the volume,
 // the algorithm and the store throw, and Cancelled.
 ExtractResult extract_to_store(const volume::Volume& volume, store::ComponentStore& store,

@@ -21,7 +21,9 @@ namespace geotandem::workflow {
 namespace {
 
 using Clock = std::chrono::steady_clock;
-double since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
+double since(Clock::time_point t) {
+  return std::chrono::duration<double>(Clock::now() - t).count();
+}
 
 std::string utc_now() {
   std::time_t t = std::time(nullptr);
@@ -163,7 +165,8 @@ RunOutcome run_workflow(const Recipe& recipe, const PluginRegistry& plugins, con
   for (const auto& step : recipe.steps) {
     if (step.kind == StepKind::attribute) {
       std::vector<std::shared_ptr<const volume::Volume>> inputs;
-      for (const auto& name : step.inputs) inputs.push_back(results.at(name));
+      for (const auto& name : step.inputs)
+        inputs.push_back(results.at(name));
       try {
         results[step.as] = plugins.get(step.name).make_attribute(std::move(inputs), step.params);
       } catch (const Error& e) {
@@ -177,8 +180,7 @@ RunOutcome run_workflow(const Recipe& recipe, const PluginRegistry& plugins, con
     }
   }
   if (settings.dry_run) {
-    log.info("dry run: the recipe is valid and its chain builds; the extraction would read " +
-             extract_input->source());
+    log.info("dry run: the recipe is valid and its chain builds; the extraction would read " + extract_input->source());
     return outcome;
   }
 
@@ -187,7 +189,8 @@ RunOutcome run_workflow(const Recipe& recipe, const PluginRegistry& plugins, con
   for (const auto& step : recipe.steps) {
     if (step.kind == StepKind::component) break;
     nlohmann::json s = {{"step", step.name}, {"as", step.as}, {"inputs", step.inputs}};
-    for (const auto& [k, v] : step.params) s["params"][k] = v.text;
+    for (const auto& [k, v] : step.params)
+      s["params"][k] = v.text;
     extract_identity["steps"].push_back(s);
   }
   std::string extract_print = fingerprint(extract_identity);

@@ -30,7 +30,8 @@ workflow::ParamSpec convert(const attributes::ParamSpec& p) {
 class BuiltinAttribute final : public workflow::Plugin {
 public:
   explicit BuiltinAttribute(const attributes::AttributeSpec& spec) : spec_(spec) {
-    for (const auto& p : spec.params) params_.push_back(convert(p));
+    for (const auto& p : spec.params)
+      params_.push_back(convert(p));
   }
   const std::string& name() const override { return spec_.name; }
   workflow::PluginKind kind() const override { return workflow::PluginKind::attribute; }
@@ -66,7 +67,8 @@ private:
 } // namespace
 
 void register_attributes(workflow::PluginRegistry& registry) {
-  for (const auto& spec : attributes::builtin_attributes()) registry.add(std::make_shared<BuiltinAttribute>(spec));
+  for (const auto& spec : attributes::builtin_attributes())
+    registry.add(std::make_shared<BuiltinAttribute>(spec));
 }
 
 } // namespace geotandem::builtin

@@ -16,12 +16,12 @@ namespace geotandem::mesh {
 struct ComponentStats {
   std::uint64_t vertex_count = 0;
   std::uint64_t triangle_count = 0;
-  bool closed = false;          // every edge has exactly two triangles (no border)
-  bool cut_by_border = false;   // touches the cube's outer faces (then it cannot be closed)
-  double volume = 0.0;          // enclosed volume by the divergence theorem; 0 when not closed
+  bool closed = false;        // every edge has exactly two triangles (no border)
+  bool cut_by_border = false; // touches the cube's outer faces (then it cannot be closed)
+  double volume = 0.0;        // enclosed volume by the divergence theorem; 0 when not closed
   double area = 0.0;
-  std::array<double, 3> centroid{};   // area-weighted centroid of the surface, world x, y, z
-  std::array<double, 3> box_min{};    // axis-aligned bounds in world coordinates
+  std::array<double, 3> centroid{}; // area-weighted centroid of the surface, world x, y, z
+  std::array<double, 3> box_min{};  // axis-aligned bounds in world coordinates
   std::array<double, 3> box_max{};
   // Oriented bounding box from the principal axes of the surface (area-weighted covariance):
   // axes[0] is the longest. Half extents along each axis.

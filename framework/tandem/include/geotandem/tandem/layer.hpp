@@ -17,9 +17,10 @@ namespace geotandem::tandem {
 struct LatticeIds {
   volume::Index3 shape{0, 0, 0};
   std::uint64_t id(std::int64_t i, std::int64_t j, std::int64_t k, int axis) const {
-    return 3u * ((static_cast<std::uint64_t>(i) * static_cast<std::uint64_t>(shape[1]) + static_cast<std::uint64_t>(j)) *
-                     static_cast<std::uint64_t>(shape[2]) +
-                 static_cast<std::uint64_t>(k)) +
+    return 3u *
+               ((static_cast<std::uint64_t>(i) * static_cast<std::uint64_t>(shape[1]) + static_cast<std::uint64_t>(j)) *
+                    static_cast<std::uint64_t>(shape[2]) +
+                static_cast<std::uint64_t>(k)) +
            static_cast<std::uint64_t>(axis);
   }
   // The start sample and axis of an id.
@@ -31,10 +32,10 @@ struct LatticeIds {
 // Vertices are listed once per layer, including those on cross-section k-1 that the previous
 // layer already produced (the consumer keeps the first copy; positions are bit-identical).
 struct Layer {
-  int axis = 0;                  // extraction axis (0, 1 or 2)
-  std::int64_t rank = 0;         // k: the cross-section this layer ends on (global index)
-  std::vector<std::uint64_t> vertex_ids;          // lattice-edge id per vertex
-  std::vector<std::array<double, 3>> positions;   // index coordinates (i, j, k) per vertex
+  int axis = 0;                                        // extraction axis (0, 1 or 2)
+  std::int64_t rank = 0;                               // k: the cross-section this layer ends on (global index)
+  std::vector<std::uint64_t> vertex_ids;               // lattice-edge id per vertex
+  std::vector<std::array<double, 3>> positions;        // index coordinates (i, j, k) per vertex
   std::vector<std::array<std::uint32_t, 3>> triangles; // into vertex_ids/positions, oriented outward
 
   void clear() {

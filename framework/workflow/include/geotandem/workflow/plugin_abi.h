@@ -36,13 +36,13 @@ typedef enum gt_param_type {
 
 /* One parameter the plugin accepts. Drives recipe validation, `geotandem plugins NAME` and docs. */
 typedef struct gt_param_spec {
-  const char* name;          /* recipe key, [a-z0-9_]+ */
+  const char* name; /* recipe key, [a-z0-9_]+ */
   gt_param_type type;
   const char* default_value; /* as text; NULL: the parameter is required */
   const char* help;          /* one sentence, with the unit */
   double min_value;          /* for INT and FLOAT: inclusive bounds; ignored when min > max */
   double max_value;
-  const char* choices;       /* for CHOICE: "a|b|c"; NULL otherwise */
+  const char* choices; /* for CHOICE: "a|b|c"; NULL otherwise */
 } gt_param_spec;
 
 /* Parameter values, validated by the host against the specs before any callback is made. */
@@ -92,9 +92,9 @@ typedef struct gt_plugin_descriptor {
   uint32_t abi_major;   /* GEOTANDEM_PLUGIN_ABI_MAJOR as the plugin was built */
   uint32_t abi_minor;
   gt_plugin_kind kind;
-  const char* name;     /* the name recipes use: [a-z0-9_]+ */
-  const char* version;  /* the plugin's own version, free text */
-  const char* summary;  /* one line */
+  const char* name;    /* the name recipes use: [a-z0-9_]+ */
+  const char* version; /* the plugin's own version, free text */
+  const char* summary; /* one line */
   const gt_param_spec* params;
   uint32_t param_count;
   gt_attribute_ops attribute; /* for GT_PLUGIN_ATTRIBUTE */

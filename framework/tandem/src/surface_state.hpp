@@ -22,18 +22,6 @@ struct StateEdge {
   EdgeRecord record;
 };
 
-// The halfedge from `from` to `to`, or an invalid handle when they are not neighbours.
-inline HH find_halfedge(const TriMesh& m, VH from, VH to) {
-  const HH start = m.halfedge_handle(from);
-  if (!start.is_valid()) return HH();
-  HH g = start;
-  do {
-    if (m.to_vertex_handle(g) == to) return g;
-    g = next_outgoing(m, g);
-  } while (g != start);
-  return HH();
-}
-
 struct SurfaceState {
   volume::Geometry cube;
   Region region;

@@ -15,17 +15,6 @@ bool open_vertex(const TriMesh& m, VH v) {
   return !h.is_valid() || is_boundary_halfedge(m, h);
 }
 
-HH find_halfedge(const TriMesh& m, VH from, VH to) {
-  const HH start = m.halfedge_handle(from);
-  if (!start.is_valid()) return HH();
-  HH g = start;
-  do {
-    if (m.to_vertex_handle(g) == to) return g;
-    g = next_outgoing(m, g);
-  } while (g != start);
-  return HH();
-}
-
 // Around the vertex where `in` starts, the incoming boundary halfedge that ends the fan beginning
 // with the outgoing boundary halfedge `in`.
 HH end_of_fan(const TriMesh& m, HH in) {

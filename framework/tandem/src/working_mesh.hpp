@@ -82,6 +82,18 @@ inline HH next_outgoing(const TriMesh& m, HH h) {
   return m.next_halfedge_handle(m.opposite_halfedge_handle(h));
 }
 
+// The halfedge from `from` to `to`, or an invalid handle when they are not neighbours.
+inline HH find_halfedge(const TriMesh& m, VH from, VH to) {
+  const HH start = m.halfedge_handle(from);
+  if (!start.is_valid()) return HH();
+  HH g = start;
+  do {
+    if (m.to_vertex_handle(g) == to) return g;
+    g = next_outgoing(m, g);
+  } while (g != start);
+  return HH();
+}
+
 inline Vec3 to_vec(const TriMesh::Point& p) {
   return {p[0], p[1], p[2]};
 }

@@ -34,7 +34,7 @@ struct Filters {
     min_vertices_opt = cmd->add_option("--min-vertices", min_vertices, "fewest vertices");
     max_vertices_opt = cmd->add_option("--max-vertices", max_vertices, "most vertices");
     cmd->add_flag("--closed", closed, "closed surfaces only (not cut by the cube border)");
-    cmd->add_option("--selection", selection, "members of this named selection only");
+    cmd->add_option("--selection,--select", selection, "members of this named selection only (e.g. kept, sorted)");
     cmd->add_option("--sort", sort, "key, volume (largest first), azimuth, or selection (the selection's own order)")
         ->capture_default_str();
     cmd->add_flag("--reverse", reverse, "reverse the sort order");

@@ -21,6 +21,19 @@ TEST(Progress, PlainLinesAtEachTenPercent) {
   EXPECT_NE(text.find("done"), std::string::npos);
 }
 
+TEST(Progress, FewUnitsGiveNoDecileLines) {
+  // Eight components exported in a blink: "started" and "done", not a line per component.
+  std::ostringstream out;
+  StreamProgress progress(out, false, std::chrono::hours(1));
+  progress.begin("exporting", 8, "components");
+  for (int n = 0; n < 8; ++n)
+    progress.advance();
+  progress.end();
+  const std::string text = out.str();
+  EXPECT_EQ(std::count(text.begin(), text.end(), '\n'), 2) << text;
+  EXPECT_NE(text.find("100% (8/8 components)"), std::string::npos) << text;
+}
+
 TEST(Progress, BarRedrawsInPlace) {
   std::ostringstream out;
   StreamProgress progress(out, true);

@@ -45,7 +45,8 @@ void StreamProgress::update(std::uint64_t done) {
     return;
   }
   int decile = total_ > 0 ? static_cast<int>(10 * done_ / total_) : -1;
-  bool step = total_ > 0 && decile > last_decile_ && decile < 10;
+  // Fewer than ten units: no decile lines (each unit would be one); the time-based line remains.
+  bool step = total_ >= 10 && decile > last_decile_ && decile < 10;
   if (step || now - last_draw_ >= min_interval_) {
     if (decile > last_decile_) last_decile_ = decile;
     last_draw_ = now;

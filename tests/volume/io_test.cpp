@@ -23,24 +23,12 @@ using namespace geotandem::volume;
 using geotandem::testing::ScratchDir;
 using geotandem::volume::testing::formula_cube;
 using geotandem::volume::testing::formula_samples;
+using geotandem::volume::testing::message_of;
 using geotandem::volume::testing::read_bytes;
 using geotandem::volume::testing::sample_geometry;
 using geotandem::volume::testing::write_bytes;
 
 namespace {
-
-template <class E> std::string message_of(const std::function<void()>& action) {
-  try {
-    action();
-  } catch (const E& e) {
-    return e.what();
-  } catch (const std::exception& e) {
-    ADD_FAILURE() << "wrong exception type: " << e.what();
-    return {};
-  }
-  ADD_FAILURE() << "no exception";
-  return {};
-}
 
 bool contains(const std::string& text, const std::string& part) {
   return text.find(part) != std::string::npos;

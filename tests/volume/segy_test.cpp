@@ -1,6 +1,6 @@
 // SEG-Y: files written here through segyio itself (not through our writer) with known line
 // numbers, coordinates and samples, read back through open_volume; our writer's files read back
-// by us and by segyio; broken files refused with messages that name the file.
+// by us and by segyio. Broken files: segy_broken_test.cpp.
 
 #include <gtest/gtest.h>
 #include <segyio/segy.h>
@@ -20,6 +20,7 @@
 #include "geotandem/volume/io.hpp"
 #include "io_fixtures.hpp"
 #include "scratch.hpp"
+#include "segy_fixtures.hpp"
 
 namespace fs = std::filesystem;
 using namespace geotandem;
@@ -28,110 +29,13 @@ using geotandem::testing::ScratchDir;
 using geotandem::volume::testing::formula;
 using geotandem::volume::testing::formula_cube;
 using geotandem::volume::testing::formula_samples;
+using geotandem::volume::testing::message_of;
 using geotandem::volume::testing::probe_boxes;
 using geotandem::volume::testing::sample_geometry;
+using geotandem::volume::testing::SegySpec;
+using geotandem::volume::testing::write_with_segyio;
 
 namespace {
-
-// What the test writes through segyio's C API.
-struct SegySpec {
-  int ni = 7, nj = 9, ns = 50;
-  int il0 = 100, il_step = 2, xl0 = 300, xl_step = 1;
-  int format = SEGY_IEEE_FLOAT_4_BYTE;
-  bool crossline_sorted = false;
-  int interval_us = 4000;
-  int delay_ms = 0;
-  int scalar = -100;
-  bool coordinates = true;
-  SurveyAffine affine{500000.25, 10.0, -6.0, 6700000.5, 8.0, 7.5};
-  int offsets = 1;
-  std::vector<std::array<int, 2>> missing;   // (i, j) of traces left out
-  bool swap_two_traces = false;              // trade the places of two inner traces
-  bool shuffle = false;                      // traces in a random order
-  bool gap_in_inlines = false;               // skip one inline number halfway
-  int extended_headers = 0;                  // extended textual headers after the binary header
-  bool counts_in_trace_headers_only = false; // binary header samples and interval left at 0
-
-  long trace0() const { return 3600L + 3200L * extended_headers; }
-  int inline_number(int i) const { return il0 + (i + (gap_in_inlines && i >= ni / 2 ? 1 : 0)) * il_step; }
-};
-
-double stored_factor(int scalar) {
-  return scalar == 0 ? 1.0 : scalar > 0 ? 1.0 / scalar : -scalar;
-}
-
-void write_with_segyio(const std::string& path, const SegySpec& s) {
-  segy_file* fp = segy_open(path.c_str(), "w+b");
-  ASSERT_NE(fp, nullptr);
-  std::string text(3200, ' ');
-  text.replace(0, 20, "C01 TEST CUBE SEGYIO");
-  ASSERT_EQ(segy_write_textheader(fp, 0, text.c_str()), SEGY_OK);
-  std::array<char, SEGY_BINARY_HEADER_SIZE> bin{};
-  if (!s.counts_in_trace_headers_only) {
-    segy_set_bfield(bin.data(), SEGY_BIN_INTERVAL, s.interval_us);
-    segy_set_bfield(bin.data(), SEGY_BIN_SAMPLES, s.ns);
-  }
-  segy_set_bfield(bin.data(), SEGY_BIN_FORMAT, s.format);
-  segy_set_bfield(bin.data(), SEGY_BIN_EXT_HEADERS, s.extended_headers);
-  ASSERT_EQ(segy_write_binheader(fp, bin.data()), SEGY_OK);
-  for (int n = 0; n < s.extended_headers; ++n)
-    ASSERT_EQ(segy_write_textheader(fp, n + 1, text.c_str()), SEGY_OK);
-  // Unsupported codes are laid out as 4-byte IEEE: only the code in the binary header matters.
-  const int layout = s.format == SEGY_SIGNED_SHORT_2_BYTE ? SEGY_IEEE_FLOAT_4_BYTE : s.format;
-  const int bytes = segy_trsize(layout, s.ns);
-
-  // Positions in file order.
-  std::vector<std::array<int, 2>> order;
-  for (int outer = 0; outer < (s.crossline_sorted ? s.nj : s.ni); ++outer)
-    for (int inner = 0; inner < (s.crossline_sorted ? s.ni : s.nj); ++inner) {
-      std::array<int, 2> ij = s.crossline_sorted ? std::array<int, 2>{inner, outer} : std::array<int, 2>{outer, inner};
-      bool skip = false;
-      for (const auto& m : s.missing)
-        skip = skip || m == ij;
-      if (!skip) order.push_back(ij);
-    }
-  if (s.swap_two_traces) std::swap(order[order.size() / 2], order[order.size() / 2 + 1]);
-  if (s.shuffle) std::shuffle(order.begin(), order.end(), std::mt19937(7));
-
-  int trace = 0;
-  const double factor = stored_factor(s.scalar);
-  for (const auto& [i, j] : order)
-    for (int offset = 1; offset <= s.offsets; ++offset, ++trace) {
-      std::array<char, SEGY_TRACE_HEADER_SIZE> h{};
-      segy_set_field(h.data(), SEGY_TR_INLINE, s.inline_number(i));
-      segy_set_field(h.data(), SEGY_TR_CROSSLINE, s.xl0 + j * s.xl_step);
-      segy_set_field(h.data(), SEGY_TR_OFFSET, offset);
-      segy_set_field(h.data(), SEGY_TR_SAMPLE_COUNT, s.ns);
-      segy_set_field(h.data(), SEGY_TR_SAMPLE_INTER, s.interval_us);
-      segy_set_field(h.data(), SEGY_TR_DELAY_REC_TIME, s.delay_ms);
-      if (s.coordinates) {
-        auto xy = s.affine.apply(i, j);
-        segy_set_field(h.data(), SEGY_TR_SOURCE_GROUP_SCALAR, s.scalar);
-        segy_set_field(h.data(), SEGY_TR_CDP_X, static_cast<int>(std::lround(xy[0] * factor)));
-        segy_set_field(h.data(), SEGY_TR_CDP_Y, static_cast<int>(std::lround(xy[1] * factor)));
-      }
-      ASSERT_EQ(segy_write_traceheader(fp, trace, h.data(), s.trace0(), bytes), SEGY_OK);
-      std::vector<float> samples(static_cast<std::size_t>(s.ns));
-      for (int k = 0; k < s.ns; ++k)
-        samples[static_cast<std::size_t>(k)] = formula(i, j, k);
-      segy_from_native(layout, s.ns, samples.data());
-      ASSERT_EQ(segy_writetrace(fp, trace, samples.data(), s.trace0(), bytes), SEGY_OK);
-    }
-  ASSERT_EQ(segy_close(fp), SEGY_OK);
-}
-
-template <class E> std::string message_of(const std::function<void()>& action) {
-  try {
-    action();
-  } catch (const E& e) {
-    return e.what();
-  } catch (const std::exception& e) {
-    ADD_FAILURE() << "wrong exception type: " << e.what();
-    return {};
-  }
-  ADD_FAILURE() << "no exception";
-  return {};
-}
 
 // ---- Files written by segyio, read by us --------------------------------------------------------
 
@@ -372,104 +276,6 @@ TEST(SegyWrite, RefusesWhatSegyCannotHoldAndLeavesNoFile) {
     EXPECT_THROW(write_volume(*cube, path), InvalidArgument);
     EXPECT_FALSE(fs::exists(path));
   }
-}
-
-// ---- Broken files -------------------------------------------------------------------------------
-
-TEST(SegyBroken, TruncatedFileNamesTheFileAndBothSizes) {
-  ScratchDir dir;
-  const std::string path = dir.file("truncated.sgy");
-  write_with_segyio(path, SegySpec{});
-  const auto full = fs::file_size(path);
-  fs::resize_file(path, full - 100);
-  const std::string message = message_of<FormatError>([&] { open_volume(path); });
-  EXPECT_NE(message.find(path), std::string::npos) << message;
-  EXPECT_NE(message.find(std::to_string(full - 100)), std::string::npos) << message;
-  EXPECT_NE(message.find(std::to_string(full)), std::string::npos) << message;
-
-  // Cut at a trace boundary inside the second inline: whole traces, but not a whole grid.
-  fs::resize_file(path, 3600 + 14 * (240 + 200));
-  const std::string cut = message_of<FormatError>([&] { open_volume(path); });
-  EXPECT_NE(cut.find("cut short"), std::string::npos) << cut;
-  EXPECT_NE(cut.find(path), std::string::npos) << cut;
-}
-
-TEST(SegyBroken, UnevenLineNumbersAreNamed) {
-  ScratchDir dir;
-  SegySpec s;
-  s.gap_in_inlines = true; // 100, 102, 104, 108, ...
-  const std::string path = dir.file("gap.sgy");
-  write_with_segyio(path, s);
-  const std::string message = message_of<FormatError>([&] { open_volume(path); });
-  EXPECT_NE(message.find("104 then 108"), std::string::npos) << message;
-  EXPECT_NE(message.find(path), std::string::npos) << message;
-}
-
-TEST(SegyBroken, PreStackFileIsRefusedWithTheOffsetCount) {
-  ScratchDir dir;
-  SegySpec s;
-  s.offsets = 3;
-  const std::string path = dir.file("gathers.sgy");
-  write_with_segyio(path, s);
-  const std::string message = message_of<FormatError>([&] { open_volume(path); });
-  EXPECT_NE(message.find("pre-stack"), std::string::npos) << message;
-  EXPECT_NE(message.find("3 traces"), std::string::npos) << message;
-  EXPECT_NE(message.find(path), std::string::npos) << message;
-}
-
-TEST(SegyBroken, MissingTracesAreRefused) {
-  ScratchDir dir;
-  for (bool crossline_sorted : {false, true}) {
-    SegySpec s;
-    s.crossline_sorted = crossline_sorted;
-    s.missing = {{3, 4}};
-    const std::string path = dir.file(crossline_sorted ? "xl.sgy" : "il.sgy");
-    write_with_segyio(path, s);
-    const std::string message = message_of<FormatError>([&] { open_volume(path); });
-    EXPECT_NE(message.find(path), std::string::npos) << message;
-    EXPECT_NE(message.find("pad"), std::string::npos) << message;
-  }
-}
-
-TEST(SegyBroken, MisplacedTraceIsCaughtWhenRead) {
-  ScratchDir dir;
-  SegySpec s;
-  s.swap_two_traces = true;
-  const std::string path = dir.file("swapped.sgy");
-  write_with_segyio(path, s);
-  // The corners are in place, so opening works; the swapped traces must not be read as if they
-  // were where the grid says.
-  auto volume = open_volume(path);
-  const std::string message = message_of<FormatError>([&] { volume->read(volume->geometry().bounds()); });
-  EXPECT_NE(message.find(path), std::string::npos) << message;
-  EXPECT_NE(message.find("trace"), std::string::npos) << message;
-  // Boxes away from the swapped pair still read.
-  EXPECT_EQ(volume->read(Box{{0, 0, 0}, {1, 9, 50}}), formula_samples(Box{{0, 0, 0}, {1, 9, 50}}));
-}
-
-TEST(SegyBroken, ShuffledTracesAreRefused) {
-  ScratchDir dir;
-  SegySpec s;
-  s.shuffle = true;
-  const std::string path = dir.file("shuffled.sgy");
-  write_with_segyio(path, s);
-  // Refused at open or, at the latest, when the traces are read: never read into the wrong place.
-  const std::string message = message_of<FormatError>([&] {
-    auto volume = open_volume(path);
-    volume->read(volume->geometry().bounds());
-  });
-  EXPECT_NE(message.find(path), std::string::npos) << message;
-}
-
-TEST(SegyBroken, UnsupportedSampleFormatIsNamed) {
-  ScratchDir dir;
-  SegySpec s;
-  s.format = SEGY_SIGNED_SHORT_2_BYTE;
-  const std::string path = dir.file("int16.sgy");
-  write_with_segyio(path, s);
-  const std::string message = message_of<FormatError>([&] { open_volume(path); });
-  EXPECT_NE(message.find("format code 3"), std::string::npos) << message;
-  EXPECT_NE(message.find(path), std::string::npos) << message;
 }
 
 } // namespace

@@ -20,6 +20,7 @@
 
 #include <sys/resource.h>
 
+#include "bench_args.hpp"
 #include "geotandem/mesh/component.hpp"
 #include "geotandem/tandem/marching_cubes.hpp"
 #include "geotandem/tandem/tandem.hpp"
@@ -99,16 +100,9 @@ public:
   std::uint64_t triangles = 0;
 };
 
-std::vector<std::string> split(const std::string& text) {
-  std::vector<std::string> out;
-  std::stringstream ss(text);
-  std::string item;
-  while (std::getline(ss, item, ','))
-    out.push_back(item);
-  return out;
-}
-
 } // namespace
+
+using geotandem::bench::split;
 
 int main(int argc, char** argv) {
   const std::int64_t n = argc > 1 ? std::atoll(argv[1]) : 256;

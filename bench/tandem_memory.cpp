@@ -31,6 +31,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include "bench_args.hpp"
 #include "geotandem/mesh/component.hpp"
 #include "geotandem/synth/synthetic.hpp"
 #include "geotandem/tandem/marching_cubes.hpp"
@@ -265,16 +266,9 @@ void write_svg(const std::string& path, const std::vector<Result>& results, cons
   if (!out) throw std::runtime_error("cannot write " + path);
 }
 
-std::vector<std::string> split(const std::string& text) {
-  std::vector<std::string> out;
-  std::stringstream ss(text);
-  std::string item;
-  while (std::getline(ss, item, ','))
-    out.push_back(item);
-  return out;
-}
-
 } // namespace
+
+using geotandem::bench::split;
 
 int main(int argc, char** argv) {
   std::int64_t n = 512;

@@ -91,6 +91,16 @@ Format sniff_format(const std::string& path) {
   auto status = fs::status(path, ec);
   if (ec || !fs::exists(status))
     throw IoError("no such file or directory", {path}, "check the path; formats are found from the file itself");
+  if (!fs::is_directory(status) && !fs::is_regular_file(status)) {
+    // A FIFO or a device would block or never end; neither is a cube.
+    const char* kind = fs::is_fifo(status)             ? "a FIFO (named pipe)"
+                       : fs::is_character_file(status) ? "a character device"
+                       : fs::is_block_file(status)     ? "a block device"
+                       : fs::is_socket(status)         ? "a socket"
+                                                       : "not a regular file";
+    throw IoError(std::string("cannot read a cube from ") + kind, {path},
+                  "give a cube file (or a Zarr directory); copy streamed data to a file first");
+  }
   if (fs::is_directory(status)) {
     for (const char* marker : {".zgroup", ".zarray", "zarr.json"})
       if (fs::exists(fs::path(path) / marker)) return Format::zarr;

@@ -18,6 +18,7 @@
 
 #include "formats.hpp"
 #include "geotandem/core/error.hpp"
+#include "geotandem/volume/size_guard.hpp"
 
 namespace fs = std::filesystem;
 
@@ -343,7 +344,13 @@ std::unique_ptr<Volume> open_raw(const std::string& path, const OpenOptions&) {
   std::error_code ec;
   const std::uintmax_t size = fs::file_size(path, ec);
   if (ec) throw IoError("cannot get the size of the raw data file: " + ec.message(), {path});
-  const std::uintmax_t wanted = g.sample_count() * sizeof(float);
+  const auto counted = checked_byte_count(g.shape, sizeof(float));
+  if (!counted)
+    throw FormatError("the shape " + g.bounds().to_string() + " in " + sidecar +
+                          " needs more than 2^64 bytes of float32; the raw data file has " + std::to_string(size) +
+                          " bytes",
+                      {sidecar}, "check the shape in the sidecar");
+  const std::uintmax_t wanted = *counted;
   if (size != wanted)
     throw FormatError("the raw data file has " + std::to_string(size) + " bytes but the shape " +
                           g.bounds().to_string() + " in " + sidecar + " needs " + std::to_string(wanted) +

@@ -8,6 +8,7 @@
 #include "geotandem/tandem/blocks.hpp"
 #include "geotandem/tandem/marching_cubes.hpp"
 #include "geotandem/tandem/tandem.hpp"
+#include "geotandem/volume/fingerprint.hpp"
 
 namespace geotandem::workflow {
 
@@ -73,6 +74,19 @@ ExtractResult extract_to_store(const volume::Volume& volume, store::ComponentSto
   parameters["mode"] = to_string(settings.mode);
   parameters["extended_time_lag"] = settings.extended_time_lag;
   parameters["source"] = volume.source();
+  // reliab: what decides the components. The store refuses a run of another identity (it would mix
+  // two extractions); a rerun of the same one resumes.
+  parameters["identity"] = {{"iso", settings.iso},
+                            {"max_error", settings.max_error},
+                            {"isotropy", settings.isotropy},
+                            {"axis", parameters["axis"]},
+                            {"block_size", settings.block_size},
+                            {"mode", to_string(settings.mode)},
+                            {"extended_time_lag", settings.extended_time_lag},
+                            {"input", settings.parameters.contains("input_content")
+                                          ? settings.parameters["input_content"]
+                                          : volume::input_fingerprint(volume.source())},
+                            {"chain", settings.parameters.value("steps", nlohmann::json::array())}};
 
   ExtractResult result;
   result.run = store.begin_run(parameters.dump());
@@ -137,6 +151,13 @@ ExtractResult extract_to_store(const volume::Volume& volume, store::ComponentSto
                          {"simplify", simplify_s},
                          {"dump", dump_s}}},
                        {"peak_rss_kb", result.peak_rss_kb}};
+  // reliab: an empty result is almost always an isovalue outside the data: say so.
+  if (result.components == 0 && result.duplicates == 0) {
+    const std::string warning = "no component was extracted: is the isovalue " + std::to_string(settings.iso) +
+                                " inside the cube's value range? ('geotandem info --stats' shows it)";
+    log.warning(warning);
+    result.statistics["warnings"] = {warning};
+  }
   store.end_run(result.run, result.statistics.dump());
   return result;
 }

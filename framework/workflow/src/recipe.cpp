@@ -288,7 +288,13 @@ void apply_override(YAML::Node root, const std::string& text) {
       node.reset(node[part]);
     }
   }
-  node[parts.back()] = YAML::Load(value);
+  // reliab: a malformed value is the --set's fault, named as such (not "base.yaml:1:1").
+  try {
+    node[parts.back()] = detail::load_single_document(value, "--set " + text);
+  } catch (const YAML::Exception& e) {
+    throw InvalidArgument("--set " + text + ": the value is not valid YAML: " + e.msg, {},
+                          "quote the value, e.g. --set 'key=\"text\"'");
+  }
 }
 
 nlohmann::json to_json(const Recipe& r) {
@@ -324,13 +330,8 @@ nlohmann::json to_json(const Recipe& r) {
 
 Recipe parse_recipe(const std::string& text, const std::string& name, const PluginRegistry& plugins,
                     const std::vector<std::string>& overrides) {
-  YAML::Node root;
-  try {
-    root = YAML::Load(text);
-  } catch (const YAML::ParserException& e) {
-    throw InvalidArgument("not valid YAML: " + e.msg, {name, e.mark.line + 1, e.mark.column + 1},
-                          "check indentation and the ':' after each key");
-  }
+  // reliab: one document, no duplicate keys, no control characters (yaml_reader.cpp).
+  YAML::Node root = detail::load_single_document(text, name);
   for (const auto& o : overrides)
     apply_override(root, o);
 
@@ -367,9 +368,8 @@ Recipe parse_recipe(const std::string& text, const std::string& name, const Plug
 }
 
 Recipe load_recipe(const std::string& path, const PluginRegistry& plugins, const std::vector<std::string>& overrides) {
-  std::ifstream in(path);
-  if (!in) throw IoError("cannot read the recipe", {path}, "check the path");
-  std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  // reliab: regular files only (a FIFO or /dev/zero would block or never end), with a size limit.
+  std::string text = detail::read_recipe_text(path);
   return parse_recipe(text, path, plugins, overrides);
 }
 

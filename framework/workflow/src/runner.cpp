@@ -10,6 +10,7 @@
 #include "geotandem/core/error.hpp"
 #include "geotandem/store/export.hpp"
 #include "geotandem/synth/synthetic.hpp"
+#include "geotandem/volume/fingerprint.hpp"
 #include "geotandem/volume/io.hpp"
 #include "geotandem/workflow/component_steps.hpp"
 #include "geotandem/workflow/extract_step.hpp"
@@ -193,11 +194,15 @@ RunOutcome run_workflow(const Recipe& recipe, const PluginRegistry& plugins, con
       s["params"][k] = v.text;
     extract_identity["steps"].push_back(s);
   }
+  // reliab: the input file's content (size, mtime, sampled checksum), not only its path.
+  const nlohmann::json input_content =
+      recipe.input.synthetic ? nlohmann::json(recipe.canonical["input"]) : volume::input_fingerprint(input->source());
+  extract_identity["input_content"] = input_content;
   std::string extract_print = fingerprint(extract_identity);
 
   if (settings.fresh && fs::exists(store_dir)) {
     log.info("--fresh: removing the previous store " + store_dir.string());
-    fs::remove_all(store_dir);
+    store::ComponentStore::remove(store_dir); // reliab: refuses while another process writes it
     state.clear();
   }
   if (store::ComponentStore::exists(store_dir) && state.fingerprint_of("extract") != extract_print)
@@ -232,7 +237,7 @@ RunOutcome run_workflow(const Recipe& recipe, const PluginRegistry& plugins, con
     } else {
       state.set("extract", {{"fingerprint", extract_print}, {"done", false}});
       ExtractSettings e = extract_settings(*extract);
-      e.parameters = {{"recipe", recipe.path}, {"steps", extract_identity["steps"]}};
+      e.parameters = {{"recipe", recipe.path}, {"steps", extract_identity["steps"]}, {"input_content", input_content}};
       auto progress = progress_of(settings);
       ExtractResult r = extract_to_store(*extract_input, store, e, log, *progress, cancel);
       state.set("extract", {{"fingerprint", extract_print},
@@ -298,6 +303,7 @@ RunOutcome run_workflow(const Recipe& recipe, const PluginRegistry& plugins, con
     store::ExportOptions options;
     options.format = store::parse_export_format(e.format);
     options.per_component = e.per_component;
+    options.overwrite = true; // reliab: the run's own outputs, in its output directory
     auto progress = progress_of(settings);
     auto summary = store::export_components(store, rows, out_dir / e.path, options, *progress, cancel);
     report.steps.push_back({"export " + e.format, since(t), rows.size(), summary.components, e.path});

@@ -1,6 +1,8 @@
 #include "geotandem/workflow/extract_step.hpp"
 
+#include <charconv>
 #include <chrono>
+#include <cstdlib>
 #include <fstream>
 
 #include "geotandem/core/error.hpp"
@@ -76,7 +78,10 @@ ExtractResult extract_to_store(const volume::Volume& volume, store::ComponentSto
   parameters["source"] = volume.source();
   // reliab: what decides the components. The store refuses a run of another identity (it would mix
   // two extractions); a rerun of the same one resumes.
-  parameters["identity"] = {{"iso", settings.iso},
+  char iso_text[32]; // the float's shortest text, so that 0.6 reads 0.6 in messages
+  auto iso_end = std::to_chars(iso_text, iso_text + sizeof iso_text - 1, settings.iso).ptr;
+  *iso_end = '\0';
+  parameters["identity"] = {{"iso", std::strtod(iso_text, nullptr)},
                             {"max_error", settings.max_error},
                             {"isotropy", settings.isotropy},
                             {"axis", parameters["axis"]},

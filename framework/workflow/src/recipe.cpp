@@ -5,6 +5,7 @@
 #include <set>
 
 #include "geotandem/core/error.hpp"
+#include "geotandem/volume/size_guard.hpp"
 #include "geotandem/workflow/suggest.hpp"
 #include "yaml_reader.hpp"
 
@@ -54,6 +55,12 @@ void parse_input(MapReader& m, InputSpec& in) {
         if (t.empty() || *end != '\0' || v < 16 || v > 100000)
           throw error_at(m.file(), shape[a], "shape entry '" + t + "' must be an integer from 16 to 100000");
         in.shape[a] = v;
+      }
+      // reliab: a shape this machine cannot hold is refused here, with the numbers, not at run time.
+      try {
+        volume::check_shape_fits({in.shape[0], in.shape[1], in.shape[2]}, "input.synthetic.shape");
+      } catch (const InvalidArgument& e) {
+        throw error_at(m.file(), shape, e.message(), e.hint());
       }
     }
     in.seed = static_cast<std::uint64_t>(s.integer("seed", 1, 0, big));

@@ -200,5 +200,25 @@ TEST(HostileInputCli, InterruptAndTerminateEndARunningExtractionPromptlyWithAVal
   }
 }
 
+TEST(HostileInputCli, ASegyFileTruncatedWhileBeingReadIsAClearError) {
+  ScratchDir dir;
+  const auto cube = dir.file("big.segy");
+  ASSERT_EQ(run_geotandem("-q synth --kind analytic --shape 300 300 300 --out '" + cube + "'").exit_code, 0);
+  const auto full = std::filesystem::file_size(cube);
+  testing::Child child(dir.path().string(), {"-q", "extract", cube, "--iso", "0.5", "--out", dir.file("s")});
+  // The store appears once the cube is open; cut the file to a page boundary early in its traces.
+  for (int n = 0; n < 600 && !std::filesystem::exists(dir.file("s/store.json")); ++n)
+    ASSERT_FALSE(child.wait_for(0.05)) << child.err();
+  std::filesystem::resize_file(cube, 4096 * 1000);
+  auto code = child.wait_for(120);
+  ASSERT_TRUE(code) << "hung after the truncation";
+  ASSERT_GT(full, 4096u * 1000 * 4) << "the extraction had most of the file still to read";
+  EXPECT_EQ(*code, 4) << "a clear error, not a SIGBUS death or a success on a truncated cube: " << child.err();
+  EXPECT_EQ(child.err().find("internal error"), std::string::npos) << child.err();
+  EXPECT_TRUE(child.err().find("truncated") != std::string::npos || child.err().find("big.segy") != std::string::npos)
+      << child.err();
+  EXPECT_EQ(run_geotandem("-q store check '" + dir.file("s") + "'").exit_code, 0) << "the store stays valid";
+}
+
 } // namespace
 } // namespace geotandem

@@ -2,6 +2,9 @@
 // `geotandem` as a real child process on real cubes written by `geotandem synth`.
 
 #include <gtest/gtest.h>
+#include <signal.h>
+#include <sys/wait.h>
+#include <unistd.h>
 
 #include <filesystem>
 #include <fstream>
@@ -9,6 +12,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "child_process.hpp"
 #include "geotandem/store/store.hpp"
 #include "scratch.hpp"
 
@@ -251,6 +255,63 @@ TEST(StoreSafetyCli, ARunWithoutComponentsWarns) {
   auto list = nlohmann::json::parse(runs.out);
   ASSERT_EQ(list.size(), 1u);
   EXPECT_EQ(list[0]["statistics"]["warnings"].size(), 1u) << runs.out;
+
+  // run-workflow: the report says so too.
+  {
+    std::ofstream recipe(dir.file("w.yaml"));
+    recipe << "version: 1\ninput:\n  file: cube.raw\nsteps:\n  - step: extract\n    input: input\n    iso: 1e9\n"
+           << "output:\n  directory: " << dir.file("w-out") << "\n";
+  }
+  auto w = run_geotandem("-q run-workflow " + q(dir.file("w.yaml")));
+  ASSERT_EQ(w.exit_code, 0) << w.err;
+  EXPECT_NE(w.err.find("no component was extracted"), std::string::npos) << w.err;
+  EXPECT_NE(file_text(dir.file("w-out/report.html")).find("WARNING: no component was extracted"), std::string::npos);
+}
+
+TEST(StoreSafetyCli, AStoreThisUserCannotWriteIsListedCheckedAndExported) {
+  ScratchDir dir;
+  const auto cube = dir.file("cube.raw"), store = dir.file("store");
+  ASSERT_EQ(run_geotandem("-q synth --kind analytic --shape 160 160 120 --out " + q(cube)).exit_code, 0);
+  {
+    // A writer killed mid-run leaves the index's WAL files behind, as on a copied or archived store.
+    testing::Child writer(dir.path().string(), {"-q", "extract", cube, "--iso", "0.5", "--out", store});
+    for (int n = 0; n < 600 && !std::filesystem::exists(store + "/store.json"); ++n)
+      ASSERT_FALSE(writer.wait_for(0.05)) << writer.err();
+    writer.wait_for(0.5);
+    writer.signal(SIGKILL);
+    writer.wait_for(30);
+  }
+  // Another user (root runs the commands as nobody through a user namespace) may read, not write.
+  std::string as_other;
+  if (::geteuid() == 0) {
+    if (std::system("unshare --user true >/dev/null 2>&1") != 0) GTEST_SKIP() << "no user namespaces here";
+    as_other = "unshare --user ";
+  }
+  namespace fs = std::filesystem;
+  for (const auto& entry : fs::recursive_directory_iterator(store))
+    fs::permissions(entry.path(), fs::perms::owner_write | fs::perms::group_write | fs::perms::others_write,
+                    fs::perm_options::remove);
+  fs::permissions(store, fs::perms::owner_write | fs::perms::group_write | fs::perms::others_write,
+                  fs::perm_options::remove);
+  fs::create_directories(dir.file("exports"));
+  fs::permissions(dir.file("exports"), fs::perms::all, fs::perm_options::add);
+  auto run = [&](const std::string& args) {
+    const std::string base = dir.file("ro");
+    int status = std::system(
+        (as_other + "'" + GEOTANDEM_BINARY + "' " + args + " >" + base + ".out 2>" + base + ".err </dev/null").c_str());
+    return std::make_pair(WIFEXITED(status) ? WEXITSTATUS(status) : -1, file_text(base + ".err"));
+  };
+  auto ls = run("-q store ls --json " + q(store));
+  EXPECT_EQ(ls.first, 0) << ls.second;
+  auto check = run("-q store check " + q(store));
+  EXPECT_EQ(check.first, 0) << check.second;
+  auto exported = run("-q store export " + q(store) + " --format ply --out " + q(dir.file("exports/all.ply")));
+  EXPECT_EQ(exported.first, 0) << exported.second;
+  auto resumed = run("-q extract " + q(cube) + " --iso 0.5 --out " + q(store));
+  EXPECT_EQ(resumed.first, 3) << "writing is refused as an I/O error: " << resumed.second;
+  for (const auto& entry : fs::recursive_directory_iterator(store))
+    fs::permissions(entry.path(), fs::perms::owner_write, fs::perm_options::add);
+  fs::permissions(store, fs::perms::owner_write, fs::perm_options::add);
 }
 
 } // namespace

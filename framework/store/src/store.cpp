@@ -134,10 +134,15 @@ ComponentStore ComponentStore::open(const std::filesystem::path& dir, OpenMode m
   if (!std::filesystem::is_regular_file(index_path(dir), ec))
     throw FormatError("the store has no index.sqlite", {dir.string()}, "the store is incomplete or damaged");
   if (impl->writable) impl->writer_lock = lock_store_directory(dir, false);
-  // A store on read-only media or in a directory this user may not write: SQLite cannot make the
-  // WAL's shared-memory file there, so the index is opened as immutable (nobody can be writing it).
+  // A store on read-only media or in a directory this user may not write, whose index has no
+  // write-ahead log to replay: opened as immutable, since SQLite could not make the WAL's
+  // shared-memory file there. With a log (a writer was killed), the ordinary read-only open reads
+  // it through the shared-memory file the writer left.
+  std::error_code wal_ec;
+  const auto wal = std::filesystem::path(index_path(dir).string() + "-wal");
+  const bool has_log = std::filesystem::exists(wal, wal_ec) && std::filesystem::file_size(wal, wal_ec) > 0;
   const bool immutable =
-      !impl->writable && (::access(dir.c_str(), W_OK) != 0 || ::access(index_path(dir).c_str(), W_OK) != 0);
+      !impl->writable && !has_log && (::access(dir.c_str(), W_OK) != 0 || ::access(index_path(dir).c_str(), W_OK) != 0);
   impl->db = std::make_unique<Database>(index_path(dir).string(), false, !impl->writable, immutable);
   configure_connection(*impl->db, impl->writable);
   check_schema(*impl->db);

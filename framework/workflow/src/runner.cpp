@@ -246,9 +246,11 @@ RunOutcome run_workflow(const Recipe& recipe, const PluginRegistry& plugins, con
                             {"components", r.components},
                             {"triangles_per_layer", r.triangles_per_layer}});
       report.triangles_per_layer = r.triangles_per_layer;
-      report.steps.push_back({"extract", since(t), 0, store.size(),
-                              std::string(to_string(e.mode)) + ", " + std::to_string(r.input_triangles) +
-                                  " marching-cubes triangles, " + std::to_string(r.collapses) + " collapses"});
+      std::string note = std::string(to_string(e.mode)) + ", " + std::to_string(r.input_triangles) +
+                         " marching-cubes triangles, " + std::to_string(r.collapses) + " collapses";
+      for (const auto& w : r.statistics.value("warnings", nlohmann::json::array())) // reliab: the report says so
+        note += "; WARNING: " + w.get<std::string>();
+      report.steps.push_back({"extract", since(t), 0, store.size(), note});
     }
   }
   outcome.components = store.size();

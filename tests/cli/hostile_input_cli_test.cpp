@@ -37,6 +37,9 @@ TEST(HostileInputCli, FifosDevicesAndDirectoriesAreRefusedAtOnce) {
   const auto fifo = dir.file("pipe");
   ASSERT_EQ(::mkfifo(fifo.c_str(), 0644), 0);
   std::filesystem::create_directories(dir.file("folder"));
+  // A raw cube whose sidecar is a FIFO.
+  write_text(dir.file("cube.raw"), std::string(4096, '\0'));
+  ASSERT_EQ(::mkfifo((dir.file("cube.raw") + ".json").c_str(), 0644), 0);
   struct Case {
     std::vector<std::string> args;
     int code;
@@ -47,6 +50,7 @@ TEST(HostileInputCli, FifosDevicesAndDirectoriesAreRefusedAtOnce) {
       {{"extract", fifo, "--iso", "0.5", "--out", dir.file("s")}, 3, "FIFO"},
       {{"validate", fifo}, 2, "not a regular file"},
       {{"run-workflow", fifo}, 2, "not a regular file"},
+      {{"info", dir.file("cube.raw")}, 3, "sidecar is not a regular file"},
       {{"validate", "/dev/zero"}, 2, "not a regular file"},
       {{"validate", "/dev/urandom"}, 2, "not a regular file"},
       {{"validate", dir.file("folder")}, 2, "is a directory"},

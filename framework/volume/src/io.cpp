@@ -27,6 +27,8 @@ std::string lower_extension(const std::string& path) {
 
 bool envi_header_beside(const std::string& path) {
   for (const fs::path& hdr : {fs::path(path + ".hdr"), fs::path(path).replace_extension(".hdr")}) {
+    std::error_code ec;
+    if (!fs::is_regular_file(hdr, ec)) continue; // a FIFO would block
     std::ifstream in(hdr);
     std::string first;
     if (in && std::getline(in, first) && first.rfind("ENVI", 0) == 0) return true;

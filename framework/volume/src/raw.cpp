@@ -136,6 +136,13 @@ ErrorContext position_of(const std::string& file, const std::string& text, std::
 }
 
 Geometry read_sidecar(const std::string& sidecar) {
+  // A FIFO or device would block or never end; a sidecar is a page of JSON.
+  std::error_code ec;
+  if (!fs::is_regular_file(sidecar, ec))
+    throw IoError("the raw sidecar is not a regular file (a FIFO, a device or a directory)", {sidecar},
+                  "write the sidecar as a JSON file");
+  if (fs::file_size(sidecar, ec) > (1u << 20))
+    throw FormatError("the raw sidecar is larger than 1 MiB; a sidecar is a page of JSON", {sidecar});
   std::ifstream in(sidecar, std::ios::binary);
   if (!in) throw IoError("cannot read the raw sidecar", {sidecar}, "check that it exists and is readable");
   std::stringstream buffer;

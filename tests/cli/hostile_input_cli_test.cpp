@@ -93,6 +93,23 @@ TEST(HostileInputCli, RecipeDuplicateKeysSecondDocumentsAndControlCharactersAreE
   EXPECT_EQ(ctl.exit_code, 2) << ctl.err;
   EXPECT_NE(ctl.err.find("control character 0x01"), std::string::npos) << ctl.err;
 
+  // Aliases that refer to themselves, or expand exponentially, end with an error, not a stack overflow.
+  write_text(dir.file("cycle.yaml"), "version: 1\ninput: &a {synthetic: *a}\n");
+  auto cycle = run_child(dir.path().string(), {"validate", dir.file("cycle.yaml")}, 60);
+  EXPECT_EQ(cycle.exit_code, 2) << cycle.err;
+  EXPECT_NE(cycle.err.find("nests deeper"), std::string::npos) << cycle.err;
+  std::string bomb = "a: &a [1,1,1,1,1,1,1,1,1,1]\n";
+  for (char c = 'b'; c <= 'h'; ++c) {
+    bomb += std::string(1, c) + ": &" + c + " [";
+    for (int n = 0; n < 10; ++n)
+      bomb += std::string(n ? "," : "") + "*" + static_cast<char>(c - 1);
+    bomb += "]\n";
+  }
+  write_text(dir.file("bomb.yaml"), bomb);
+  auto expanded = run_child(dir.path().string(), {"validate", dir.file("bomb.yaml")}, 60);
+  EXPECT_FALSE(expanded.hung);
+  EXPECT_EQ(expanded.exit_code, 2) << expanded.err;
+
   write_text(dir.file("nul.yaml"), std::string("version: 1\ninput:\n  file: a\0b.raw\n", 31));
   auto nul = run_geotandem("validate '" + dir.file("nul.yaml") + "'");
   EXPECT_EQ(nul.exit_code, 2) << nul.err;

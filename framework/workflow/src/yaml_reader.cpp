@@ -47,7 +47,17 @@ std::string read_recipe_text(const std::string& path) {
 
 namespace {
 
-void check_node(const std::string& file, const YAML::Node& node) {
+// Bounds on the walk: aliases can make a cycle (&a [*a]) or an exponential tree (nested lists of
+// aliases); a recipe is a few hundred nodes.
+constexpr int max_depth = 64;
+constexpr long max_nodes = 100000;
+
+void check_node(const std::string& file, const YAML::Node& node, int depth, long& visited) {
+  if (depth > max_depth || ++visited > max_nodes)
+    throw error_at(file, node,
+                   depth > max_depth ? "the recipe nests deeper than " + std::to_string(max_depth) + " levels"
+                                     : "the recipe expands to more than " + std::to_string(max_nodes) + " values",
+                   "is an alias (*name) referring to itself, or to lists of aliases?");
   if (node.IsScalar()) {
     for (unsigned char c : node.Scalar())
       if ((c < 0x20 && c != '\t' && c != '\n' && c != '\r') || c == 0x7f) {
@@ -58,12 +68,12 @@ void check_node(const std::string& file, const YAML::Node& node) {
       }
   } else if (node.IsSequence()) {
     for (const auto& item : node)
-      check_node(file, item);
+      check_node(file, item, depth + 1, visited);
   } else if (node.IsMap()) {
     std::map<std::string, YAML::Node> seen;
     for (const auto& entry : node) {
-      check_node(file, entry.first);
-      check_node(file, entry.second);
+      check_node(file, entry.first, depth + 1, visited);
+      check_node(file, entry.second, depth + 1, visited);
       if (!entry.first.IsScalar()) continue;
       auto [it, fresh] = seen.emplace(entry.first.Scalar(), entry.first);
       if (!fresh)
@@ -90,7 +100,8 @@ YAML::Node load_single_document(const std::string& text, const std::string& file
     throw error_at(file, documents[1], "the recipe holds a second YAML document",
                    "a recipe is one document: remove the '---' line and what follows, or split the file");
   YAML::Node root = documents.empty() ? YAML::Node() : documents.front();
-  check_node(file, root);
+  long visited = 0;
+  check_node(file, root, 0, visited);
   return root;
 }
 

@@ -15,6 +15,7 @@ void add_extract_command(CLI::App& app, Context& context, Runner& run) {
     double iso = 0.0, max_error = 0.5, isotropy = 0.4;
     std::int64_t block_size = 0;
     bool no_extended_time_lag = false;
+    bool fresh = false; // reliab
   };
   auto a = std::make_shared<Args>();
   auto* cmd =
@@ -41,6 +42,8 @@ void add_extract_command(CLI::App& app, Context& context, Runner& run) {
   cmd->add_option("--nan", a->nan, "NaN or infinite samples: error, or fill (treated as outside)")
       ->capture_default_str();
   cmd->add_option("--variable", a->variable, "the array to read from a multidimensional file with several");
+  // reliab: start afresh instead of resuming (refused while another process writes the store).
+  cmd->add_flag("--fresh", a->fresh, "replace the store in --out instead of resuming it");
   cmd->callback([a, &context, &run] {
     run = [a, &context] {
       volume::OpenOptions open;
@@ -59,6 +62,7 @@ void add_extract_command(CLI::App& app, Context& context, Runner& run) {
                                   std::to_string(s.block_size),
                               {}, "blocks of 64 to 256 cells are typical");
       auto cube = volume::open_volume(a->cube, open);
+      if (a->fresh) store::ComponentStore::remove(a->out); // reliab
       s.parameters = {{"command", "geotandem extract"}, {"cube", a->cube}};
       auto store = store::ComponentStore::open_or_create(a->out, cube->geometry(), {"geotandem extract", a->cube});
       auto progress = context.progress();

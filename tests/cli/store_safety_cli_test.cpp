@@ -66,12 +66,20 @@ TEST(StoreSafetyCli, ResumingWithOtherParametersIsRefusedAndListsTheDifferences)
   EXPECT_NE(r.err.find("iso: 0.5 in the store, 0.6 now"), std::string::npos) << r.err;
   EXPECT_NE(r.err.find("max_error: 0.5 in the store, 0.9 now"), std::string::npos) << r.err;
 
+  EXPECT_NE(r.err.find("--fresh"), std::string::npos) << r.err;
+
   // The same extraction resumes: everything is already there.
   auto again = run_geotandem("-q extract " + q(cube) + " --iso 0.5 --out " + q(store));
   ASSERT_EQ(again.exit_code, 0) << again.err;
   EXPECT_NE(again.out.find("(" + std::to_string(before.size()) + " already in the store)"), std::string::npos)
       << again.out;
   EXPECT_EQ(rows_of(store), before);
+
+  // --fresh replaces the store: it then holds what a clean iso-0.6 extraction holds.
+  auto fresh = run_geotandem("-q extract " + q(cube) + " --iso 0.6 --fresh --out " + q(store));
+  ASSERT_EQ(fresh.exit_code, 0) << fresh.err;
+  ASSERT_EQ(run_geotandem("-q extract " + q(cube) + " --iso 0.6 --out " + q(dir.file("clean"))).exit_code, 0);
+  EXPECT_EQ(rows_of(store), rows_of(dir.file("clean")));
 }
 
 TEST(StoreSafetyCli, ResumingOnAReplacedCubeOfTheSameShapeIsRefused) {

@@ -67,8 +67,7 @@ std::int64_t ComponentStore::begin_run(const std::string& parameters_json) {
                             "What differs:" +
                                 list + "\n",
                             {impl_->dir.string()},
-                            "write to another --out, or start the store afresh (run-workflow --fresh, or remove "
-                            "the store directory)");
+                            "write to another --out, or pass --fresh to replace the store with this run");
     }
   }
   auto& db = *impl_->db;

@@ -251,6 +251,32 @@ TEST(StoreSafetyCli, ExportsNeverClobberAFileNorWriteInsideAStore) {
             3);
 }
 
+TEST(StoreSafetyCli, CubesAreNeverWrittenOverTheInputNorInsideAStore) {
+  ScratchDir dir;
+  const auto cube = dir.file("cube.raw"), store = dir.file("store");
+  synth(cube, 3);
+  const auto cube_bytes = file_text(cube);
+  {
+    // The attribute cube named after the input, one directory up from the output directory.
+    std::ofstream recipe(dir.file("w.yaml"));
+    recipe << "version: 1\ninput:\n  file: cube.raw\nsteps:\n  - step: extract\n    input: input\n    iso: 0.5\n"
+           << "output:\n  directory: " << dir.file("w-out") << "\n  attribute: ../cube.raw\n";
+  }
+  auto r = run_geotandem("-q run-workflow " + q(dir.file("w.yaml")));
+  EXPECT_EQ(r.exit_code, 3) << r.err;
+  EXPECT_NE(r.err.find("already exists"), std::string::npos) << r.err;
+  EXPECT_EQ(file_text(cube), cube_bytes) << "the input cube was overwritten";
+  auto fresh = run_geotandem("-q run-workflow " + q(dir.file("w.yaml")) + " --fresh");
+  EXPECT_EQ(fresh.exit_code, 3) << fresh.err;
+  EXPECT_EQ(file_text(cube), cube_bytes) << "--fresh overwrote the input cube";
+
+  ASSERT_EQ(run_geotandem("-q extract " + q(cube) + " --iso 0.5 --out " + q(store)).exit_code, 0);
+  auto inside = run_geotandem("-q synth --kind analytic --shape 40 40 40 --out " + q(store + "/shards/x.raw"));
+  EXPECT_EQ(inside.exit_code, 2) << inside.err;
+  EXPECT_NE(inside.err.find("inside a component store"), std::string::npos) << inside.err;
+  EXPECT_FALSE(std::filesystem::exists(store + "/shards/x.raw"));
+}
+
 TEST(StoreSafetyCli, ARunWithoutComponentsWarns) {
   ScratchDir dir;
   const auto cube = dir.file("cube.raw"), store = dir.file("store");

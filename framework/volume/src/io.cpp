@@ -193,6 +193,14 @@ void write_volume(const Volume& volume, const std::string& path, const WriteOpti
     throw InvalidArgument("cannot tell the output format from the extension '" + ext + "'", {path},
                           "use .nc (netCDF-4), .zarr, .tif (GeoTIFF), .segy or .raw");
   std::error_code ec;
+  // Nothing is written inside a component store but by the store.
+  for (auto dir = fs::weakly_canonical(fs::absolute(path, ec), ec).parent_path(); !dir.empty();
+       dir = dir.parent_path()) {
+    if (fs::is_regular_file(dir / "store.json", ec) && fs::exists(dir / "index.sqlite", ec))
+      throw InvalidArgument("will not write a cube inside a component store (" + dir.string() + ")", {path},
+                            "write it outside the store directory");
+    if (dir == dir.root_path()) break;
+  }
   if (fs::exists(path, ec)) {
     if (!options.overwrite) throw IoError("the output already exists", {path}, "remove it or pass --overwrite");
     fs::remove_all(path, ec);

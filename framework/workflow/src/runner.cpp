@@ -216,7 +216,12 @@ RunOutcome run_workflow(const Recipe& recipe, const PluginRegistry& plugins, con
       auto t = Clock::now();
       auto progress = progress_of(settings);
       volume::WriteOptions w;
-      w.overwrite = true;
+      // reliab: replace only an attribute file this recipe's runs wrote, never another file (the
+      // input cube, say) that happens to sit at that path.
+      const bool ours = state.fingerprint_of("attribute_file") != "" &&
+                        state.get("attribute_file").value("path", "") == path.string();
+      std::error_code same_ec;
+      w.overwrite = ours || (settings.fresh && !fs::equivalent(path, input->source(), same_ec));
       volume::write_volume(*extract_input, path.string(), w, progress.get(), cancel);
       state.set("attribute_file", {{"fingerprint", extract_print}, {"done", true}, {"path", path.string()}});
       report.steps.push_back({"write attribute", since(t), 0, 0, path.filename().string()});

@@ -1,5 +1,7 @@
 #include "geotandem/schedulers/slurm_commands.hpp"
 
+#include <algorithm>
+#include <map>
 #include <sstream>
 
 #include "job_command.hpp"
@@ -81,6 +83,34 @@ std::vector<JobReport> parse_squeue_output(const std::string& out) {
     reports.push_back(std::move(report));
   }
   return reports;
+}
+
+std::vector<JobId> squeue_query_ids(const std::vector<JobId>& ids) {
+  std::vector<JobId> query;
+  auto add = [&query](const JobId& id) {
+    if (std::find(query.begin(), query.end(), id) == query.end()) query.push_back(id);
+  };
+  for (const auto& id : ids)
+    add(id);
+  for (const auto& id : ids)
+    if (auto underscore = id.find('_'); underscore != std::string::npos) add(id.substr(0, underscore));
+  return query;
+}
+
+std::vector<JobReport> match_reports(const std::vector<JobId>& ids, const std::vector<JobReport>& reports) {
+  std::map<JobId, const JobReport*> by_id;
+  for (const auto& report : reports)
+    by_id[report.id] = &report;
+  std::vector<JobReport> matched;
+  for (const auto& id : ids) {
+    auto it = by_id.find(id);
+    if (it == by_id.end()) {
+      auto underscore = id.find('_');
+      if (underscore != std::string::npos) it = by_id.find(id.substr(0, underscore));
+    }
+    if (it != by_id.end()) matched.push_back(JobReport{id, it->second->status});
+  }
+  return matched;
 }
 
 bool squeue_reports_unknown_ids(const std::string& err) {

@@ -28,17 +28,17 @@ std::vector<JobId> SlurmScheduler::do_submit(const LaunchRequest& request) {
 }
 
 std::vector<JobReport> SlurmScheduler::do_poll(const std::vector<JobId>& ids) {
-  auto argv = slurm::squeue_command(ids);
+  auto argv = slurm::squeue_command(slurm::squeue_query_ids(ids));
   CommandResult result = run(argv);
   if (!result.ok() &&
       !(result.spawn_error.empty() && !result.timed_out && slurm::squeue_reports_unknown_ids(result.err)))
     throw command_failed(name(), argv, result, "is slurmctld up? `sinfo` tells");
-  auto reports = slurm::parse_squeue_output(result.out);
+  auto reports = slurm::match_reports(ids, slurm::parse_squeue_output(result.out));
   // Exit code and signal of jobs that ended badly: squeue has no field for them, so ask scontrol
   // once per such job (the base class never polls a job again once it is terminal).
   for (auto& report : reports) {
     const JobState s = report.status.state;
-    if (s == JobState::failed || s == JobState::cancelled || s == JobState::timed_out) {
+    if (s == JobState::failed || s == JobState::timed_out) {
       CommandResult detail = run(slurm::scontrol_command(report.id));
       if (detail.ok()) slurm::parse_scontrol_exit(detail.out, report.status);
     }

@@ -154,7 +154,7 @@ TEST(SlurmScheduler, OnePollCommandForManyJobsAndExitCodesOncePerFailure) {
   // The next poll asks only about the unfinished jobs; 50_0 is gone before we saw it end.
   runner->answers.push_back(geotandem::testing::RecordingRunner::answer(0, "50_2|RUNNING|None|n1\n"));
   statuses = scheduler.poll(ids);
-  EXPECT_EQ(runner->commands[3][6], "50_0,50_2");
+  EXPECT_EQ(runner->commands[3][6], "50_0,50_2,50") << "the array's own record too";
   EXPECT_EQ(statuses["50_0"].state, JobState::vanished);
   EXPECT_EQ(statuses["50_0"].host, "n1");
   EXPECT_EQ(statuses["50_1"].state, JobState::failed);
@@ -183,4 +183,18 @@ TEST(SlurmScheduler, SubmissionRefusalNamesBackendCommandAndHint) {
     EXPECT_NE(what.find("sinfo"), std::string::npos) << what;
   }
   EXPECT_TRUE(scheduler.submitted().empty());
+}
+
+TEST(SlurmCommands, CancelledPendingArrayCollapsesIntoOneRecord) {
+  // Slurm 22.05: an array whose pending elements were all cancelled before any started is shown
+  // as one record under the array's id, and no longer under its elements' ids.
+  EXPECT_EQ(slurm::squeue_query_ids({"6_0", "6_1", "7"}), (std::vector<JobId>{"6_0", "6_1", "7", "6"}));
+  auto reports =
+      slurm::match_reports({"6_0", "6_1", "7", "8_0"},
+                           slurm::parse_squeue_output("6|CANCELLED|None|\n7|RUNNING|None|n1\n8_1|RUNNING|None|n1\n"));
+  ASSERT_EQ(reports.size(), 3u) << "8_0 is reported by nobody";
+  EXPECT_EQ(reports[0].id, "6_0");
+  EXPECT_EQ(reports[0].status.state, JobState::cancelled);
+  EXPECT_EQ(reports[1].id, "6_1");
+  EXPECT_EQ(reports[2].id, "7");
 }

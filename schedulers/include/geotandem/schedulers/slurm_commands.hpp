@@ -23,6 +23,14 @@ std::optional<std::string> parse_sbatch_output(const std::string& out);
 // "4711" for one job; "4711_0" ... "4711_(N-1)" for an array.
 std::vector<JobId> element_ids(const std::string& job_id, int array_size);
 
+// The ids to ask squeue about: the given ones plus the base id of each array element ("4711" for
+// "4711_2"). A pending array whose elements are cancelled before any started collapses back into
+// one record that squeue shows as "4711" and no longer under "4711_2".
+std::vector<JobId> squeue_query_ids(const std::vector<JobId>& ids);
+// The reports for `ids`: each id's own line, or for an array element without one, its array's
+// collapsed record.
+std::vector<JobReport> match_reports(const std::vector<JobId>& ids, const std::vector<JobReport>& reports);
+
 // squeue -h -t all -r -j ID,ID,... -o '%i|%T|%r|%N': every listed job, finished ones included
 // (until MinJobAge), array elements one per line.
 std::vector<std::string> squeue_command(const std::vector<JobId>& ids);

@@ -109,7 +109,8 @@ start() {
   if status >/dev/null 2>&1; then echo "slurm-test-cluster: already running in $dir"; return 0; fi
   stop
   mkdir -p "$dir"/{state,spool,run,log,munge}
-  chmod 0755 "$dir/munge" # munged refuses a socket directory others cannot enter
+  # munged refuses a socket whose directories others cannot enter (mktemp -d makes 0700).
+  chmod 0755 "$dir" "$dir/munge"
   [ -s "$dir/munge/munge.key" ] || mungekey --create --keyfile="$dir/munge/munge.key"
   chmod 0400 "$dir/munge/munge.key"
   write_config

@@ -1,6 +1,7 @@
 #include "geotandem/schedulers/scheduler.hpp"
 
 #include <algorithm>
+#include <cstdio>
 
 namespace geotandem::schedulers {
 
@@ -107,7 +108,23 @@ std::string Scheduler::cancel_all() noexcept {
 }
 
 void Scheduler::cancel_all_if_configured() noexcept {
-  if (options_.cancel_on_destruction) (void)cancel_all();
+  if (!options_.cancel_on_destruction) return;
+  std::string failure = cancel_all();
+  if (failure.empty()) return;
+  std::string ids;
+  {
+    std::lock_guard lock(mutex_);
+    for (const auto& id : order_)
+      if (!is_terminal(known_[id].state)) ids += " " + id;
+  }
+  std::string message = failure + "; these jobs may still be queued or running, cancel them by hand:" + ids;
+  try {
+    if (options_.logger)
+      options_.logger->error(message);
+    else
+      std::fprintf(stderr, "error: %s\n", message.c_str());
+  } catch (...) {
+  }
 }
 
 std::vector<JobId> Scheduler::submitted() const {

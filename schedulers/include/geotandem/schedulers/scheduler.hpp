@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "geotandem/core/log.hpp"
 #include "geotandem/schedulers/command_runner.hpp"
 #include "geotandem/schedulers/job_state.hpp"
 #include "geotandem/schedulers/launch_request.hpp"
@@ -26,6 +27,8 @@ struct SchedulerOptions {
   std::chrono::milliseconds command_timeout{std::chrono::seconds(60)};
   // Cancel every unfinished job this object submitted when it is destroyed.
   bool cancel_on_destruction = true;
+  // Where a failed cancel on destruction is reported (with the ids to cancel by hand); null: stderr.
+  geotandem::Logger* logger = nullptr;
 };
 
 class Scheduler {

@@ -46,6 +46,14 @@ void record_exit(int status, CommandResult& result) {
   if (WIFSIGNALED(status)) result.signal = WTERMSIG(status);
 }
 
+void wait_blocking(pid_t pid, int& status, bool& lost) {
+  pid_t done;
+  do {
+    done = ::waitpid(pid, &status, 0);
+  } while (done < 0 && errno == EINTR);
+  if (done < 0) lost = true;
+}
+
 } // namespace
 
 CommandResult ProcessCommandRunner::run(const std::vector<std::string>& argv, std::chrono::milliseconds timeout) {
@@ -72,12 +80,16 @@ CommandResult ProcessCommandRunner::run(const std::vector<std::string>& argv, st
   err_pipe.close_write();
 
   const auto deadline = std::chrono::steady_clock::now() + timeout;
-  bool out_open = true, err_open = true, exited = false;
+  bool out_open = true, err_open = true, exited = false, status_lost = false;
   int status = 0;
   while (out_open || err_open || !exited) {
     if (!exited) {
       pid_t done = ::waitpid(pid, &status, WNOHANG);
       if (done == pid) exited = true;
+      if (done < 0 && errno == ECHILD) { // SIGCHLD ignored in this process: the status is gone
+        exited = true;
+        status_lost = true;
+      }
     }
     auto left = std::chrono::duration_cast<std::chrono::milliseconds>(deadline - std::chrono::steady_clock::now());
     if (left.count() <= 0) {
@@ -101,12 +113,16 @@ CommandResult ProcessCommandRunner::run(const std::vector<std::string>& argv, st
   }
   if (result.timed_out) {
     ::kill(-pid, SIGKILL); // the whole process group: a hanging client and whatever it started
-    if (!exited) ::waitpid(pid, &status, 0);
+    if (!exited) wait_blocking(pid, status, status_lost);
     drain(out_pipe.read_end(), result.out);
     drain(err_pipe.read_end(), result.err);
     return result;
   }
-  if (!exited) ::waitpid(pid, &status, 0);
+  if (!exited) wait_blocking(pid, status, status_lost);
+  if (status_lost) {
+    result.spawn_error = "its exit status was lost (this process ignores SIGCHLD; do not set it to SIG_IGN)";
+    return result;
+  }
   record_exit(status, result);
   return result;
 }

@@ -2,6 +2,7 @@
 #include <gtest/gtest.h>
 
 #include <chrono>
+#include <csignal>
 
 #include "geotandem/schedulers/command_runner.hpp"
 #include "geotandem/schedulers/scheduler_error.hpp"
@@ -66,4 +67,15 @@ TEST(CommandRunner, DoesNotWaitForADaemonThatKeepsThePipesOpen) {
 TEST(CommandRunner, DescribesCommandsWithQuotes) {
   EXPECT_EQ(describe_command({"sbatch", "--wrap", "exec env 'A=b c'", "-p", "x"}),
             "sbatch --wrap 'exec env '\\''A=b c'\\''' -p x");
+}
+
+TEST(CommandRunner, IgnoredSigchldIsAClearErrorNotAHang) {
+  auto old = std::signal(SIGCHLD, SIG_IGN); // children are reaped by the kernel: no exit status
+  ProcessCommandRunner runner;
+  const auto start = std::chrono::steady_clock::now();
+  auto result = runner.run({"sh", "-c", "echo hi"}, 60s);
+  std::signal(SIGCHLD, old);
+  EXPECT_FALSE(result.ok());
+  EXPECT_NE(result.spawn_error.find("SIGCHLD"), std::string::npos) << result.spawn_error;
+  EXPECT_LT(std::chrono::steady_clock::now() - start, 30s);
 }

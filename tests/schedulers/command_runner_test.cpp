@@ -3,6 +3,7 @@
 
 #include <chrono>
 #include <csignal>
+#include <signal.h>
 
 #include "geotandem/schedulers/command_runner.hpp"
 #include "geotandem/schedulers/scheduler_error.hpp"
@@ -58,10 +59,11 @@ TEST(CommandRunner, KillsAHangingCommandAndItsChildrenWithinTheTimeout) {
 TEST(CommandRunner, DoesNotWaitForADaemonThatKeepsThePipesOpen) {
   ProcessCommandRunner runner;
   const auto start = std::chrono::steady_clock::now();
-  auto result = runner.run({"sh", "-c", "(sleep 30 &) ; echo submitted"}, 60s);
+  auto result = runner.run({"sh", "-c", "(sleep 30 & echo $! >&2) ; echo submitted"}, 60s);
   EXPECT_EQ(result.exit_code, 0);
   EXPECT_EQ(result.out, "submitted\n");
   EXPECT_LT(std::chrono::steady_clock::now() - start, 25s);
+  if (!result.err.empty()) ::kill(std::stoi(result.err), SIGKILL); // the "daemon" is ours to end
 }
 
 TEST(CommandRunner, DescribesCommandsWithQuotes) {

@@ -88,4 +88,24 @@ public:
   }
 };
 
+// The real runner, with a log of the commands it ran (to count scheduler commands per poll).
+class LoggingRunner final : public schedulers::CommandRunner {
+public:
+  std::vector<std::vector<std::string>> commands;
+
+  schedulers::CommandResult run(const std::vector<std::string>& argv, std::chrono::milliseconds timeout) override {
+    commands.push_back(argv);
+    return real_.run(argv, timeout);
+  }
+  std::size_t count(const std::string& program) const {
+    std::size_t n = 0;
+    for (const auto& argv : commands)
+      n += !argv.empty() && argv[0] == program;
+    return n;
+  }
+
+private:
+  schedulers::ProcessCommandRunner real_;
+};
+
 } // namespace geotandem::testing

@@ -64,6 +64,29 @@ TEST_F(Slurm, PollManyInOneCallAndUnknown) {
   check_poll_many_and_unknown(scheduler, dir.path());
 }
 
+TEST_F(Slurm, OneSqueuePerPollWhateverTheNumberOfJobs) {
+  auto runner = std::make_shared<LoggingRunner>();
+  SchedulerOptions options;
+  options.runner = runner;
+  SlurmScheduler scheduler(options);
+  auto r = shell_job(dir.path(), "sleep 1");
+  r.array_size = 5;
+  auto ids = scheduler.submit(r);
+  auto single = scheduler.submit(shell_job(dir.path(), "sleep 1"));
+  ids.insert(ids.end(), single.begin(), single.end());
+  ASSERT_EQ(ids.size(), 6u);
+  for (int poll = 1; poll <= 3; ++poll) {
+    auto statuses = scheduler.poll(ids);
+    ASSERT_EQ(statuses.size(), 6u);
+    EXPECT_EQ(runner->count("squeue"), static_cast<std::size_t>(poll));
+  }
+  auto statuses = JobWatcher(scheduler, quick_watch()).wait_all(ids, {}, job_bound);
+  for (const auto& id : ids)
+    EXPECT_EQ(statuses[id].state, JobState::completed) << id;
+  EXPECT_EQ(runner->count("scontrol"), 0u) << "scontrol is asked only about jobs that failed";
+  EXPECT_EQ(runner->count("sbatch"), 2u);
+}
+
 TEST_F(Slurm, CancelOfUnknownOrFinishedIsHarmless) {
   SlurmScheduler scheduler;
   auto ids = scheduler.submit(shell_job(dir.path(), "true"));

@@ -54,6 +54,17 @@ TEST_F(Slurm, ScancelBySomeoneElseIsCancelledAndReplaceable) {
   EXPECT_TRUE(ReplacementPolicy::wants_replacement(status));
 }
 
+TEST_F(Slurm, WalltimeEndsTheJobAsTimedOut) {
+  // Slurm's smallest walltime is a minute, enforced up to ~30 s late: this test takes 60-100 s.
+  SlurmScheduler scheduler;
+  auto r = shell_job(dir.path(), "exec sleep 600");
+  r.resources.walltime = 1s; // rounded up by Slurm to one minute
+  auto ids = scheduler.submit(r);
+  auto status = JobWatcher(scheduler, {std::chrono::seconds(2)}).wait_all(ids, {}, std::chrono::seconds(400))[ids[0]];
+  EXPECT_EQ(status.state, JobState::timed_out) << status.reason;
+  EXPECT_TRUE(ReplacementPolicy::wants_replacement(status));
+}
+
 TEST_F(Slurm, Array) {
   SlurmScheduler scheduler;
   check_array(scheduler, dir.path());

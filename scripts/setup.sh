@@ -16,6 +16,7 @@ packages=(
   libsqlite3-dev sqlite3 libxxhash-dev zlib1g-dev
   clang-format clang-tidy
   clang libclang-rt-14-dev
+  slurmctld slurmd slurm-client munge
 )
 
 as_root() {

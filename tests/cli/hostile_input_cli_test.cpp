@@ -110,6 +110,14 @@ TEST(HostileInputCli, RecipeDuplicateKeysSecondDocumentsAndControlCharactersAreE
   EXPECT_FALSE(expanded.hung);
   EXPECT_EQ(expanded.exit_code, 2) << expanded.err;
 
+  // Found by fuzz_recipe: YAML::LoadAll never ended on this malformed recipe (and ate the memory).
+  auto looped =
+      run_child(dir.path().string(),
+                {"validate", std::string(GEOTANDEM_SOURCE_DIR) + "/tests/fuzz/regressions/recipe_loadall_loop.yaml"},
+                60, 2UL << 30);
+  EXPECT_FALSE(looped.hung);
+  EXPECT_EQ(looped.exit_code, 2) << looped.err;
+
   write_text(dir.file("nul.yaml"), std::string("version: 1\ninput:\n  file: a\0b.raw\n", 31));
   auto nul = run_geotandem("validate '" + dir.file("nul.yaml") + "'");
   EXPECT_EQ(nul.exit_code, 2) << nul.err;

@@ -33,7 +33,7 @@ fi
 seeds="$build/seeds"
 rm -rf "$seeds"
 mkdir -p "$seeds/recipe" "$seeds/raw_sidecar" "$seeds/segy_header"
-cp "$root"/workflows/*.yaml "$seeds/recipe/"
+cp "$root"/workflows/*.yaml "$root"/tests/fuzz/regressions/recipe_*.yaml "$seeds/recipe/"
 export ASAN_OPTIONS=detect_leaks=0
 "$geotandem" -q synth --kind analytic --shape 40 40 40 --out "$seeds/cube.raw" >/dev/null
 cp "$seeds/cube.raw.json" "$seeds/raw_sidecar/sidecar.json"

@@ -5,6 +5,9 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <sstream>
+
+#include <yaml-cpp/eventhandler.h>
 
 #include <cerrno>
 #include <cmath>
@@ -88,18 +91,37 @@ void check_node(const std::string& file, const YAML::Node& node, int depth, long
 
 } // namespace
 
+// Receives a document's parse events and keeps only where the document starts.
+class DocumentStart final : public YAML::EventHandler {
+public:
+  YAML::Mark mark;
+  void OnDocumentStart(const YAML::Mark& m) override { mark = m; }
+  void OnDocumentEnd() override {}
+  void OnNull(const YAML::Mark&, YAML::anchor_t) override {}
+  void OnAlias(const YAML::Mark&, YAML::anchor_t) override {}
+  void OnScalar(const YAML::Mark&, const std::string&, YAML::anchor_t, const std::string&) override {}
+  void OnSequenceStart(const YAML::Mark&, const std::string&, YAML::anchor_t, YAML::EmitterStyle::value) override {}
+  void OnSequenceEnd() override {}
+  void OnMapStart(const YAML::Mark&, const std::string&, YAML::anchor_t, YAML::EmitterStyle::value) override {}
+  void OnMapEnd() override {}
+};
+
 YAML::Node load_single_document(const std::string& text, const std::string& file) {
-  std::vector<YAML::Node> documents;
+  YAML::Node root;
   try {
-    documents = YAML::LoadAll(text);
+    root = YAML::Load(text);
+    // A second document: the parser is asked for two documents at most (YAML::LoadAll can loop
+    // without end on some malformed input).
+    std::istringstream in(text);
+    YAML::Parser parser(in);
+    DocumentStart first, second;
+    if (parser.HandleNextDocument(first) && parser.HandleNextDocument(second))
+      throw InvalidArgument("the recipe holds a second YAML document", {file, second.mark.line + 1},
+                            "a recipe is one document: remove the '---' line and what follows, or split the file");
   } catch (const YAML::ParserException& e) {
     throw InvalidArgument("not valid YAML: " + e.msg, {file, e.mark.line + 1, e.mark.column + 1},
                           "check indentation and the ':' after each key");
   }
-  if (documents.size() > 1)
-    throw error_at(file, documents[1], "the recipe holds a second YAML document",
-                   "a recipe is one document: remove the '---' line and what follows, or split the file");
-  YAML::Node root = documents.empty() ? YAML::Node() : documents.front();
   long visited = 0;
   check_node(file, root, 0, visited);
   return root;

@@ -6,6 +6,9 @@
 #include <sstream>
 
 #include "geotandem/core/error.hpp"
+#include "geotandem/store/store.hpp"
+#include "geotandem/workflow/extract_step.hpp"
+#include "geotandem/workflow/report.hpp"
 #include "geotandem/workflow/suggest.hpp"
 
 namespace geotandem::workflow {
@@ -19,6 +22,46 @@ const char* to_string(ParamType type) {
   case ParamType::choice: return "choice";
   }
   return "?";
+}
+
+const char* to_string(StepKind kind) {
+  switch (kind) {
+  case StepKind::attribute: return "attribute";
+  case StepKind::extract: return "extraction";
+  case StepKind::component: return "component step";
+  case StepKind::export_step: return "export";
+  case StepKind::report: return "report";
+  }
+  return "?";
+}
+
+void Plugin::refuse(const char* what) const {
+  throw InvalidArgument("step '" + name() + "' is " + (kind() == StepKind::attribute ? "an " : "a ") +
+                            to_string(kind()) + " and cannot " + what,
+                        {origin()}, "use it where its kind belongs in the chain (see 'geotandem plugins')");
+}
+
+std::shared_ptr<volume::Volume> Plugin::make_attribute(std::vector<std::shared_ptr<const volume::Volume>>,
+                                                       const ParamValues&) const {
+  refuse("compute an attribute");
+}
+
+ExtractResult Plugin::extract(const volume::Volume&, store::ComponentStore&, const ParamValues&, const nlohmann::json&,
+                              StepContext&) const {
+  refuse("extract an isosurface");
+}
+
+ComponentOutcome Plugin::select(store::ComponentStore&, const ParamValues&, const std::string&, StepContext&) const {
+  refuse("select components");
+}
+
+ExportOutcome Plugin::export_components(const store::ComponentStore&, const ParamValues&, const std::string&,
+                                        const std::filesystem::path&, StepContext&) const {
+  refuse("export components");
+}
+
+std::string Plugin::write_report(const ReportData&, const ParamValues&, const std::filesystem::path&) const {
+  refuse("write a report");
 }
 
 namespace {
@@ -90,6 +133,16 @@ ParamValue parse_param(const ParamSpec& spec, const std::string& text) {
   }
   }
   return v;
+}
+
+ParamValues default_values(const std::vector<ParamSpec>& specs) {
+  ParamValues values;
+  for (const auto& spec : specs) {
+    if (!spec.default_value)
+      throw InvalidArgument("parameter '" + spec.name + "' has no default", {}, spec.name + ": " + spec.help);
+    values[spec.name] = parse_param(spec, *spec.default_value);
+  }
+  return values;
 }
 
 } // namespace geotandem::workflow

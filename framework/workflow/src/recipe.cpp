@@ -18,12 +18,6 @@ using detail::MapReader;
 
 constexpr std::int64_t big = std::int64_t(1) << 40;
 
-StepKind kind_of(const std::string& name) {
-  if (name == "extract") return StepKind::extract;
-  if (name == "remove_bubbles" || name == "sort_by_azimuth") return StepKind::component;
-  return StepKind::attribute;
-}
-
 void parse_input(MapReader& m, InputSpec& in) {
   in.where = detail::where_of(m.map());
   bool has_file = m.has("file"), has_synth = m.has("synthetic");
@@ -88,48 +82,55 @@ ParamValues parse_params(MapReader& m, const std::vector<ParamSpec>& specs, cons
   return values;
 }
 
+// Runs the step's own checks (beyond each parameter's spec) and places their error at `node`.
+void check_step(const std::string& file, const YAML::Node& node, const Plugin& plugin, const ParamValues& values,
+                const std::string& what) {
+  try {
+    plugin.check(values);
+  } catch (const Error& e) {
+    throw error_at(file, node, e.message() + " in " + what, e.hint());
+  }
+}
+
 StepSpec parse_step(const std::string& file, const YAML::Node& node, std::size_t index, const PluginRegistry& plugins) {
   MapReader m(file, node, "step " + std::to_string(index + 1));
   StepSpec step;
   step.where = detail::where_of(node);
   if (!m.has("step"))
     throw error_at(file, node, "step " + std::to_string(index + 1) + " needs 'step: NAME'",
-                   "NAME is an attribute (see 'geotandem plugins') or extract, remove_bubbles, sort_by_azimuth");
+                   "NAME is a step listed by 'geotandem plugins' (an attribute, extract, remove_bubbles, ...)");
   step.name = m.required_text("step");
-  step.kind = kind_of(step.name);
   std::string what = "step " + std::to_string(index + 1) + " (" + step.name + ")";
-  m.rename(what);
-  const std::vector<ParamSpec>* specs = nullptr;
-  if (step.kind == StepKind::attribute) {
-    const Plugin* plugin = plugins.find(step.name);
-    if (!plugin) {
-      std::vector<std::string> names = builtin_step_names();
-      for (const Plugin* p : plugins.list())
-        names.push_back(p->name());
-      std::string hint = suggestion_hint(step.name, names);
-      try {
-        plugins.get(step.name);
-      } catch (const Error& e) {
-        hint = e.hint();
-        for (const auto& n : builtin_step_names())
-          if (nearest(step.name, {n}) == n) hint = "did you mean '" + n + "'?";
-      }
-      throw error_at(file, m.node("step"), "unknown step or plugin '" + step.name + "'", hint);
+  const Plugin* plugin = plugins.find(step.name);
+  if (!plugin) {
+    std::string hint;
+    try {
+      plugins.get(step.name);
+    } catch (const Error& e) {
+      hint = e.hint();
     }
-    specs = &plugin->params();
-    step.arity = plugin->input_count();
-  } else {
-    specs = &builtin_step_params(step.name);
+    throw error_at(file, m.node("step"), "unknown step or plugin '" + step.name + "'", hint);
   }
+  step.kind = plugin->kind();
+  if (step.kind == StepKind::export_step || step.kind == StepKind::report)
+    throw error_at(file, m.node("step"),
+                   what + " is " + (step.kind == StepKind::export_step ? "an export" : "the report") +
+                       ", which belongs in the output section, not in the steps",
+                   step.kind == StepKind::export_step ? "output: {exports: [{format: vtp}]}"
+                                                      : "output: {report: FILE}");
+  m.rename(what);
+  const std::vector<ParamSpec>& specs = plugin->params();
+  step.arity = plugin->input_count();
   step.as = m.text("as", step.name);
   if (m.has("input") && m.has("inputs"))
     throw error_at(file, node, what + " has both 'input' and 'inputs'", "use one of them");
   step.inputs = m.has("inputs") ? m.text_list("inputs") : m.text_list("input");
-  step.params = parse_params(m, *specs, what);
+  step.params = parse_params(m, specs, what);
   std::vector<std::string> known = {"step", "as", "input", "inputs"};
-  for (const auto& s : *specs)
+  for (const auto& s : specs)
     known.push_back(s.name);
   m.finish(known);
+  check_step(file, node, *plugin, step.params, what);
   return step;
 }
 
@@ -174,28 +175,64 @@ void check_chain(const std::string& file, const YAML::Node& steps_node, std::vec
     throw error_at(file, steps_node, "the steps have no extract step", "add '- step: extract' with 'iso:'");
 }
 
-void parse_output(MapReader& m, OutputSpec& out, const std::string& recipe_stem) {
+// The step of `kind` named `name` in the registry, or an error saying the registry lacks it.
+const Plugin& output_step(const PluginRegistry& plugins, const std::string& name, StepKind kind) {
+  const Plugin* step = plugins.find(name);
+  if (!step || step->kind() != kind)
+    throw InvalidArgument(std::string("no ") + to_string(kind) + " step '" + name + "' is registered", {},
+                          "register the built-in steps (workflow::register_builtin_steps)");
+  return *step;
+}
+
+// The output section: where results go, and the export and report steps it asks for.
+void parse_output(MapReader& m, Recipe& r, const std::string& recipe_stem, const PluginRegistry& plugins) {
+  OutputSpec& out = r.output;
   out.directory = m.text("directory", recipe_stem + "-out");
   out.store = m.text("store", "store");
-  out.report = m.text("report", "report.html");
   out.attribute_file = m.text("attribute", "");
   if (m.has("exports")) {
+    const Plugin& exporter = output_step(plugins, "export", StepKind::export_step);
     YAML::Node list = m.node("exports");
     if (!list.IsSequence()) throw error_at(m.file(), list, "'exports' must be a list");
-    for (const auto& item : list) {
-      MapReader e(m.file(), item, "an export");
+    for (std::size_t n = 0; n < list.size(); ++n) {
+      std::string what = "export " + std::to_string(n + 1);
+      MapReader e(m.file(), list[n], what);
+      StepSpec step;
+      step.kind = StepKind::export_step;
+      step.name = step.as = exporter.name();
+      step.where = detail::where_of(list[n]);
+      step.params = parse_params(e, exporter.params(), what);
+      std::vector<std::string> known;
+      for (const auto& s : exporter.params())
+        known.push_back(s.name);
+      e.finish(known);
+      check_step(m.file(), list[n], exporter, step.params, what);
       ExportSpec spec;
-      spec.format = e.required_text("format");
-      if (spec.format != "ply" && spec.format != "obj" && spec.format != "vtp" && spec.format != "ts")
-        throw error_at(m.file(), e.node("format"), "unknown export format '" + spec.format + "'",
-                       suggestion_hint(spec.format, {"ply", "obj", "vtp", "ts"}));
-      spec.selection = e.text("selection", "");
-      spec.path = e.text("path", "bodies." + spec.format);
-      spec.per_component = e.boolean("per_component", false);
-      e.finish({"format", "selection", "path", "per_component"});
+      spec.format = step.params.at("format").text;
+      spec.selection = step.params.at("selection").text;
+      spec.path = step.params.at("path").text.empty() ? "bodies." + spec.format : step.params.at("path").text;
+      spec.per_component = step.params.at("per_component").boolean;
       out.exports.push_back(spec);
+      r.finish.push_back(std::move(step));
     }
   }
+  const Plugin& reporter = output_step(plugins, "report", StepKind::report);
+  StepSpec report;
+  report.kind = StepKind::report;
+  report.name = report.as = reporter.name();
+  report.where = detail::where_of(m.map());
+  report.params = default_values(reporter.params());
+  if (m.has("report")) {
+    YAML::Node at = m.node("report");
+    std::string text = detail::scalar_of(m.file(), at, "'report' in output");
+    try {
+      report.params["path"] = parse_param(reporter.params().front(), text);
+    } catch (const Error& e) {
+      throw error_at(m.file(), at, e.message() + " in output", e.hint());
+    }
+  }
+  out.report = report.params.at("path").text;
+  r.finish.push_back(std::move(report));
   m.finish({"directory", "store", "report", "attribute", "exports"});
 }
 
@@ -351,11 +388,10 @@ Recipe parse_recipe(const std::string& text, const std::string& name, const Plug
     r.steps.push_back(parse_step(name, steps[n], n, plugins));
   check_chain(name, steps, r.steps);
   std::string stem = fs::path(name).stem().string();
-  if (top.has("output")) {
-    MapReader out(name, top.node("output"), "output");
-    parse_output(out, r.output, stem);
-  } else {
-    r.output.directory = stem + "-out";
+  {
+    YAML::Node empty(YAML::NodeType::Map);
+    MapReader out(name, top.has("output") ? top.node("output") : empty, "output");
+    parse_output(out, r, stem, plugins);
   }
   if (top.has("execution")) {
     MapReader ex(name, top.node("execution"), "execution");

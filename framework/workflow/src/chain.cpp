@@ -149,9 +149,9 @@ ParamValues chain_step_values(const ChainStep& step, const Plugin& plugin) {
 
 ChainVolumes open_chain(const ChainDescription& description, const PluginRegistry& plugins) {
   if (description.steps.empty()) throw InvalidArgument("the chain description has no steps");
-  ChainVolumes out;
-  out.input = open_input(description.input);
-  std::map<std::string, std::shared_ptr<const volume::Volume>> results{{"input", out.input}};
+  // Every step is checked before the input is opened: cheap refusals first.
+  std::vector<std::pair<const Plugin*, ParamValues>> resolved;
+  std::map<std::string, int> results{{"input", 0}};
   for (std::size_t n = 0; n < description.steps.size(); ++n) {
     const ChainStep& step = description.steps[n];
     const Plugin& plugin = plugins.get(step.step);
@@ -159,29 +159,35 @@ ChainVolumes open_chain(const ChainDescription& description, const PluginRegistr
     const StepKind wanted = last ? StepKind::extract : StepKind::attribute;
     if (plugin.kind() != wanted)
       throw InvalidArgument("step " + std::to_string(n + 1) + " of the chain description, '" + step.step + "', is " +
-                                to_string(plugin.kind()) + "; expected " + (last ? "the extraction" : "an attribute"),
+                                (plugin.kind() == StepKind::attribute ? "an " : "a ") + to_string(plugin.kind()) +
+                                "; expected " + (last ? "the extraction" : "an attribute"),
                             {plugin.origin()});
     if (plugin.version() != step.version)
       throw InvalidArgument("step '" + step.step + "' was described with version " + step.version +
                                 ", but the registry holds version " + plugin.version(),
                             {plugin.origin()}, "install the same plugin version on every machine of the run");
-    std::vector<std::shared_ptr<const volume::Volume>> inputs;
-    for (const auto& name : step.inputs) {
-      auto it = results.find(name);
-      if (it == results.end())
+    for (const auto& name : step.inputs)
+      if (!results.count(name))
         throw InvalidArgument("step '" + step.step + "' of the chain description reads '" + name +
                               "', which no earlier step produces");
-      inputs.push_back(it->second);
-    }
-    if (inputs.size() != static_cast<std::size_t>(plugin.input_count()))
+    if (step.inputs.size() != static_cast<std::size_t>(plugin.input_count()))
       throw InvalidArgument("step '" + step.step + "' takes " + std::to_string(plugin.input_count()) +
-                            " input(s), got " + std::to_string(inputs.size()));
-    ParamValues values = chain_step_values(step, plugin);
-    if (last) {
+                            " input(s), got " + std::to_string(step.inputs.size()));
+    resolved.emplace_back(&plugin, chain_step_values(step, plugin));
+    results[step.as] = 0;
+  }
+  ChainVolumes out;
+  out.input = open_input(description.input);
+  std::map<std::string, std::shared_ptr<const volume::Volume>> volumes{{"input", out.input}};
+  for (std::size_t n = 0; n < description.steps.size(); ++n) {
+    const ChainStep& step = description.steps[n];
+    std::vector<std::shared_ptr<const volume::Volume>> inputs;
+    for (const auto& name : step.inputs)
+      inputs.push_back(volumes.at(name));
+    if (n + 1 == description.steps.size())
       out.result = inputs.front();
-    } else {
-      results[step.as] = plugin.make_attribute(std::move(inputs), values);
-    }
+    else
+      volumes[step.as] = resolved[n].first->make_attribute(std::move(inputs), resolved[n].second);
   }
   return out;
 }

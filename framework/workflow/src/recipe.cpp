@@ -5,6 +5,7 @@
 #include <set>
 
 #include "geotandem/core/error.hpp"
+#include "geotandem/synth/options.hpp"
 #include "geotandem/workflow/suggest.hpp"
 #include "yaml_reader.hpp"
 
@@ -45,8 +46,11 @@ void parse_input(MapReader& m, InputSpec& in) {
         std::string t = detail::scalar_of(m.file(), shape[a], "a shape entry");
         char* end = nullptr;
         long long v = std::strtoll(t.c_str(), &end, 10);
-        if (t.empty() || *end != '\0' || v < 16 || v > 100000)
-          throw error_at(m.file(), shape[a], "shape entry '" + t + "' must be an integer from 16 to 100000");
+        if (t.empty() || *end != '\0' || v < synth::min_edge || v > 100000)
+          throw error_at(m.file(), shape[a],
+                         "shape entry '" + t + "' must be an integer from " + std::to_string(synth::min_edge) +
+                             " to 100000",
+                         "the planted bodies of a synthetic cube need room");
         in.shape[a] = v;
       }
     }
@@ -82,13 +86,20 @@ ParamValues parse_params(MapReader& m, const std::vector<ParamSpec>& specs, cons
   return values;
 }
 
-// Runs the step's own checks (beyond each parameter's spec) and places their error at `node`.
-void check_step(const std::string& file, const YAML::Node& node, const Plugin& plugin, const ParamValues& values,
-                const std::string& what) {
+// Runs the step's own checks (beyond each parameter's spec). The error is placed at the parameter
+// it names ("parameter 'block_size' ...") when the recipe gives it, else at the step.
+void check_step(MapReader& m, const Plugin& plugin, const ParamValues& values, const std::string& what) {
   try {
     plugin.check(values);
   } catch (const Error& e) {
-    throw error_at(file, node, e.message() + " in " + what, e.hint());
+    YAML::Node at;
+    at.reset(m.map());
+    for (const auto& spec : plugin.params())
+      if (e.message().find("'" + spec.name + "'") != std::string::npos && m.has(spec.name)) {
+        at.reset(m.node(spec.name));
+        break;
+      }
+    throw error_at(m.file(), at, e.message() + " in " + what, e.hint());
   }
 }
 
@@ -130,7 +141,7 @@ StepSpec parse_step(const std::string& file, const YAML::Node& node, std::size_t
   for (const auto& s : specs)
     known.push_back(s.name);
   m.finish(known);
-  check_step(file, node, *plugin, step.params, what);
+  check_step(m, *plugin, step.params, what);
   return step;
 }
 
@@ -206,7 +217,7 @@ void parse_output(MapReader& m, Recipe& r, const std::string& recipe_stem, const
       for (const auto& s : exporter.params())
         known.push_back(s.name);
       e.finish(known);
-      check_step(m.file(), list[n], exporter, step.params, what);
+      check_step(e, exporter, step.params, what);
       ExportSpec spec;
       spec.format = step.params.at("format").text;
       spec.selection = step.params.at("selection").text;

@@ -195,3 +195,17 @@ TEST_F(StepKinds, BlockSizeBelowTheSmallestBlockFailsValidationAtItsLine) {
                                "  - step: extract\n    iso: 0.5\n    block_size: 0\n",
                                "r.yaml", registry));
 }
+
+TEST_F(StepKinds, ExportOfASelectionNoStepWritesIsRefusedAtItsLine) {
+  std::string text = "version: 1\ninput:\n  synthetic: {kind: analytic, shape: [40, 40, 40]}\nsteps:\n"
+                     "  - step: extract\n    iso: 0.5\n  - step: bigkeys\n    selection: big\n"
+                     "output:\n  exports:\n    - format: ply\n      selection: bog\n";
+  std::string e = error_of([&] { parse_recipe(text, "r.yaml", registry); });
+  EXPECT_NE(e.find("r.yaml:12:18: export 1 exports selection 'bog', which no component step"), std::string::npos) << e;
+  EXPECT_NE(e.find("did you mean 'big'?"), std::string::npos) << e;
+  text.replace(text.find("bog"), 3, "big");
+  auto r = parse_recipe(text, "r.yaml", registry);
+  ASSERT_EQ(r.finish.size(), 2u);
+  EXPECT_EQ(r.finish[0].kind, StepKind::export_step);
+  EXPECT_EQ(r.output.exports.at(0).selection, "big");
+}

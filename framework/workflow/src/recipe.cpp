@@ -1,5 +1,6 @@
 #include "geotandem/workflow/recipe.hpp"
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <set>
@@ -198,6 +199,10 @@ const Plugin& output_step(const PluginRegistry& plugins, const std::string& name
 // The output section: where results go, and the export and report steps it asks for.
 void parse_output(MapReader& m, Recipe& r, const std::string& recipe_stem, const PluginRegistry& plugins) {
   OutputSpec& out = r.output;
+  std::vector<std::string> selections; // written by the component steps
+  for (const auto& step : r.steps)
+    if (step.kind == StepKind::component && step.params.count("selection"))
+      selections.push_back(step.params.at("selection").text);
   out.directory = m.text("directory", recipe_stem + "-out");
   out.store = m.text("store", "store");
   out.attribute_file = m.text("attribute", "");
@@ -218,6 +223,12 @@ void parse_output(MapReader& m, Recipe& r, const std::string& recipe_stem, const
         known.push_back(s.name);
       e.finish(known);
       check_step(e, exporter, step.params, what);
+      const std::string& wanted = step.params.at("selection").text;
+      if (!wanted.empty() && std::find(selections.begin(), selections.end(), wanted) == selections.end())
+        throw error_at(m.file(), e.node("selection"),
+                       what + " exports selection '" + wanted + "', which no component step of the recipe writes",
+                       selections.empty() ? std::string("leave 'selection' out to export every component")
+                                          : suggestion_hint(wanted, selections));
       ExportSpec spec;
       spec.format = step.params.at("format").text;
       spec.selection = step.params.at("selection").text;

@@ -16,7 +16,14 @@ void print_params(const std::vector<workflow::ParamSpec>& specs) {
   for (const auto& p : specs) {
     std::cout << "    " << std::left << std::setw(24) << p.name << std::setw(9) << workflow::to_string(p.type);
     std::cout << (p.default_value ? "default " + *p.default_value : std::string("required"));
-    if (p.min_value && p.max_value) std::cout << ", " << *p.min_value << " to " << *p.max_value;
+    if (p.min_value && p.max_value)
+      std::cout << ", " << (p.min_open ? "above " : "") << *p.min_value << " to " << (p.max_open ? "below " : "")
+                << *p.max_value;
+    else if (p.min_value)
+      std::cout << ", " << (p.min_open ? "above " : "at least ") << *p.min_value;
+    else if (p.max_value)
+      std::cout << ", " << (p.max_open ? "below " : "at most ") << *p.max_value;
+    if (p.odd) std::cout << ", odd";
     if (!p.choices.empty()) {
       std::cout << ", one of";
       for (const auto& c : p.choices)

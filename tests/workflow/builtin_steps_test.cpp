@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -177,4 +178,52 @@ TEST_F(BuiltinSteps, ChainOfBuiltinStepsThroughTheRegistryMatchesTheLibraryFunct
   std::ifstream in(report);
   std::string html((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
   EXPECT_NE(html.find("through the registry"), std::string::npos);
+}
+
+TEST_F(BuiltinSteps, AttributeDeclarationsConvertWithoutLoss) {
+  // Every built-in attribute parameter, as the registry declares it, accepts and refuses exactly
+  // what the attribute library's own declaration does, on values at and around its bounds.
+  for (const auto& attribute : attributes::builtin_attributes()) {
+    const Plugin& step = registry.get(attribute.name);
+    ASSERT_EQ(step.params().size(), attribute.params.size()) << attribute.name;
+    for (std::size_t n = 0; n < attribute.params.size(); ++n) {
+      const auto& theirs = attribute.params[n];
+      const auto& ours = step.params()[n];
+      EXPECT_EQ(ours.name, theirs.name);
+      EXPECT_EQ(ours.default_value.value(), attributes::to_string(theirs.default_value)) << ours.name;
+      std::vector<std::string> probes;
+      if (theirs.type == attributes::ParamType::choice) {
+        probes = theirs.choices;
+        probes.push_back("nonsense");
+      } else {
+        for (double edge : {theirs.range.min, theirs.range.max})
+          if (std::isfinite(edge))
+            for (double d : {-1.0, -0.5, 0.0, 0.5, 1.0, 2.0})
+              probes.push_back(theirs.type == attributes::ParamType::integer
+                                   ? std::to_string(static_cast<long long>(edge + d))
+                                   : std::to_string(edge + d));
+      }
+      for (const auto& text : probes) {
+        bool registry_accepts = true, library_accepts = true;
+        try {
+          parse_param(ours, text);
+        } catch (const InvalidArgument&) {
+          registry_accepts = false;
+        }
+        attributes::ParamValues given;
+        if (theirs.type == attributes::ParamType::choice)
+          given[theirs.name] = text;
+        else if (theirs.type == attributes::ParamType::integer)
+          given[theirs.name] = static_cast<std::int64_t>(std::stoll(text));
+        else
+          given[theirs.name] = std::stod(text);
+        try {
+          attributes::resolve(attribute, given);
+        } catch (const InvalidArgument&) {
+          library_accepts = false;
+        }
+        EXPECT_EQ(registry_accepts, library_accepts) << attribute.name << "." << ours.name << " = " << text;
+      }
+    }
+  }
 }

@@ -68,17 +68,20 @@ namespace {
 
 std::string range_text(const ParamSpec& spec) {
   std::ostringstream out;
-  if (spec.min_value && spec.max_value)
+  if (spec.min_value && spec.max_value && !spec.min_open && !spec.max_open) {
     out << "between " << *spec.min_value << " and " << *spec.max_value;
-  else if (spec.min_value)
-    out << "at least " << *spec.min_value;
-  else if (spec.max_value)
-    out << "at most " << *spec.max_value;
+    return out.str();
+  }
+  if (spec.min_value) out << (spec.min_open ? "above " : "at least ") << *spec.min_value;
+  if (spec.min_value && spec.max_value) out << " and ";
+  if (spec.max_value) out << (spec.max_open ? "below " : "at most ") << *spec.max_value;
   return out.str();
 }
 
 void check_range(const ParamSpec& spec, double value, const std::string& text) {
-  if ((spec.min_value && value < *spec.min_value) || (spec.max_value && value > *spec.max_value))
+  bool low = spec.min_value && (spec.min_open ? value <= *spec.min_value : value < *spec.min_value);
+  bool high = spec.max_value && (spec.max_open ? value >= *spec.max_value : value > *spec.max_value);
+  if (low || high)
     throw InvalidArgument("parameter '" + spec.name + "' is " + text + ", out of range", {},
                           "use a value " + range_text(spec));
 }
@@ -102,6 +105,10 @@ ParamValue parse_param(const ParamSpec& spec, const std::string& text) {
     v.integer = n;
     v.real = static_cast<double>(n);
     check_range(spec, v.real, text);
+    if (spec.odd && n % 2 == 0)
+      throw InvalidArgument("parameter '" + spec.name + "' is " + text + ", not odd", {},
+                            "a centred window has an odd length: use " + std::to_string(n - 1) + " or " +
+                                std::to_string(n + 1));
     break;
   }
   case ParamType::real: {

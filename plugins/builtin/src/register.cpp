@@ -19,10 +19,16 @@ workflow::ParamSpec convert(const attributes::ParamSpec& p) {
   }
   s.default_value = attributes::to_string(p.default_value);
   s.help = p.help + (p.unit.empty() ? "" : " (" + p.unit + ")");
-  if (p.odd) s.help += "; odd";
-  if (!p.range.min_open && std::isfinite(p.range.min)) s.min_value = p.range.min;
-  if (!p.range.max_open && std::isfinite(p.range.max)) s.max_value = p.range.max;
-  // Open bounds and oddness are checked by check() (attributes::resolve) at validation.
+  s.unit = p.unit;
+  s.odd = p.odd;
+  if (std::isfinite(p.range.min)) {
+    s.min_value = p.range.min;
+    s.min_open = p.range.min_open;
+  }
+  if (std::isfinite(p.range.max)) {
+    s.max_value = p.range.max;
+    s.max_open = p.range.max_open;
+  }
   s.choices = p.choices;
   return s;
 }
@@ -41,7 +47,8 @@ public:
   const std::string& version() const override { return version_; }
   int input_count() const override { return spec_.inputs; }
 
-  // The attribute's own declaration decides (open bounds, odd window lengths), before any work.
+  // Every single-parameter rule is in the converted spec; this runs the attribute's own
+  // resolution too, so that any rule it adds later is still checked at validation.
   void check(const workflow::ParamValues& values) const override { attributes::resolve(spec_, given(values)); }
 
   using Plugin::make_attribute;

@@ -36,16 +36,21 @@ struct ReportData;
 enum class ParamType { integer, real, boolean, text, choice };
 const char* to_string(ParamType type);
 
-// One parameter model for the C ABI (gt_param_spec is its C form), the registry, recipes and the
-// command line: a declared parameter, and its value after validation.
+// One parameter model for the C ABI (gt_param_spec is its C form), the registry, recipes, the
+// command line and the built-in attributes (whose declarations convert to it without loss): a
+// declared parameter, and its value after validation.
 struct ParamSpec {
   std::string name;
   ParamType type = ParamType::real;
   std::optional<std::string> default_value; // empty: required
   std::string help;
-  std::optional<double> min_value; // inclusive, for integer and real
-  std::optional<double> max_value;
+  std::optional<double> min_value;  // for integer and real; inclusive unless min_open
+  std::optional<double> max_value;  // inclusive unless max_open
   std::vector<std::string> choices; // for choice
+  bool min_open = false;
+  bool max_open = false;
+  bool odd = false; // integers that must be odd (window lengths)
+  std::string unit; // "samples", "degrees", ...; empty when the help says it
 };
 
 // A parameter value after validation against its spec.

@@ -8,6 +8,7 @@
 #include "geotandem/core/error.hpp"
 #include "geotandem/synth/options.hpp"
 #include "geotandem/workflow/suggest.hpp"
+#include "recipe_overrides.hpp"
 #include "yaml_reader.hpp"
 
 namespace fs = std::filesystem;
@@ -302,54 +303,6 @@ void parse_execution(MapReader& m, ExecutionSpec& ex) {
   m.finish({"scheduler", "workers", "resources"});
 }
 
-// Applies one --set override to the YAML tree. Steps are addressed by index (steps.2.iso) or by
-// their 'as' / step name (steps.extract.iso).
-void apply_override(YAML::Node root, const std::string& text) {
-  auto eq = text.find('=');
-  if (eq == std::string::npos || eq == 0)
-    throw InvalidArgument("--set '" + text + "' is not key=value", {}, "for example --set execution.workers=4");
-  std::string path = text.substr(0, eq), value = text.substr(eq + 1);
-  std::vector<std::string> parts;
-  for (std::size_t start = 0;;) {
-    auto dot = path.find('.', start);
-    parts.push_back(path.substr(start, dot == std::string::npos ? std::string::npos : dot - start));
-    if (dot == std::string::npos) break;
-    start = dot + 1;
-  }
-  YAML::Node node;
-  node.reset(root);
-  for (std::size_t n = 0; n + 1 < parts.size(); ++n) {
-    const std::string& part = parts[n];
-    if (node.IsSequence()) {
-      YAML::Node found;
-      bool matched = false; // a default YAML::Node is a valid null node, so track the match apart
-      char* end = nullptr;
-      long index = std::strtol(part.c_str(), &end, 10);
-      if (*end == '\0' && index >= 1 && static_cast<std::size_t>(index) <= node.size()) {
-        found.reset(node[static_cast<std::size_t>(index - 1)]);
-        matched = true;
-      } else {
-        for (std::size_t i = 0; i < node.size() && !matched; ++i) {
-          YAML::Node item = node[i];
-          if (item.IsMap() && ((item["as"] && item["as"].Scalar() == part) ||
-                               (!item["as"] && item["step"] && item["step"].Scalar() == part))) {
-            found.reset(item);
-            matched = true;
-          }
-        }
-      }
-      if (!matched)
-        throw InvalidArgument("--set " + text + ": no step '" + part + "'", {},
-                              "address steps by their 1-based index or by name");
-      node.reset(found);
-    } else {
-      if (!node[part]) node[part] = YAML::Node(YAML::NodeType::Map);
-      node.reset(node[part]);
-    }
-  }
-  node[parts.back()] = YAML::Load(value);
-}
-
 nlohmann::json to_json(const Recipe& r) {
   using nlohmann::json;
   json j;
@@ -391,7 +344,7 @@ Recipe parse_recipe(const std::string& text, const std::string& name, const Plug
                           "check indentation and the ':' after each key");
   }
   for (const auto& o : overrides)
-    apply_override(root, o);
+    detail::apply_override(root, o);
 
   Recipe r;
   r.path = name;

@@ -139,7 +139,8 @@ private:
       report_.steps.push_back({step.name, 0.0, 0, store_->size(), "reused from a previous run with the same inputs"});
     } else {
       state_.set("extract", {{"fingerprint", print_}, {"done", false}});
-      nlohmann::json description = {{"recipe", recipe_.path}, {"chain", chain_.to_json()}};
+      nlohmann::json description = {
+          {"recipe", recipe_.path}, {"chain", chain_.to_json()}, {"chain_fingerprint", print_}};
       auto progress = progress_of(settings_);
       StepContext c = context(*progress);
       ExtractResult r = plugin.extract(*volumes_.result, *store_, step.params, description, c);

@@ -151,8 +151,9 @@ private:
                              {"triangles_per_layer", r.triangles_per_layer}});
       report_.triangles_per_layer = r.triangles_per_layer;
       report_.steps.push_back({step.name, since(t), 0, store_->size(),
-                               step.params.at("mode").text + ", " + std::to_string(r.input_triangles) +
-                                   " marching-cubes triangles, " + std::to_string(r.collapses) + " collapses"});
+                               (step.params.count("mode") ? step.params.at("mode").text + ", " : std::string()) +
+                                   std::to_string(r.input_triangles) + " marching-cubes triangles, " +
+                                   std::to_string(r.collapses) + " collapses"});
     }
     outcome_.components = outcome_.kept = store_->size();
     report_.volume_unit = store_->geometry().z_unit == volume::SampleUnit::milliseconds ? "m^2*ms" : "m^3";
@@ -191,7 +192,8 @@ private:
     auto progress = progress_of(settings_);
     StepContext c = context(*progress);
     ExportOutcome r = plugin.export_components(*store_, step.params, selection_, out_dir_, c);
-    report_.steps.push_back({"export " + step.params.at("format").text, since(t), r.rows, r.components, r.path});
+    const std::string label = step.params.count("format") ? step.name + " " + step.params.at("format").text : step.name;
+    report_.steps.push_back({label, since(t), r.rows, r.components, r.path});
     report_.outputs.push_back(r.path);
   }
 

@@ -6,6 +6,7 @@
 #include <cstddef>
 #include <cstring>
 #include <regex>
+#include <type_traits>
 #include <unordered_set>
 
 #include "geotandem/core/error.hpp"
@@ -20,6 +21,14 @@ constexpr std::size_t error_buffer_size = 1024;
 constexpr std::size_t descriptor_size_1_0 = offsetof(gt_plugin_descriptor, component);
 constexpr std::size_t descriptor_size_1_1 = offsetof(gt_plugin_descriptor, component) + sizeof(gt_component_ops);
 static_assert(descriptor_size_1_1 <= sizeof(gt_plugin_descriptor));
+
+// The integer a plugin stored in a C enum field. A C plugin may store any value there, and loading
+// an out-of-range value as the C++ enum type is undefined: read the bytes instead.
+template <class Enum> long long raw_value(const Enum& field) {
+  std::underlying_type_t<Enum> value;
+  std::memcpy(&value, &field, sizeof value);
+  return static_cast<long long>(value);
+}
 
 // The plugin's descriptor as this host reads it: the fields its struct_size covers, the rest zero.
 gt_plugin_descriptor read_descriptor(const gt_plugin_descriptor* d) {
@@ -313,10 +322,11 @@ gt_plugin_descriptor check_descriptor(const gt_plugin_descriptor* given, const s
   static const std::regex identifier("[a-z][a-z0-9_]*");
   if (!d.name || !std::regex_match(d.name, identifier))
     throw FormatError("plugin name must match [a-z][a-z0-9_]*", {origin});
-  if (d.kind == GT_PLUGIN_ATTRIBUTE) {
+  const long long kind = raw_value(d.kind);
+  if (kind == GT_PLUGIN_ATTRIBUTE) {
     if (!d.attribute.halo || !d.attribute.compute)
       throw FormatError("attribute plugin '" + std::string(d.name) + "' lacks its halo or compute callback", {origin});
-  } else if (d.kind == GT_PLUGIN_COMPONENT_STEP) {
+  } else if (kind == GT_PLUGIN_COMPONENT_STEP) {
     if (d.struct_size < descriptor_size_1_1)
       throw FormatError("component step plugin '" + std::string(d.name) + "' has a descriptor of " +
                             std::to_string(d.struct_size) + " bytes, too small to hold its callbacks (interface 1.1)",
@@ -324,7 +334,7 @@ gt_plugin_descriptor check_descriptor(const gt_plugin_descriptor* given, const s
     if (!d.component.select)
       throw FormatError("component step plugin '" + std::string(d.name) + "' lacks its select callback", {origin});
   } else {
-    throw FormatError("plugin '" + std::string(d.name) + "' has unknown kind " + std::to_string(d.kind), {origin},
+    throw FormatError("plugin '" + std::string(d.name) + "' has unknown kind " + std::to_string(kind), {origin},
                       "this geotandem knows attribute plugins (kind 1) and component step plugins (kind 2)");
   }
   if (d.param_count > 0 && !d.params)
@@ -334,7 +344,7 @@ gt_plugin_descriptor check_descriptor(const gt_plugin_descriptor* given, const s
     if (!p.name || !std::regex_match(p.name, identifier))
       throw FormatError("plugin '" + std::string(d.name) + "' has a parameter whose name is not [a-z][a-z0-9_]*",
                         {origin});
-    if (p.type < GT_PARAM_INT || p.type > GT_PARAM_CHOICE)
+    if (raw_value(p.type) < GT_PARAM_INT || raw_value(p.type) > GT_PARAM_CHOICE)
       throw FormatError("parameter '" + std::string(p.name) + "' of plugin '" + d.name + "' has unknown type",
                         {origin});
   }

@@ -3,6 +3,8 @@
 
 #include <gtest/gtest.h>
 
+#include <dlfcn.h>
+
 #include <cmath>
 #include <cstddef>
 #include <cstring>
@@ -58,6 +60,15 @@ std::string load_error(const gt_plugin_descriptor& d) {
 } // namespace
 
 TEST(AbiVersions, PluginBuiltAgainstTheFrozen10HeaderLoadsAndComputesLikeTheCurrentOne) {
+  // The library really carries the smaller 1.0 descriptor (read without the host's loader).
+  void* handle = ::dlopen(plugin_file("boxsum10").c_str(), RTLD_NOW | RTLD_LOCAL);
+  ASSERT_NE(handle, nullptr) << ::dlerror();
+  auto entry = reinterpret_cast<gt_plugin_entry_fn>(::dlsym(handle, GEOTANDEM_PLUGIN_ENTRY_NAME));
+  ASSERT_NE(entry, nullptr);
+  EXPECT_EQ(entry()->abi_minor, 0u);
+  EXPECT_EQ(entry()->struct_size, offsetof(gt_plugin_descriptor, component));
+  EXPECT_LT(entry()->struct_size, sizeof(gt_plugin_descriptor));
+
   PluginRegistry registry;
   registry.load_library(plugin_file("boxsum10")); // same source as boxsum, 1.0 header
   registry.load_library(plugin_file("boxsum"));

@@ -209,3 +209,13 @@ TEST_F(StepKinds, ExportOfASelectionNoStepWritesIsRefusedAtItsLine) {
   EXPECT_EQ(r.finish[0].kind, StepKind::export_step);
   EXPECT_EQ(r.output.exports.at(0).selection, "big");
 }
+
+TEST_F(StepKinds, TwoExportsToOnePathAreRefused) {
+  std::string text = "version: 1\ninput:\n  synthetic: {kind: analytic, shape: [40, 40, 40]}\nsteps:\n"
+                     "  - step: extract\n    iso: 0.5\noutput:\n  exports:\n    - {format: ply}\n"
+                     "    - {format: ply, per_component: true}\n";
+  std::string e = error_of([&] { parse_recipe(text, "r.yaml", registry); });
+  EXPECT_NE(e.find("r.yaml:10:7: export 2 writes bodies.ply, like an earlier export"), std::string::npos) << e;
+  text.replace(text.rfind("per_component"), 0, "path: each, ");
+  EXPECT_NO_THROW(parse_recipe(text, "r.yaml", registry));
+}

@@ -234,6 +234,11 @@ void parse_output(MapReader& m, Recipe& r, const std::string& recipe_stem, const
       spec.format = step.params.at("format").text;
       spec.selection = step.params.at("selection").text;
       spec.path = step.params.at("path").text.empty() ? "bodies." + spec.format : step.params.at("path").text;
+      for (const auto& earlier : out.exports)
+        if (fs::path(earlier.path).lexically_normal() == fs::path(spec.path).lexically_normal())
+          throw error_at(m.file(), list[n],
+                         what + " writes " + spec.path + ", like an earlier export: the second would overwrite it",
+                         "give each export its own 'path'");
       spec.per_component = step.params.at("per_component").boolean;
       out.exports.push_back(spec);
       r.finish.push_back(std::move(step));

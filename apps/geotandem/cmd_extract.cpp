@@ -48,21 +48,27 @@ void add_extract_command(CLI::App& app, Context& context, Runner& run) {
                                     "(marching cubes interleaved with edge-collapse simplification) into a component "
                                     "store. Finished components are written as they are found.");
   cmd->add_option("cube", a->cube, "the cube (any format 'geotandem info' reads)")->required();
-  cmd->add_option("--iso", a->iso, "isovalue: samples >= ISO are inside a body")->required();
+  cmd->add_option("--iso", a->iso, "isovalue: samples >= ISO are inside a body")->required()->type_name("NUMBER");
   cmd->add_option("--out", a->out, "the component store directory (created; resumed if it holds this cube)")
       ->required();
   cmd->add_option("--max-error", a->max_error, "E0: largest shape error a collapse may make, in voxels")
-      ->capture_default_str();
+      ->capture_default_str()
+      ->type_name("NUMBER");
   cmd->add_option("--isotropy", a->isotropy, "alpha in [0, 1]: weight of triangle shape against fidelity")
-      ->capture_default_str();
-  cmd->add_option("--axis", a->axis, "extraction axis: i (inline), j (crossline) or k (sample)")->capture_default_str();
+      ->capture_default_str()
+      ->type_name("NUMBER");
+  cmd->add_option("--axis", a->axis, "extraction axis: i (inline), j (crossline) or k (sample)")
+      ->capture_default_str()
+      ->type_name("i|j|k");
   cmd->add_option("--block-size", a->block_size,
                   "leaf block edge of the block tree, in cells (at least " + std::to_string(workflow::min_block_size) +
                       "; 0: the whole cube as one block). The blocks are extracted one after the other and merged "
                       "in this process")
-      ->capture_default_str();
+      ->capture_default_str()
+      ->type_name("INT");
   cmd->add_option("--mode", a->mode, "tandem-dump, tandem (no early dumping) or brute (extract all, then simplify)")
-      ->capture_default_str();
+      ->capture_default_str()
+      ->type_name("MODE");
   cmd->add_flag("--no-extended-time-lag", a->no_extended_time_lag,
                 "freeze only vertices on open block faces (for comparison; degrades seams)");
   cmd->add_option("--nan", a->nan, "NaN or infinite samples: error, or fill (treated as outside)")

@@ -153,17 +153,18 @@ ExtractResult extract_to_store(const volume::Volume& volume, store::ComponentSto
   char iso_text[32]; // the float's shortest text, so that 0.6 reads 0.6 in messages
   auto iso_end = std::to_chars(iso_text, iso_text + sizeof iso_text - 1, settings.iso).ptr;
   *iso_end = '\0';
-  parameters["identity"] = {{"iso", std::strtod(iso_text, nullptr)},
-                            {"max_error", settings.max_error},
-                            {"isotropy", settings.isotropy},
-                            {"axis", parameters["axis"]},
-                            {"block_size", settings.block_size},
-                            {"mode", to_string(settings.mode)},
-                            {"extended_time_lag", settings.extended_time_lag},
-                            {"input", settings.parameters.contains("input_content")
-                                          ? settings.parameters["input_content"]
-                                          : volume::input_fingerprint(volume.source())},
-                            {"chain", settings.parameters.value("chain", nlohmann::json::object())}};
+  parameters["identity"] = {
+      {"iso", std::strtod(iso_text, nullptr)},
+      {"max_error", settings.max_error},
+      {"isotropy", settings.isotropy},
+      {"axis", parameters["axis"]},
+      {"block_size", settings.block_size},
+      {"mode", to_string(settings.mode)},
+      {"extended_time_lag", settings.extended_time_lag},
+      {"input", settings.parameters.contains("input_content") ? settings.parameters["input_content"]
+                                                              : volume::input_fingerprint(volume.source())},
+      {"chain", settings.parameters.is_object() && settings.parameters.contains("chain") ? settings.parameters["chain"]
+                                                                                         : nlohmann::json::object()}};
 
   ExtractResult result;
   result.run = store.begin_run(parameters.dump());

@@ -15,6 +15,7 @@ void add_extract_command(CLI::App& app, Context& context, Runner& run) {
     double iso = 0.0, max_error = 0.5, isotropy = 0.4;
     std::int64_t block_size = 0;
     bool no_extended_time_lag = false;
+    volume::SegyOptions segy;
   };
   auto a = std::make_shared<Args>();
   auto* cmd =
@@ -41,11 +42,17 @@ void add_extract_command(CLI::App& app, Context& context, Runner& run) {
   cmd->add_option("--nan", a->nan, "NaN or infinite samples: error, or fill (treated as outside)")
       ->capture_default_str();
   cmd->add_option("--variable", a->variable, "the array to read from a multidimensional file with several");
+  cmd->add_option("--inline-byte", a->segy.inline_byte, "SEG-Y: trace header byte (1-based) of the inline numbers")
+      ->capture_default_str();
+  cmd->add_option("--crossline-byte", a->segy.crossline_byte,
+                  "SEG-Y: trace header byte (1-based) of the crossline numbers")
+      ->capture_default_str();
   cmd->callback([a, &context, &run] {
     run = [a, &context] {
       volume::OpenOptions open;
       open.nan_policy = volume::parse_nan_policy(a->nan);
       open.variable = a->variable;
+      open.segy = a->segy;
       workflow::ExtractSettings s;
       s.iso = static_cast<float>(a->iso);
       s.max_error = a->max_error;

@@ -113,6 +113,7 @@ std::shared_ptr<const volume::Volume> open_input(const Recipe& r, const fs::path
   volume::OpenOptions options;
   options.nan_policy = volume::parse_nan_policy(in.nan);
   options.variable = in.variable;
+  options.segy = {in.segy_inline_byte, in.segy_crossline_byte};
   auto cube = volume::open_volume(path.string(), options);
   log.info("input: " + cube->format() + " " + cube->source());
   return std::shared_ptr<const volume::Volume>(std::move(cube));

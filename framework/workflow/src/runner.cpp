@@ -14,6 +14,7 @@
 #include "geotandem/workflow/component_steps.hpp"
 #include "geotandem/workflow/extract_step.hpp"
 #include "geotandem/workflow/report.hpp"
+#include "geotandem/workflow/report_views.hpp"
 
 namespace fs = std::filesystem;
 
@@ -318,6 +319,9 @@ RunOutcome run_workflow(const Recipe& recipe, const PluginRegistry& plugins, con
     c.kept = selection.empty() || std::binary_search(kept_keys.begin(), kept_keys.end(), row.key);
     report.components.push_back(c);
   }
+  // The map and 3-D views of the kept bodies (report_views.cpp).
+  report.survey = survey_outline(store.geometry());
+  report.bodies = display_bodies(store, report.components, report.survey);
   report.outputs.push_back(recipe.output.store + "/");
   if (recipe.input.synthetic) report.outputs.push_back("truth.json"); // written by open_input
   report.total_seconds = since(started);

@@ -104,8 +104,9 @@ const char* viewer_script = R"JS(
   scene.add(new THREE.LineSegments(box, new THREE.LineBasicMaterial({color: 0x888888})));
   box.computeBoundingSphere();
   var sphere = box.boundingSphere;
-  var north = new THREE.ArrowHelper(new THREE.Vector3(0, 0, -1), at(c[0][0], c[0][1], data.z_min),
-                                    sphere.radius * 0.3, 0x333333);
+  var length = sphere.radius * 0.35;
+  var north = new THREE.ArrowHelper(new THREE.Vector3(0, 0, -1), at(c[0][0], c[0][1], data.z_min), length, 0x222222,
+                                    length * 0.3, length * 0.15);
   scene.add(north);
 
   var meshes = [];

@@ -141,7 +141,10 @@ ReportBody display_body(const ReportComponent& component, const mesh::SurfaceMes
   body.footprint = convex_hull(map);
 
   Clustered kept{display, world.triangles};
-  if (world.triangle_count() > budget) {
+  if (budget < 4) {
+    // A share too small to draw anything recognisable: the body shows on the map only.
+    kept.triangles.clear();
+  } else if (world.triangle_count() > budget) {
     // About two triangles per occupied cell of a surface: start there, coarsen until it fits.
     double cell =
         std::sqrt(2.0 * area_of(display, world.triangles) / static_cast<double>(std::max<std::size_t>(budget, 1)));

@@ -48,14 +48,22 @@ struct Clustered {
 Clustered cluster(const std::vector<std::array<double, 3>>& p, const std::vector<mesh::Triangle>& triangles,
                   double cell) {
   Clustered out;
+  // Cells are counted from the body's lowest corner, 21 bits per axis: a cell at least 2^-20 of
+  // the largest extent keeps every index in range.
+  std::array<double, 3> lo{}, hi{};
+  for (int a = 0; a < 3; ++a) {
+    lo[a] = hi[a] = p.empty() ? 0.0 : p[0][a];
+    for (const auto& q : p)
+      lo[a] = std::min(lo[a], q[a]), hi[a] = std::max(hi[a], q[a]);
+    cell = std::max(cell, (hi[a] - lo[a]) / double(1 << 20));
+  }
   std::unordered_map<std::uint64_t, std::uint32_t> cell_index;
   std::vector<std::uint32_t> of_vertex(p.size());
   std::vector<double> count;
   for (std::size_t v = 0; v < p.size(); ++v) {
-    // 21 bits per axis: coordinates are relative to the survey corner, so cells stay in range.
     std::uint64_t id = 0;
     for (int a = 0; a < 3; ++a)
-      id = id << 21 | (static_cast<std::uint64_t>(std::floor(p[v][a] / cell) + (1 << 20)) & 0x1FFFFF);
+      id = id << 21 | (static_cast<std::uint64_t>((p[v][a] - lo[a]) / cell) & 0x1FFFFF);
     auto [it, added] = cell_index.try_emplace(id, static_cast<std::uint32_t>(out.points.size()));
     if (added) {
       out.points.push_back({0, 0, 0});

@@ -43,6 +43,7 @@ struct SegySpec {
   bool little_endian = false;                // every header field and sample little-endian
   int inline_byte = SEGY_TR_INLINE;          // where the line numbers go (the other positions stay 0)
   int crossline_byte = SEGY_TR_CROSSLINE;
+  bool record_and_sequence = false; // field record 1 at byte 9, trace sequence at byte 21 (a 1 x N "grid")
 
   long trace0() const { return 3600L + 3200L * extended_headers; }
   int inline_number(int i) const { return il0 + (i + (gap_in_inlines && i >= ni / 2 ? 1 : 0)) * il_step; }
@@ -139,6 +140,10 @@ inline void write_with_segyio(const std::string& path, const SegySpec& s) {
       segy_set_field(h.data(), s.inline_byte, s.inline_number(i));
       segy_set_field(h.data(), s.crossline_byte, s.xl0 + j * s.xl_step);
       segy_set_field(h.data(), SEGY_TR_OFFSET, offset);
+      if (s.record_and_sequence) {
+        segy_set_field(h.data(), SEGY_TR_FIELD_RECORD, 1);
+        segy_set_field(h.data(), SEGY_TR_ENSEMBLE, trace + 1);
+      }
       segy_set_field(h.data(), SEGY_TR_SAMPLE_COUNT, s.ns);
       segy_set_field(h.data(), SEGY_TR_SAMPLE_INTER, s.interval_us);
       segy_set_field(h.data(), SEGY_TR_DELAY_REC_TIME, s.delay_ms);

@@ -260,4 +260,22 @@ TEST(SegyHeaderBytes, BrokenGridStillSaysWhatIsWrongWhenNoPositionHelps) {
   EXPECT_NE(message.find("do not describe a regular grid either"), std::string::npos) << message;
 }
 
+TEST(SegyHeaderBytes, ASingleLineIsNoAdviceForACube) {
+  // Byte 9 constant and byte 21 counting traces make a regular 1 x N "grid"; a cube with a missing
+  // trace at 189/193 must not be told to read it that way.
+  ScratchDir dir;
+  SegySpec s;
+  s.missing = {{2, 2}};
+  s.record_and_sequence = true;
+  const std::string path = dir.file("sequence.sgy");
+  write_with_segyio(path, s);
+  const std::string message = message_of<FormatError>([&] { open_volume(path); });
+  EXPECT_EQ(message.find("do describe"), std::string::npos) << message;
+  EXPECT_NE(message.find("irregular survey"), std::string::npos) << message;
+  // Asked for explicitly, the positions do read, as the single line they are.
+  OpenOptions options;
+  options.segy = {9, 21};
+  EXPECT_EQ(open_volume(path, options)->geometry().shape, (Index3{1, 62, 50}));
+}
+
 } // namespace

@@ -169,7 +169,8 @@ Grid find_grid(segy_file* file, const Layout& layout, const SegyOptions& bytes, 
   for (const SegyOptions& other : kCommonBytes) {
     if (other == bytes) continue;
     Probe p = probe(file, layout, other, path);
-    if (p.grid)
+    // A single line is what a sequence number beside a constant gives: no advice for a cube.
+    if (p.grid && p.grid->ni > 1 && p.grid->nj > 1)
       throw FormatError(asked.problem.message + "; the line numbers at bytes " + pair_text(other) +
                             " do describe a regular " + p.grid->sorting() + " grid of " + std::to_string(p.grid->ni) +
                             " inlines x " + std::to_string(p.grid->nj) + " crosslines",

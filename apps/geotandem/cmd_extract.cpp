@@ -41,6 +41,7 @@ void add_extract_command(CLI::App& app, Context& context, Runner& run) {
     std::string iso, max_error = default_of("max_error"), isotropy = default_of("isotropy"), axis = default_of("axis"),
                      block_size = default_of("block_size"), mode = default_of("mode");
     bool no_extended_time_lag = false;
+    volume::SegyOptions segy;
   };
   auto a = std::make_shared<Args>();
   auto* cmd =
@@ -74,11 +75,17 @@ void add_extract_command(CLI::App& app, Context& context, Runner& run) {
   cmd->add_option("--nan", a->nan, "NaN or infinite samples: error, or fill (treated as outside)")
       ->capture_default_str();
   cmd->add_option("--variable", a->variable, "the array to read from a multidimensional file with several");
+  cmd->add_option("--inline-byte", a->segy.inline_byte, "SEG-Y: trace header byte (1-based) of the inline numbers")
+      ->capture_default_str();
+  cmd->add_option("--crossline-byte", a->segy.crossline_byte,
+                  "SEG-Y: trace header byte (1-based) of the crossline numbers")
+      ->capture_default_str();
   cmd->callback([a, &context, &run] {
     run = [a, &context] {
       volume::OpenOptions open;
       open.nan_policy = volume::parse_nan_policy(a->nan);
       open.variable = a->variable;
+      open.segy = a->segy;
       workflow::ParamValues values;
       values["iso"] = value_of("iso", "--iso", a->iso);
       values["max_error"] = value_of("max_error", "--max-error", a->max_error);

@@ -15,7 +15,7 @@ using testing::noise;
 // compares them with one read of the whole cube, which the attribute splits into tiles.
 void expect_whole_equals_slabs(const Attribute& attribute, int axis, std::int64_t step) {
   const Box bounds = attribute.geometry().bounds();
-  ASSERT_GT(bounds.size(axis), Attribute::kTile[axis]) << "the cube must need several tiles";
+  ASSERT_GT(Attribute::tiles_along(bounds.size(axis), axis), 1) << "the cube must need several tiles";
   const std::vector<float> whole = attribute.read(bounds);
   for (std::int64_t lo = 0; lo < bounds.hi[axis]; lo += step) {
     Box slab = bounds;
@@ -31,13 +31,34 @@ void expect_whole_equals_slabs(const Attribute& attribute, int axis, std::int64_
 }
 
 TEST(Tiling, WholeCubeReadInTilesEqualsSmallBoxes) {
-  auto wide = cube({Attribute::kTile[0] + 7, 5, 20}, [](int i, int j, int k) { return noise(i, j, k); });
-  auto deep = cube({3, 4, Attribute::kTile[2] + 45}, [](int i, int j, int k) { return noise(i, j, k, 3); });
+  auto wide = cube({2 * Attribute::kTile[0] + 7, 5, 20}, [](int i, int j, int k) { return noise(i, j, k); });
+  auto deep = cube({3, 4, 2 * Attribute::kTile[2] + 45}, [](int i, int j, int k) { return noise(i, j, k, 3); });
   for (const AttributeSpec& spec : builtin_attributes()) {
     std::vector<VolumePtr> on_wide(static_cast<std::size_t>(spec.inputs), wide);
     std::vector<VolumePtr> on_deep(static_cast<std::size_t>(spec.inputs), deep);
     expect_whole_equals_slabs(*make_attribute(spec.name, on_wide), 0, 9);
     expect_whole_equals_slabs(*make_attribute(spec.name, on_deep), 2, 37);
+  }
+}
+
+// Tiles stay within 5/4 of the nominal size, and a box just over one tile is not cut into a full
+// tile and a sliver (a block of 129 samples is two tiles of 64 and 65, not 64, 64 and 1).
+TEST(Tiling, TilesAreBalancedAndBounded) {
+  for (int axis = 0; axis < 3; ++axis) {
+    const std::int64_t nominal = Attribute::kTile[axis];
+    EXPECT_EQ(Attribute::tiles_along(1, axis), 1);
+    EXPECT_EQ(Attribute::tiles_along(nominal + nominal / 4, axis), 1);
+    EXPECT_EQ(Attribute::tiles_along(nominal + nominal / 4 + 1, axis), 2);
+    EXPECT_EQ(Attribute::tiles_along(2 * nominal + 1, axis), 2);
+    for (std::int64_t n = 1; n < 9 * nominal; n += 7) {
+      const std::int64_t m = Attribute::tiles_along(n, axis);
+      EXPECT_LE((n + m - 1) / m, nominal + nominal / 4) << "n = " << n;
+      if (m > 1) {
+        EXPECT_GE(n / m, nominal / 2) << "n = " << n; // no sliver beside full tiles
+      } else {
+        EXPECT_LE(n, nominal + nominal / 4) << "n = " << n;
+      }
+    }
   }
 }
 

@@ -11,7 +11,8 @@ namespace {
 // One output line along axis 2: `centre` points at the input sample under o[0]; neighbours along
 // the filtered axis are `stride` floats apart. Loops run over k innermost so they vectorise, and
 // each o[k] accumulates its taps in the fixed order t = 1, 2, ..., radius.
-void filter_line(const float* centre, std::ptrdiff_t stride, const Kernel& kernel, float* __restrict o, std::size_t n) {
+[[gnu::target_clones("avx2", "default")]] void filter_line(const float* centre, std::ptrdiff_t stride,
+                                                           const Kernel& kernel, float* __restrict o, std::size_t n) {
   const float* w = kernel.half.data();
   const int radius = kernel.radius();
   if (kernel.symmetry == Symmetry::even) {

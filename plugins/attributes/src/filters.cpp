@@ -41,7 +41,41 @@ namespace {
   }
 }
 
+// filter_line with the neighbours given as pointers (planes[radius +- t]) rather than a stride.
+[[gnu::target_clones("avx2", "default")]] void filter_across(const float* const* planes, const Kernel& kernel,
+                                                             float* __restrict o, std::size_t n) {
+  const float* w = kernel.half.data();
+  const int radius = kernel.radius();
+  const float* centre = planes[radius];
+  const bool even = kernel.symmetry == Symmetry::even;
+  if (even) {
+    const float w0 = w[0];
+    for (std::size_t k = 0; k < n; ++k)
+      o[k] = w0 * centre[k];
+  } else {
+    for (std::size_t k = 0; k < n; ++k)
+      o[k] = 0.0f;
+  }
+  for (int t = 1; t <= radius; ++t) {
+    const float wt = w[t];
+    if (wt == 0.0f) continue;
+    const float* a = planes[radius + t];
+    const float* b = planes[radius - t];
+    if (even) {
+      for (std::size_t k = 0; k < n; ++k)
+        o[k] += wt * (a[k] + b[k]);
+    } else {
+      for (std::size_t k = 0; k < n; ++k)
+        o[k] += wt * (a[k] - b[k]);
+    }
+  }
+}
+
 } // namespace
+
+void correlate_planes(const float* const* planes, const Kernel& kernel, float* out, std::size_t n) {
+  filter_across(planes, kernel, out, n);
+}
 
 int gaussian_radius(double sigma) {
   return std::max(1, static_cast<int>(std::ceil(kTruncate * sigma)));
@@ -92,6 +126,12 @@ Kernel hilbert_kernel(int half_length) {
 }
 
 Array3 correlate(const Array3& in, int axis, const Kernel& kernel) {
+  Array3 out;
+  correlate(in, axis, kernel, out);
+  return out;
+}
+
+void correlate(const Array3& in, int axis, const Kernel& kernel, Array3& out) {
   const int radius = kernel.radius();
   volume::Index3 shape = in.shape;
   shape[axis] -= 2 * radius;
@@ -99,7 +139,11 @@ Array3 correlate(const Array3& in, int axis, const Kernel& kernel) {
     throw std::logic_error("filter of radius " + std::to_string(radius) + " along axis " + std::to_string(axis) +
                            " needs more than " + std::to_string(2 * radius) + " samples, got " +
                            std::to_string(in.shape[axis]));
-  Array3 out(shape);
+  const auto needed = static_cast<std::size_t>(shape[0] * shape[1] * shape[2]);
+  if (!out.data || out.count() != needed)
+    out = Array3(shape);
+  else
+    out.shape = shape;
   const std::int64_t in_nj = in.shape[1], in_nk = in.shape[2];
   const std::ptrdiff_t stride = axis == 0 ? in_nj * in_nk : axis == 1 ? in_nk : 1;
   volume::Index3 offset{0, 0, 0};
@@ -112,7 +156,6 @@ Array3 correlate(const Array3& in, int axis, const Kernel& kernel) {
       filter_line(centre, stride, kernel, o, nk);
       o += nk;
     }
-  return out;
 }
 
 } // namespace geotandem::attributes::detail

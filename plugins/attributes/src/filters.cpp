@@ -132,30 +132,37 @@ Array3 correlate(const Array3& in, int axis, const Kernel& kernel) {
 }
 
 void correlate(const Array3& in, int axis, const Kernel& kernel, Array3& out) {
-  const int radius = kernel.radius();
   volume::Index3 shape = in.shape;
+  shape[axis] -= 2 * kernel.radius();
+  const auto needed = shape[axis] > 0 ? static_cast<std::size_t>(shape[0] * shape[1] * shape[2]) : 0;
+  if (!out.data || out.count() != needed)
+    out = Array3(shape[axis] > 0 ? shape : volume::Index3{0, 0, 0});
+  else
+    out.shape = shape;
+  correlate(in.data.get(), in.shape, axis, kernel, out.data.get());
+}
+
+volume::Index3 correlate(const float* in, const volume::Index3& in_shape, int axis, const Kernel& kernel, float* out) {
+  const int radius = kernel.radius();
+  volume::Index3 shape = in_shape;
   shape[axis] -= 2 * radius;
   if (shape[axis] <= 0)
     throw std::logic_error("filter of radius " + std::to_string(radius) + " along axis " + std::to_string(axis) +
                            " needs more than " + std::to_string(2 * radius) + " samples, got " +
-                           std::to_string(in.shape[axis]));
-  const auto needed = static_cast<std::size_t>(shape[0] * shape[1] * shape[2]);
-  if (!out.data || out.count() != needed)
-    out = Array3(shape);
-  else
-    out.shape = shape;
-  const std::int64_t in_nj = in.shape[1], in_nk = in.shape[2];
+                           std::to_string(in_shape[axis]));
+  const std::int64_t in_nj = in_shape[1], in_nk = in_shape[2];
   const std::ptrdiff_t stride = axis == 0 ? in_nj * in_nk : axis == 1 ? in_nk : 1;
   volume::Index3 offset{0, 0, 0};
   offset[axis] = radius;
   const auto nk = static_cast<std::size_t>(shape[2]);
-  float* o = out.data.get();
+  float* o = out;
   for (std::int64_t i = 0; i < shape[0]; ++i)
     for (std::int64_t j = 0; j < shape[1]; ++j) {
-      const float* centre = in.data.get() + ((i + offset[0]) * in_nj + (j + offset[1])) * in_nk + offset[2];
+      const float* centre = in + ((i + offset[0]) * in_nj + (j + offset[1])) * in_nk + offset[2];
       filter_line(centre, stride, kernel, o, nk);
       o += nk;
     }
+  return shape;
 }
 
 } // namespace geotandem::attributes::detail

@@ -25,20 +25,13 @@ private:
   std::vector<float> data_;
 };
 
-Array3 plane_view_copy(const Array3& cube, std::int64_t p) {
-  Array3 plane({1, cube.shape[1], cube.shape[2]});
-  const std::size_t n = plane.count();
-  std::copy_n(cube.data.get() + static_cast<std::size_t>(p) * n, n, plane.data.get());
-  return plane;
-}
-
 } // namespace
 
 void stream_structure_tensor(const volume::Volume& input, const volume::Box& box, const TensorFilters& f,
                              const std::function<void(std::int64_t, const TensorPlane&)>& plane) {
   const int rg = f.smooth.radius(), ra = f.across.radius();
   const Array3 u = read_mirrored(input, box, f.halo);
-  const std::int64_t n0 = box.size(0), n1 = box.size(1), n2 = box.size(2);
+  const std::int64_t n1 = box.size(1), n2 = box.size(2);
   // Plane sizes: gradient planes are the box grown by the smoothing radii on axes 1 and 2.
   const std::int64_t g1 = n1 + 2 * ra, g2 = n2 + 2 * f.along.radius();
   const auto grad_count = static_cast<std::size_t>(g1 * g2), out_count = static_cast<std::size_t>(n1 * n2);
@@ -51,7 +44,8 @@ void stream_structure_tensor(const volume::Volume& input, const volume::Box& box
                            {2 * ra + 1, out_count}, {2 * ra + 1, out_count}, {2 * ra + 1, out_count}};
   static constexpr int pairs[6][2] = {{0, 0}, {1, 1}, {2, 2}, {0, 1}, {0, 2}, {1, 2}};
 
-  Array3 a, b, tmp, product({1, g1, g2}), along_k, along_j;
+  // Stage-1 planes after the filter along the trace: u's rows, g2 samples each.
+  Array3 a({1, u.shape[1], g2}), b({1, u.shape[1], g2}), product({1, g1, g2}), along_k({1, g1, n2});
   std::vector<float> grad[3], tensor[6];
   for (auto& g : grad)
     g.resize(grad_count);
@@ -62,16 +56,15 @@ void stream_structure_tensor(const volume::Volume& input, const volume::Box& box
   for (int c = 0; c < 6; ++c)
     result[static_cast<std::size_t>(c)] = tensor[c].data();
 
+  const volume::Index3 plane_shape{1, u.shape[1], u.shape[2]};
+  const std::size_t plane_count = static_cast<std::size_t>(u.shape[1] * u.shape[2]);
   for (std::int64_t p = 0; p < input_planes; ++p) {
-    const Array3 up = plane_view_copy(u, p);
-    correlate(up, 2, f.smooth, a);
-    correlate(up, 2, f.derive, b);
-    correlate(a, 1, f.smooth, tmp);
-    std::copy_n(tmp.data.get(), grad_count, partial[0].slot(p));
-    correlate(a, 1, f.derive, tmp);
-    std::copy_n(tmp.data.get(), grad_count, partial[1].slot(p));
-    correlate(b, 1, f.smooth, tmp);
-    std::copy_n(tmp.data.get(), grad_count, partial[2].slot(p));
+    const float* up = u.data.get() + static_cast<std::size_t>(p) * plane_count;
+    a.shape = correlate(up, plane_shape, 2, f.smooth, a.data.get());
+    b.shape = correlate(up, plane_shape, 2, f.derive, b.data.get());
+    correlate(a.data.get(), a.shape, 1, f.smooth, partial[0].slot(p));
+    correlate(a.data.get(), a.shape, 1, f.derive, partial[1].slot(p));
+    correlate(b.data.get(), b.shape, 1, f.smooth, partial[2].slot(p));
     if (p < 2 * rg) continue;
 
     // Gradient plane q = p - 2 rg: across axis 0, derivative for component 0.
@@ -88,9 +81,8 @@ void stream_structure_tensor(const volume::Volume& input, const volume::Box& box
       float* pr = product.data.get();
       for (std::size_t n = 0; n < grad_count; ++n)
         pr[n] = x[n] * y[n];
-      correlate(product, 2, f.along, along_k);
-      correlate(along_k, 1, f.across, along_j);
-      std::copy_n(along_j.data.get(), out_count, smoothed[c].slot(q));
+      correlate(product.data.get(), product.shape, 2, f.along, along_k.data.get());
+      correlate(along_k.data.get(), along_k.shape, 1, f.across, smoothed[c].slot(q));
     }
     if (q < 2 * ra) continue;
 
@@ -102,7 +94,6 @@ void stream_structure_tensor(const volume::Volume& input, const volume::Box& box
     }
     plane(o, result);
   }
-  (void)n0;
 }
 
 } // namespace geotandem::attributes::detail

@@ -239,6 +239,7 @@ std::unique_ptr<SyntheticCube> make_seismic(const SeismicOptions& options) {
   s.rms_threshold_suggestion =
       std::sqrt(std::sqrt(rms.background * rms.background + n2) * std::sqrt(rms.chaotic * rms.chaotic + n2));
   model.noise_scale = s.noise_rms / detail::unit_noise_rms(wavelet);
+  model.cache_id = detail::SeismicModel::next_cache_id(); // complete: traces may be cached from here
   layout.truth.seismic = s;
   return std::make_unique<detail::SeismicCube>(std::move(layout.truth), std::move(model));
 }

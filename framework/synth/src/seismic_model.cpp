@@ -1,6 +1,7 @@
 #include "seismic_model.hpp"
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <numbers>
 
@@ -133,6 +134,42 @@ void SeismicModel::intervals(std::int64_t i, std::int64_t j, std::vector<Interva
   }
 }
 
+void SeismicModel::describe(std::int64_t i, std::int64_t j, TraceInfo& out) const {
+  intervals(i, j, out.inside);
+  const Vec3 p = frame.to_frame(static_cast<double>(i), static_cast<double>(j), 0.0);
+  fold.at(p, out.stretch, out.shift);
+  out.spots.clear();
+  for (std::uint32_t id : spot_grid.query(volume::Box{{i, j, 0}, {i + 1, j + 1, 1}})) {
+    const double wgt = spots[id].weight(p);
+    if (wgt > 0.0) out.spots.push_back({spots[id].centre.z, wgt});
+  }
+}
+
+std::uint64_t SeismicModel::next_cache_id() {
+  static std::atomic<std::uint64_t> last{0};
+  return ++last;
+}
+
+const TraceInfo& SeismicModel::trace_info(std::int64_t i, std::int64_t j) const {
+  // Per thread, direct-mapped on (i, j) mod 64: the traces of a 64 x 64 column of boxes, which a
+  // consumer reading boxes down the sample axis asks for again and again.
+  thread_local std::vector<TraceInfo> cache(64 * 64);
+  thread_local TraceInfo scratch;
+  if (cache_id == 0) {
+    describe(i, j, scratch);
+    return scratch;
+  }
+  TraceInfo& slot = cache[static_cast<std::size_t>(((i & 63) << 6) | (j & 63))];
+  if (slot.model != cache_id || slot.i != i || slot.j != j) {
+    slot.model = 0; // invalid until complete, should describe() throw
+    describe(i, j, slot);
+    slot.model = cache_id;
+    slot.i = i;
+    slot.j = j;
+  }
+  return slot;
+}
+
 void SeismicModel::trace(std::int64_t i, std::int64_t j, std::int64_t k0, std::int64_t k1, double* out) const {
   const auto count = static_cast<std::size_t>(k1 - k0);
   std::fill(out, out + count, 0.0);
@@ -155,17 +192,15 @@ void SeismicModel::trace(std::int64_t i, std::int64_t j, std::int64_t k0, std::i
     spikes.amplitude.push_back(amplitude);
     spikes.first.push_back(first);
   };
-  std::vector<Interval> inside;
-  intervals(i, j, inside);
+  const TraceInfo& info = trace_info(i, j);
+  const std::vector<Interval>& inside = info.inside;
   auto in_chaotic = [&](double position) {
     for (const auto& iv : inside)
       if (position >= iv.top && position < iv.base) return true;
     return false;
   };
 
-  const Vec3 p = frame.to_frame(static_cast<double>(i), static_cast<double>(j), 0.0);
-  double stretch = 1.0, shift = 0.0;
-  fold.at(p, stretch, shift);
+  const double stretch = info.stretch, shift = info.shift;
   // Layers m sit at geological time tau_m = spacing * (m + 0.8 u_m), increasing in m.
   const auto m_lo = static_cast<std::int64_t>(std::floor((lo - shift) / stretch / spacing)) - 1;
   const auto m_hi = static_cast<std::int64_t>(std::ceil((hi - shift) / stretch / spacing)) + 1;
@@ -188,10 +223,8 @@ void SeismicModel::trace(std::int64_t i, std::int64_t j, std::int64_t k0, std::i
       add(position, chaotic_amplitude * uniform(mix64(r), -1.0, 1.0));
     }
   }
-  for (std::uint32_t id : spot_grid.query(volume::Box{{i, j, 0}, {i + 1, j + 1, 1}})) {
-    const double wgt = spots[id].weight(p);
-    if (wgt > 0.0 && spots[id].centre.z >= lo && spots[id].centre.z <= hi) add(spots[id].centre.z, wgt);
-  }
+  for (const auto& [z, wgt] : info.spots)
+    if (z >= lo && z <= hi) add(z, wgt);
 
   const double a = wavelet.a, step2 = std::exp(-2.0 * a);
   const std::size_t count_spikes = spikes.position.size();

@@ -42,6 +42,7 @@ void add_extract_command(CLI::App& app, Context& context, Runner& run) {
                      block_size = default_of("block_size"), mode = default_of("mode");
     bool no_extended_time_lag = false;
     bool fresh = false; // reliab
+    volume::SegyOptions segy;
   };
   auto a = std::make_shared<Args>();
   auto* cmd =
@@ -77,11 +78,17 @@ void add_extract_command(CLI::App& app, Context& context, Runner& run) {
   cmd->add_option("--variable", a->variable, "the array to read from a multidimensional file with several");
   // reliab: start afresh instead of resuming (refused while another process writes the store).
   cmd->add_flag("--fresh", a->fresh, "replace the store in --out instead of resuming it");
+  cmd->add_option("--inline-byte", a->segy.inline_byte, "SEG-Y: trace header byte (1-based) of the inline numbers")
+      ->capture_default_str();
+  cmd->add_option("--crossline-byte", a->segy.crossline_byte,
+                  "SEG-Y: trace header byte (1-based) of the crossline numbers")
+      ->capture_default_str();
   cmd->callback([a, &context, &run] {
     run = [a, &context] {
       volume::OpenOptions open;
       open.nan_policy = volume::parse_nan_policy(a->nan);
       open.variable = a->variable;
+      open.segy = a->segy;
       workflow::ParamValues values;
       values["iso"] = value_of("iso", "--iso", a->iso);
       values["max_error"] = value_of("max_error", "--max-error", a->max_error);

@@ -37,9 +37,10 @@ bool envi_header_beside(const std::string& path) {
 }
 
 // SEG-Y has no magic number: a 3200-byte textual header (EBCDIC or ASCII, by convention starting
-// with 'C', sometimes blank), a 400-byte big-endian binary header with a known sample format code
-// at bytes 3225-3226, then traces. The size is not checked here: a truncated SEG-Y file must reach
-// the SEG-Y reader, which says what is missing.
+// with 'C', sometimes blank), a 400-byte binary header with a sample format code (1 to 16) at
+// bytes 3225-3226 in the file's byte order (big-endian by the standard, little-endian in some
+// files), then traces. Unsupported codes and the size are not checked here: such files must reach
+// the SEG-Y reader, which says what is wrong.
 bool looks_like_segy(const std::string& path, std::uintmax_t size) {
   if (size < 3600 + 240) return false;
   std::ifstream in(path, std::ios::binary);
@@ -49,8 +50,8 @@ bool looks_like_segy(const std::string& path, std::uintmax_t size) {
   unsigned char code[2] = {0, 0};
   in.seekg(3224);
   in.read(reinterpret_cast<char*>(code), 2);
-  int format = code[0] << 8 | code[1];
-  return in && (format == 1 || format == 2 || format == 3 || format == 5 || format == 8);
+  const int big = code[0] << 8 | code[1], little = code[1] << 8 | code[0];
+  return in && ((big >= 1 && big <= 16) || (little >= 1 && little <= 16));
 }
 
 // The writer for an output path, from its extension; nullptr when the extension is unknown.

@@ -32,6 +32,12 @@ void parse_input(MapReader& m, InputSpec& in) {
   if (in.nan != "error" && in.nan != "fill")
     throw error_at(m.file(), m.node("nan"), "'nan' is '" + in.nan + "'", "use 'error' or 'fill'");
   in.variable = m.text("variable", "");
+  if (m.has("segy")) {
+    MapReader s(m.file(), m.node("segy"), "input.segy");
+    in.segy_inline_byte = static_cast<int>(s.integer("inline_byte", 189, 1, 240));
+    in.segy_crossline_byte = static_cast<int>(s.integer("crossline_byte", 193, 1, 240));
+    s.finish({"inline_byte", "crossline_byte"});
+  }
   if (has_file) {
     in.file = m.required_text("file");
   } else {
@@ -67,7 +73,7 @@ void parse_input(MapReader& m, InputSpec& in) {
     in.snr = s.real("snr", 4.0, 1e-3, 1e6);
     s.finish({"kind", "shape", "seed", "snr"});
   }
-  m.finish({"file", "synthetic", "nan", "variable"});
+  m.finish({"file", "synthetic", "nan", "variable", "segy"});
 }
 
 ParamValues parse_params(MapReader& m, const std::vector<ParamSpec>& specs, const std::string& what) {
@@ -328,6 +334,8 @@ nlohmann::json to_json(const Recipe& r) {
     in["file"] = r.input.file;
   in["nan"] = r.input.nan;
   if (!r.input.variable.empty()) in["variable"] = r.input.variable;
+  if (r.input.segy_inline_byte != 189 || r.input.segy_crossline_byte != 193)
+    in["segy"] = {{"inline_byte", r.input.segy_inline_byte}, {"crossline_byte", r.input.segy_crossline_byte}};
   j["input"] = in;
   j["steps"] = json::array();
   for (const auto& s : r.steps) {

@@ -14,6 +14,7 @@
 #include "geotandem/workflow/chain.hpp"
 #include "geotandem/workflow/extract_step.hpp"
 #include "geotandem/workflow/report.hpp"
+#include "geotandem/workflow/report_views.hpp"
 
 namespace fs = std::filesystem;
 
@@ -238,6 +239,9 @@ private:
       c.kept = selection_.empty() || std::binary_search(kept_keys.begin(), kept_keys.end(), row.key);
       report_.components.push_back(c);
     }
+    // The map and 3-D views of the kept bodies (report_views.cpp).
+    report_.survey = survey_outline(store_->geometry());
+    report_.bodies = display_bodies(*store_, report_.components, report_.survey);
     report_.outputs.push_back(recipe_.output.store + "/");
     if (recipe_.input.synthetic) report_.outputs.push_back("truth.json");
     report_.total_seconds = since(report_started_);

@@ -17,6 +17,7 @@ packages=(
   nlohmann-json3-dev libyaml-cpp-dev libcli11-dev
   libsqlite3-dev sqlite3 libxxhash-dev zlib1g-dev
   clang-format clang-tidy
+  clang libclang-rt-14-dev
   slurmctld slurmd slurm-client munge
   libjs-three chromium
 )

@@ -41,6 +41,7 @@ void add_extract_command(CLI::App& app, Context& context, Runner& run) {
     std::string iso, max_error = default_of("max_error"), isotropy = default_of("isotropy"), axis = default_of("axis"),
                      block_size = default_of("block_size"), mode = default_of("mode");
     bool no_extended_time_lag = false;
+    bool fresh = false; // reliab
     volume::SegyOptions segy;
   };
   auto a = std::make_shared<Args>();
@@ -75,6 +76,8 @@ void add_extract_command(CLI::App& app, Context& context, Runner& run) {
   cmd->add_option("--nan", a->nan, "NaN or infinite samples: error, or fill (treated as outside)")
       ->capture_default_str();
   cmd->add_option("--variable", a->variable, "the array to read from a multidimensional file with several");
+  // reliab: start afresh instead of resuming (refused while another process writes the store).
+  cmd->add_flag("--fresh", a->fresh, "replace the store in --out instead of resuming it");
   cmd->add_option("--inline-byte", a->segy.inline_byte, "SEG-Y: trace header byte (1-based) of the inline numbers")
       ->capture_default_str();
   cmd->add_option("--crossline-byte", a->segy.crossline_byte,
@@ -102,6 +105,7 @@ void add_extract_command(CLI::App& app, Context& context, Runner& run) {
         throw InvalidArgument("--block-size: " + e.message(), {}, e.hint());
       }
       auto cube = volume::open_volume(a->cube, open);
+      if (a->fresh) store::ComponentStore::remove(a->out); // reliab
       s.parameters = {{"command", "geotandem extract"}, {"cube", a->cube}};
       auto store = store::ComponentStore::open_or_create(a->out, cube->geometry(), {"geotandem extract", a->cube});
       auto progress = context.progress();

@@ -121,6 +121,12 @@ Layout read_layout(segy_file* file, const std::string& path) {
     if (samples == 0) samples = field(first, SEGY_TR_SAMPLE_COUNT) & 0xFFFF;
     if (interval == 0) interval = field(first, SEGY_TR_SAMPLE_INTER) & 0xFFFF;
   }
+  // reliab: intervals above 32767 are a negative number written as signed 16 bits (no survey
+  // samples that slowly): refused, never read as 61.536 ms for -4000.
+  if (interval >= 0x8000)
+    throw FormatError("the sample interval is negative (" + std::to_string(interval - 0x10000) +
+                          "; binary header bytes 3217-3218, or trace header bytes 117-118)",
+                      {path}, "set a positive sample interval in microseconds");
   if (samples == 0)
     throw FormatError("no samples per trace: binary header byte 3221 and trace header byte 115 are both 0", {path});
   layout.trace_bytes = segy_trsize(layout.format, samples);

@@ -31,15 +31,7 @@ fi
 
 # Seeds: the project's own files.
 seeds="$build/seeds"
-rm -rf "$seeds"
-mkdir -p "$seeds/recipe" "$seeds/raw_sidecar" "$seeds/segy_header"
-cp "$root"/workflows/*.yaml "$root"/tests/fuzz/regressions/recipe_*.yaml "$seeds/recipe/"
-export ASAN_OPTIONS=detect_leaks=0
-"$geotandem" -q synth --kind analytic --shape 40 40 40 --out "$seeds/cube.raw" >/dev/null
-cp "$seeds/cube.raw.json" "$seeds/raw_sidecar/sidecar.json"
-"$geotandem" -q synth --kind analytic --shape 40 40 40 --out "$seeds/cube.segy" >/dev/null
-cp "$seeds/cube.segy" "$seeds/segy_header/whole.segy"
-head -c 8000 "$seeds/cube.segy" >"$seeds/segy_header/headers.segy"
+"$root/tests/fuzz/make_seeds.sh" "$geotandem" "$root" "$seeds"
 
 status=0
 for target in recipe raw_sidecar segy_header; do

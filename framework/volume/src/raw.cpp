@@ -154,6 +154,10 @@ Geometry read_sidecar(const std::string& sidecar) {
   } catch (const json::parse_error& e) {
     throw FormatError(std::string("raw sidecar is not valid JSON: ") + e.what(), position_of(sidecar, text, e.byte),
                       "fix the JSON syntax; see docs/formats-segy-raw.md");
+  } catch (const json::exception& e) {
+    // Valid syntax the parser still cannot hold, such as a number beyond a double (found by fuzz_raw_sidecar).
+    throw FormatError(std::string("raw sidecar cannot be read: ") + e.what(), {sidecar},
+                      "write numbers a double can hold; see docs/formats-segy-raw.md");
   }
 
   SidecarReader r(sidecar);

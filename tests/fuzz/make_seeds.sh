@@ -1,0 +1,16 @@
+#!/usr/bin/env bash
+# The fuzz targets' seeds, from the project's own files: the recipes under workflows/ and the
+# regression inputs, the raw sidecar and SEG-Y file `geotandem synth` writes.
+#   tests/fuzz/make_seeds.sh GEOTANDEM SOURCE_DIR SEEDS_DIR
+set -euo pipefail
+geotandem=$1 root=$2 seeds=$3
+rm -rf "$seeds"
+mkdir -p "$seeds/recipe" "$seeds/raw_sidecar" "$seeds/segy_header"
+cp "$root"/workflows/*.yaml "$root"/tests/fuzz/regressions/recipe_*.yaml "$seeds/recipe/"
+export ASAN_OPTIONS=detect_leaks=0
+"$geotandem" -q synth --kind analytic --shape 40 40 40 --out "$seeds/cube.raw" >/dev/null
+cp "$seeds/cube.raw.json" "$seeds/raw_sidecar/sidecar.json"
+cp "$root"/tests/fuzz/regressions/raw_sidecar_*.json "$seeds/raw_sidecar/"
+"$geotandem" -q synth --kind analytic --shape 40 40 40 --out "$seeds/cube.segy" >/dev/null
+cp "$seeds/cube.segy" "$seeds/segy_header/whole.segy"
+head -c 8000 "$seeds/cube.segy" >"$seeds/segy_header/headers.segy"

@@ -1,6 +1,8 @@
 // geotandem extract CUBE --iso T --out STORE: the isosurface of a cube into a component store.
 
 #include <iostream>
+#include <optional>
+#include <thread>
 
 #include "command.hpp"
 #include "geotandem/core/error.hpp"
@@ -15,6 +17,7 @@ void add_extract_command(CLI::App& app, Context& context, Runner& run) {
     double iso = 0.0, max_error = 0.5, isotropy = 0.4;
     std::int64_t block_size = 0;
     bool no_extended_time_lag = false;
+    std::optional<std::size_t> workers;
   };
   auto a = std::make_shared<Args>();
   auto* cmd =
@@ -41,6 +44,9 @@ void add_extract_command(CLI::App& app, Context& context, Runner& run) {
   cmd->add_option("--nan", a->nan, "NaN or infinite samples: error, or fill (treated as outside)")
       ->capture_default_str();
   cmd->add_option("--variable", a->variable, "the array to read from a multidimensional file with several");
+  cmd->add_option("--workers", a->workers,
+                  "local worker processes extracting and merging the blocks (manager/worker runtime); 0: in this "
+                  "process. Default: one per core with --block-size, in this process for one block");
   cmd->callback([a, &context, &run] {
     run = [a, &context] {
       volume::OpenOptions open;
@@ -54,6 +60,11 @@ void add_extract_command(CLI::App& app, Context& context, Runner& run) {
       s.block_size = a->block_size;
       s.mode = workflow::parse_extract_mode(a->mode);
       s.extended_time_lag = !a->no_extended_time_lag;
+      s.workers = a->workers.value_or(s.block_size > 0 ? std::max(1u, std::thread::hardware_concurrency()) : 0u);
+      if (s.workers > 0) {
+        s.volume_description = describe_cube_file(a->cube, a->nan, a->variable);
+        s.worker_command = {self_executable(), "worker"};
+      }
       if (s.block_size != 0 && s.block_size < 8)
         throw InvalidArgument("--block-size must be 0 (one block) or at least 8 cells, got " +
                                   std::to_string(s.block_size),
@@ -65,6 +76,14 @@ void add_extract_command(CLI::App& app, Context& context, Runner& run) {
       auto r = workflow::extract_to_store(*cube, store, s, context.log, *progress, context.cancel);
       std::cout << "extracted " << r.components << " components";
       if (r.duplicates) std::cout << " (" << r.duplicates << " already in the store)";
+      if (s.workers > 0) {
+        const auto& st = r.statistics;
+        std::cout << " in " << r.seconds << " s with " << st["workers"] << " worker(s) (" << st["deaths"]
+                  << " lost); tasks " << st["tasks"].dump() << "; "
+                  << st["bytes"]["surfaces"].get<std::uint64_t>() / 1024 << " KiB of partial surfaces moved\n";
+        std::cout << "store: " << a->out << " (run " << r.run << ")\n";
+        return 0;
+      }
       std::cout << " from " << r.input_triangles << " marching-cubes triangles in " << r.seconds << " s; "
                 << r.collapses << " collapses; at most " << r.peak_triangles << " triangles in memory; peak memory "
                 << r.peak_rss_kb / 1024 << " MiB\n";

@@ -52,6 +52,7 @@ ExtractResult extract_to_store(const volume::Volume& volume, store::ComponentSto
     throw InvalidArgument("block size must be 0 (one block) or at least 8 cells, got " +
                               std::to_string(settings.block_size),
                           {}, "blocks of 64 to 256 cells are typical");
+  if (settings.workers > 0) return extract_with_workers(volume, store, settings, log, progress, cancel);
   auto start = std::chrono::steady_clock::now();
   tandem::TandemOptions options;
   options.iso = settings.iso;
@@ -79,7 +80,7 @@ ExtractResult extract_to_store(const volume::Volume& volume, store::ComponentSto
   store::LocalSinkOptions sink_options;
   sink_options.run = result.run;
   store::LocalSink sink(store, sink_options);
-  log.info("extracting in this process (the manager/worker runtime is not part of this build)");
+  log.info("extracting in this process (--workers 0)");
 
   // One block (block_size 0), or the block tree: leaves one after the other, brothers merged
   // bottom-up, each partial surface through its wire form as the runtime will ship it.

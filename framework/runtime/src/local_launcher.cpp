@@ -7,6 +7,7 @@
 #include <chrono>
 #include <cstring>
 #include <thread>
+#include <utility>
 
 #include "geotandem/core/error.hpp"
 #include "geotandem/runtime/launcher.hpp"
@@ -30,14 +31,16 @@ void LocalLauncher::launch(const std::vector<std::string>& argv, const std::stri
   if (rc != 0)
     throw IoError("cannot start worker " + argv[0] + ": " + std::strerror(rc), {.file = argv[0], .worker = token},
                   "check that the geotandem executable exists and is executable");
-  children_.push_back(pid);
+  children_.push_back({pid, token});
 }
 
 void LocalLauncher::reap() {
-  std::erase_if(children_, [](pid_t pid) {
+  std::erase_if(children_, [this](const Child& c) {
     int status = 0;
-    const pid_t r = waitpid(pid, &status, WNOHANG);
-    return r == pid || (r < 0 && errno == ECHILD);
+    const pid_t r = waitpid(c.pid, &status, WNOHANG);
+    const bool gone = r == c.pid || (r < 0 && errno == ECHILD);
+    if (gone) ended_.push_back(c.token);
+    return gone;
   });
 }
 
@@ -46,27 +49,35 @@ std::size_t LocalLauncher::running() {
   return children_.size();
 }
 
+std::vector<std::string> LocalLauncher::ended() {
+  reap();
+  return std::exchange(ended_, {});
+}
+
 std::vector<pid_t> LocalLauncher::pids() {
   reap();
-  return children_;
+  std::vector<pid_t> out;
+  for (const Child& c : children_)
+    out.push_back(c.pid);
+  return out;
 }
 
 void LocalLauncher::stop_all(double grace_seconds) {
   reap();
   if (children_.empty()) return;
-  for (pid_t pid : children_) {
-    kill(pid, SIGCONT); // a stopped worker would never see SIGTERM
-    kill(pid, SIGTERM);
+  for (const Child& c : children_) {
+    kill(c.pid, SIGCONT); // a stopped worker would never see SIGTERM
+    kill(c.pid, SIGTERM);
   }
   const auto until = std::chrono::steady_clock::now() + std::chrono::duration<double>(grace_seconds);
   while (!children_.empty() && std::chrono::steady_clock::now() < until) {
     std::this_thread::sleep_for(std::chrono::milliseconds(20));
     reap();
   }
-  for (pid_t pid : children_)
-    kill(pid, SIGKILL);
-  for (pid_t pid : children_)
-    waitpid(pid, nullptr, 0);
+  for (const Child& c : children_)
+    kill(c.pid, SIGKILL);
+  for (const Child& c : children_)
+    waitpid(c.pid, nullptr, 0);
   children_.clear();
 }
 

@@ -13,6 +13,7 @@
 #include "geotandem/core/error.hpp"
 #include "geotandem/runtime/schedule.hpp"
 #include "geotandem/tandem/marching_cubes.hpp"
+#include "zmq_poll.hpp"
 
 namespace geotandem::runtime {
 
@@ -271,6 +272,9 @@ struct Manager::Impl {
       if (p.task) return drop("ASK from worker " + token + " while it has a task (" + task_text(p) + ")");
       return decide(p);
     case MessageKind::failed:
+      if (!p.task && m.lease == Lease{}) // SETUP failed: every worker would fail the same way
+        throw Error("worker " + token + " could not start: " + m.text, {.worker = token},
+                    "check that every worker can read the input and write to the store directory");
       if (!p.task || !(m.lease == p.lease)) return drop("a stale FAILED from worker " + token);
       throw Error("worker " + token + " failed during " + task_text(p) + ": " + m.text, {.worker = token},
                   "fix the cause and rerun the same command: committed components are kept");
@@ -305,6 +309,22 @@ struct Manager::Impl {
   }
 
   void heartbeats() {
+    if (launcher)
+      for (const std::string& token : launcher->ended()) {
+        if (peers.count(token)) {
+          kill_peer(token, "ended");
+        } else if (!dead.count(token)) { // never said HELLO
+          dead.insert(token);
+          if (report.restarts >= options.max_restarts)
+            throw Error("worker " + token + " exited before connecting, and " + std::to_string(report.restarts) +
+                            " replacements were already started",
+                        {.worker = token},
+                        "run 'geotandem worker --help' to check the installation; see the log above");
+          log.warning("worker " + token + " exited before connecting; starting another");
+          ++report.restarts;
+          launch_one();
+        }
+      }
     const auto now = Clock::now();
     std::vector<std::string> silent;
     for (auto& [token, p] : peers)
@@ -341,7 +361,7 @@ struct Manager::Impl {
       for (;;) {
         cancel.throw_if_cancelled();
         zmq::pollitem_t item{router.handle(), 0, ZMQ_POLLIN, 0};
-        zmq::poll(&item, 1, std::chrono::milliseconds(100));
+        detail::poll_items(&item, 1, std::chrono::milliseconds(100));
         zmq::message_t id, body;
         while (router.recv(id, zmq::recv_flags::dontwait)) {
           if (!id.more()) {

@@ -1,6 +1,8 @@
 // The worker's I/O thread (worker_link.hpp).
 #include "worker_link.hpp"
 
+#include "zmq_poll.hpp"
+
 #include <unistd.h>
 
 #include "geotandem/core/error.hpp"
@@ -48,7 +50,7 @@ void WorkerLink::send(const Message& message) {
 std::optional<Message> WorkerLink::receive(std::chrono::milliseconds timeout) {
   zmq::pollitem_t item{pair_.handle(), 0, ZMQ_POLLIN, 0};
   if (gone_) throw Error("the manager at " + options_.endpoint + " is gone", {.worker = options_.token});
-  if (zmq::poll(&item, 1, timeout) == 0) return std::nullopt;
+  if (poll_items(&item, 1, timeout) == 0) return std::nullopt;
   zmq::message_t m;
   if (!pair_.recv(m, zmq::recv_flags::dontwait)) return std::nullopt;
   if (is_control(m, kGone))
@@ -73,7 +75,7 @@ void WorkerLink::io_loop() {
   const std::vector<std::byte> beat_bytes = encode(heartbeat);
   zmq::pollitem_t items[] = {{pair.handle(), 0, ZMQ_POLLIN, 0}, {dealer.handle(), 0, ZMQ_POLLIN, 0}};
   for (;;) {
-    zmq::poll(items, 2, options_.heartbeat / 2);
+    poll_items(items, 2, options_.heartbeat / 2);
     if (items[0].revents & ZMQ_POLLIN) {
       zmq::message_t m;
       while (pair.recv(m, zmq::recv_flags::dontwait)) {

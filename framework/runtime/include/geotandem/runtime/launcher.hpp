@@ -17,6 +17,9 @@ public:
   virtual void launch(const std::vector<std::string>& argv, const std::string& token) = 0;
   // Workers started and not known to have ended.
   virtual std::size_t running() = 0;
+  // Tokens of the workers that ended since the last call (a killed worker is then known at once,
+  // without waiting for its lease). A launcher that cannot tell returns nothing.
+  virtual std::vector<std::string> ended() = 0;
   // Ends every worker still running: SIGTERM, then SIGKILL after `grace_seconds`. Idempotent.
   virtual void stop_all(double grace_seconds) = 0;
 };
@@ -30,13 +33,19 @@ public:
 
   void launch(const std::vector<std::string>& argv, const std::string& token) override;
   std::size_t running() override;
+  std::vector<std::string> ended() override;
   void stop_all(double grace_seconds) override;
   // The children's process ids (tests stop or kill them).
   std::vector<pid_t> pids();
 
 private:
   void reap();
-  std::vector<pid_t> children_;
+  struct Child {
+    pid_t pid;
+    std::string token;
+  };
+  std::vector<Child> children_;
+  std::vector<std::string> ended_;
 };
 
 } // namespace geotandem::runtime

@@ -174,7 +174,12 @@ private:
   void merge(const Message& m) {
     need_setup(m);
     const auto start = Clock::now();
-    absorb(std::make_unique<tandem::WorkingSurface>(tandem::deserialize(m.bytes, &*sink_)));
+    // The received record goes straight into this worker's surface (no engine is rebuilt for the
+    // sender); a worker holding nothing takes the record as its surface.
+    if (surface_)
+      tandem::merge_record(*surface_, m.bytes, &cancel_);
+    else
+      surface_ = std::make_unique<tandem::WorkingSurface>(tandem::deserialize(m.bytes, &*sink_));
     report(m, start);
   }
 

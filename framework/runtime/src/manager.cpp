@@ -8,6 +8,7 @@
 #include <map>
 #include <random>
 #include <set>
+#include <thread>
 #include <zmq.hpp>
 
 #include "geotandem/core/error.hpp"
@@ -219,6 +220,7 @@ struct Manager::Impl {
 
   void task_done(Peer& p, const Message& m) {
     const double s = static_cast<double>(m.number) / 1000.0;
+    report.worker_peak_rss_kb = std::max(report.worker_peak_rss_kb, m.box[0]);
     switch (p.task->kind) {
     case TaskKind::extract: ++report.extract, report.seconds_extract += s, advance(); break;
     case TaskKind::merge: ++report.merge, report.seconds_merge += s; break;
@@ -401,9 +403,13 @@ struct Manager::Impl {
       progress.end();
       throw;
     }
+    // Workers told FINISHED exit by themselves; those still running after a grace are stopped.
+    report.seconds = since(start);
+    const auto grace = Clock::now() + std::chrono::seconds(3);
+    while (launcher && launcher->running() > 0 && Clock::now() < grace)
+      std::this_thread::sleep_for(std::chrono::milliseconds(10));
     stop_workers();
     progress.end();
-    report.seconds = since(start);
     report.manager_cpu_seconds = cpu_seconds();
     report.manager_peak_rss_kb = peak_rss_kb();
     return report;

@@ -20,7 +20,8 @@ std::string ManagerReport::to_json() const {
       {"dropped_messages", dropped_messages},
       {"components", components},
       {"duplicates", duplicates},
-      {"manager", {{"cpu_seconds", manager_cpu_seconds}, {"peak_rss_kb", manager_peak_rss_kb}}}};
+      {"manager", {{"cpu_seconds", manager_cpu_seconds}, {"peak_rss_kb", manager_peak_rss_kb}}},
+      {"worker_peak_rss_kb", worker_peak_rss_kb}};
   return j.dump();
 }
 

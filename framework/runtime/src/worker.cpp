@@ -1,6 +1,7 @@
 // The worker's task loop (worker.hpp).
 #include "geotandem/runtime/worker.hpp"
 
+#include <sys/resource.h>
 #include <unistd.h>
 
 #include <optional>
@@ -141,6 +142,9 @@ private:
     d.kind = MessageKind::done;
     d.lease = task.lease;
     d.number = static_cast<std::uint64_t>(std::chrono::duration<double, std::milli>(Clock::now() - start).count());
+    rusage u{};
+    getrusage(RUSAGE_SELF, &u);
+    d.box[0] = u.ru_maxrss;
     link_.send(d);
   }
 

@@ -52,6 +52,7 @@ struct ManagerReport {
   std::size_t leaves = 0;
   double seconds = 0, manager_cpu_seconds = 0;
   std::int64_t manager_peak_rss_kb = 0;
+  std::int64_t worker_peak_rss_kb = 0; // the largest over the workers
 
   std::string to_json() const;
 };

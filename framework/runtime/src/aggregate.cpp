@@ -11,10 +11,11 @@ using tandem::BlockTree;
 using tandem::kNoNode;
 using tandem::NodeId;
 
-Aggregate::Aggregate(const BlockTree& tree) : tree_(&tree), leaf_(tree.size(), 0), leaf_index_(tree.size(), -1) {
-  const auto& leaves = tree.leaves();
-  for (std::size_t i = 0; i < leaves.size(); ++i)
-    leaf_index_[static_cast<std::size_t>(leaves[i])] = static_cast<int>(i);
+Aggregate::Aggregate(const BlockTree& tree) : tree_(&tree), leaf_(tree.size(), 0) {
+  auto is_leaf = std::make_shared<std::vector<char>>(tree.size(), 0);
+  for (NodeId leaf : tree.leaves())
+    (*is_leaf)[static_cast<std::size_t>(leaf)] = 1;
+  is_leaf_ = std::move(is_leaf);
 }
 
 bool Aggregate::holds(NodeId leaf) const {
@@ -22,7 +23,7 @@ bool Aggregate::holds(NodeId leaf) const {
 }
 
 void Aggregate::add(NodeId leaf) {
-  if (leaf < 0 || static_cast<std::size_t>(leaf) >= leaf_.size() || leaf_index_[static_cast<std::size_t>(leaf)] < 0)
+  if (leaf < 0 || static_cast<std::size_t>(leaf) >= leaf_.size() || !(*is_leaf_)[static_cast<std::size_t>(leaf)])
     throw InvalidArgument("aggregate: node " + std::to_string(leaf) + " is not a leaf of the block tree");
   char& held = leaf_[static_cast<std::size_t>(leaf)];
   if (!held) ++count_;

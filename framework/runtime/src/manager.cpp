@@ -271,7 +271,10 @@ struct Manager::Impl {
     switch (m.kind) {
     case MessageKind::heartbeat: return;
     case MessageKind::ask:
-      if (p.task) return drop("ASK from worker " + token + " while it has a task (" + task_text(p) + ")");
+      if (p.task) { // it lost its task (a message dropped on the way): its work is re-done elsewhere
+        drop("ASK from worker " + token + " while it has a task (" + task_text(p) + ")");
+        return kill_peer(token, "asked again without finishing its task");
+      }
       return decide(p);
     case MessageKind::failed:
       if (!p.task && m.lease == Lease{}) // SETUP failed: every worker would fail the same way

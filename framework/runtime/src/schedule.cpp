@@ -61,7 +61,7 @@ Aggregate Schedule::claimed(const Worker& w) const {
 // has_neighbor_worker: the live worker, other than this one, whose claimed leaves are
 // restricted-adjacent to this one's; the one claiming most leaves first (the smaller side travels).
 std::optional<WorkerId> Schedule::neighbor(WorkerId id) {
-  const Aggregate mine = worker(id).held;
+  const Aggregate& mine = worker(id).held;
   std::optional<WorkerId> best;
   std::size_t best_size = 0;
   for (const auto& [other, w] : workers_) {

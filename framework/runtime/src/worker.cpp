@@ -172,6 +172,10 @@ private:
     s.lease = m.lease;
     if (surface_) s.bytes = tandem::serialize(*surface_);
     surface_.reset();
+    if (s.bytes.size() + 4096 > kDefaultMaxMessage)
+      throw InvalidArgument("a partial surface of " + std::to_string(s.bytes.size() >> 20) +
+                                " MiB is over the message cap of " + std::to_string(kDefaultMaxMessage >> 20) + " MiB",
+                            {.worker = options_.token}, "use smaller blocks (--block-size)");
     link_.send(s);
   }
 

@@ -5,6 +5,7 @@
 // nodes all of whose leaves it holds, whose parent it does not hold whole), and two aggregates are
 // neighbours when a maximal node of one and a maximal node of the other pass the test.
 #include <cstddef>
+#include <memory>
 #include <vector>
 
 #include "geotandem/tandem/block_tree.hpp"
@@ -37,8 +38,9 @@ public:
 
 private:
   const tandem::BlockTree* tree_;
-  std::vector<char> leaf_;      // per node id: 1 when the node is a leaf held here
-  std::vector<int> leaf_index_; // per node id: its index in tree.leaves(), -1 for inner nodes
+  std::vector<char> leaf_; // per node id: 1 when the node is a leaf held here
+  // Per node id: 1 for a leaf, shared by every aggregate of the tree.
+  std::shared_ptr<const std::vector<char>> is_leaf_;
   std::size_t count_ = 0;
 };
 

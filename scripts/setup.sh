@@ -15,6 +15,7 @@ packages=(
   nlohmann-json3-dev libyaml-cpp-dev libcli11-dev
   libsqlite3-dev sqlite3 libxxhash-dev zlib1g-dev
   clang-format clang-tidy
+  slurmctld slurmd slurm-client munge
 )
 
 as_root() {

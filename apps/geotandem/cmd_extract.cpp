@@ -1,4 +1,6 @@
 // geotandem extract CUBE --iso T --out STORE: the isosurface of a cube into a component store.
+// Its options are the extract step's declared parameters: the same defaults, ranges and checks as
+// in recipes (workflow::extract_params()).
 
 #include <iostream>
 #include <optional>
@@ -11,11 +13,35 @@
 #include "geotandem/workflow/extract_step.hpp"
 
 namespace geotandem::app {
+namespace {
+
+const workflow::ParamSpec& param(const std::string& name) {
+  for (const auto& spec : workflow::extract_params())
+    if (spec.name == name) return spec;
+  throw InvalidArgument("the extract step declares no parameter '" + name + "'");
+}
+
+// The declared default of an extract parameter, as the command line's default text.
+std::string default_of(const std::string& name) {
+  return param(name).default_value.value_or("");
+}
+
+// The option's text validated by the extract step's declaration; errors name the option.
+workflow::ParamValue value_of(const std::string& name, const std::string& option, const std::string& text) {
+  try {
+    return workflow::parse_param(param(name), text);
+  } catch (const Error& e) {
+    throw InvalidArgument(option + ": " + e.message(), {}, e.hint());
+  }
+}
+
+} // namespace
+
 void add_extract_command(CLI::App& app, Context& context, Runner& run) {
   struct Args {
-    std::string cube, out, axis = "i", mode = "tandem-dump", nan = "error", variable;
-    double iso = 0.0, max_error = 0.5, isotropy = 0.4;
-    std::int64_t block_size = 0;
+    std::string cube, out, nan = "error", variable;
+    std::string iso, max_error = default_of("max_error"), isotropy = default_of("isotropy"), axis = default_of("axis"),
+                     block_size = default_of("block_size"), mode = default_of("mode");
     bool no_extended_time_lag = false;
     std::optional<std::size_t> workers;
   };
@@ -25,20 +51,27 @@ void add_extract_command(CLI::App& app, Context& context, Runner& run) {
                                     "(marching cubes interleaved with edge-collapse simplification) into a component "
                                     "store. Finished components are written as they are found.");
   cmd->add_option("cube", a->cube, "the cube (any format 'geotandem info' reads)")->required();
-  cmd->add_option("--iso", a->iso, "isovalue: samples >= ISO are inside a body")->required();
+  cmd->add_option("--iso", a->iso, "isovalue: samples >= ISO are inside a body")->required()->type_name("NUMBER");
   cmd->add_option("--out", a->out, "the component store directory (created; resumed if it holds this cube)")
       ->required();
   cmd->add_option("--max-error", a->max_error, "E0: largest shape error a collapse may make, in voxels")
-      ->capture_default_str();
+      ->capture_default_str()
+      ->type_name("NUMBER");
   cmd->add_option("--isotropy", a->isotropy, "alpha in [0, 1]: weight of triangle shape against fidelity")
-      ->capture_default_str();
-  cmd->add_option("--axis", a->axis, "extraction axis: i (inline), j (crossline) or k (sample)")->capture_default_str();
+      ->capture_default_str()
+      ->type_name("NUMBER");
+  cmd->add_option("--axis", a->axis, "extraction axis: i (inline), j (crossline) or k (sample)")
+      ->capture_default_str()
+      ->type_name("i|j|k");
   cmd->add_option("--block-size", a->block_size,
-                  "leaf block edge of the block tree, in cells (at least 8; 0: the whole cube as one block). "
-                  "The blocks are extracted one after the other and merged in this process")
-      ->capture_default_str();
+                  "leaf block edge of the block tree, in cells (at least " + std::to_string(workflow::min_block_size) +
+                      "; 0: the whole cube as one block). The blocks are extracted one after the other and merged "
+                      "in this process")
+      ->capture_default_str()
+      ->type_name("INT");
   cmd->add_option("--mode", a->mode, "tandem-dump, tandem (no early dumping) or brute (extract all, then simplify)")
-      ->capture_default_str();
+      ->capture_default_str()
+      ->type_name("MODE");
   cmd->add_flag("--no-extended-time-lag", a->no_extended_time_lag,
                 "freeze only vertices on open block faces (for comparison; degrades seams)");
   cmd->add_option("--nan", a->nan, "NaN or infinite samples: error, or fill (treated as outside)")
@@ -52,23 +85,26 @@ void add_extract_command(CLI::App& app, Context& context, Runner& run) {
       volume::OpenOptions open;
       open.nan_policy = volume::parse_nan_policy(a->nan);
       open.variable = a->variable;
+      workflow::ParamValues values;
+      values["iso"] = value_of("iso", "--iso", a->iso);
+      values["max_error"] = value_of("max_error", "--max-error", a->max_error);
+      values["isotropy"] = value_of("isotropy", "--isotropy", a->isotropy);
+      values["axis"] = value_of("axis", "--axis", a->axis);
+      values["block_size"] = value_of("block_size", "--block-size", a->block_size);
+      values["mode"] = value_of("mode", "--mode", a->mode);
+      values["extended_time_lag"] =
+          value_of("extended_time_lag", "--no-extended-time-lag", a->no_extended_time_lag ? "false" : "true");
       workflow::ExtractSettings s;
-      s.iso = static_cast<float>(a->iso);
-      s.max_error = a->max_error;
-      s.isotropy = a->isotropy;
-      s.axis = workflow::parse_axis(a->axis);
-      s.block_size = a->block_size;
-      s.mode = workflow::parse_extract_mode(a->mode);
-      s.extended_time_lag = !a->no_extended_time_lag;
+      try {
+        s = workflow::extract_settings(values);
+      } catch (const Error& e) {
+        throw InvalidArgument("--block-size: " + e.message(), {}, e.hint());
+      }
       s.workers = a->workers.value_or(s.block_size > 0 ? std::max(1u, std::thread::hardware_concurrency()) : 0u);
       if (s.workers > 0) {
         s.volume_description = describe_cube_file(a->cube, a->nan, a->variable);
         s.worker_command = {self_executable(), "worker"};
       }
-      if (s.block_size != 0 && s.block_size < 8)
-        throw InvalidArgument("--block-size must be 0 (one block) or at least 8 cells, got " +
-                                  std::to_string(s.block_size),
-                              {}, "blocks of 64 to 256 cells are typical");
       auto cube = volume::open_volume(a->cube, open);
       s.parameters = {{"command", "geotandem extract"}, {"cube", a->cube}};
       auto store = store::ComponentStore::open_or_create(a->out, cube->geometry(), {"geotandem extract", a->cube});

@@ -16,7 +16,14 @@ void print_params(const std::vector<workflow::ParamSpec>& specs) {
   for (const auto& p : specs) {
     std::cout << "    " << std::left << std::setw(24) << p.name << std::setw(9) << workflow::to_string(p.type);
     std::cout << (p.default_value ? "default " + *p.default_value : std::string("required"));
-    if (p.min_value && p.max_value) std::cout << ", " << *p.min_value << " to " << *p.max_value;
+    if (p.min_value && p.max_value)
+      std::cout << ", " << (p.min_open ? "above " : "") << *p.min_value << " to " << (p.max_open ? "below " : "")
+                << *p.max_value;
+    else if (p.min_value)
+      std::cout << ", " << (p.min_open ? "above " : "at least ") << *p.min_value;
+    else if (p.max_value)
+      std::cout << ", " << (p.max_open ? "below " : "at most ") << *p.max_value;
+    if (p.odd) std::cout << ", odd";
     if (!p.choices.empty()) {
       std::cout << ", one of";
       for (const auto& c : p.choices)
@@ -30,32 +37,37 @@ void print_params(const std::vector<workflow::ParamSpec>& specs) {
 
 void add_plugins_command(CLI::App& app, Context& context, Runner& run) {
   auto name = std::make_shared<std::string>();
-  auto* cmd = app.add_subcommand("plugins", "List the attribute plugins and built-in steps a recipe can use, or "
-                                            "describe one with its parameters.");
-  cmd->add_option("name", *name, "a plugin or step to describe");
+  auto* cmd = app.add_subcommand("plugins", "List every step a recipe can use (attributes, the extraction, component "
+                                            "steps, exports, the report; built-in or loaded) with its kind and "
+                                            "parameters, or describe one.");
+  cmd->add_option("name", *name, "a step to describe");
   cmd->callback([name, &context, &run] {
     run = [name, &context] {
       auto registry = make_plugin_registry(context.log);
       if (!name->empty()) {
-        for (const auto& step : workflow::builtin_step_names())
-          if (step == *name) {
-            std::cout << step << " (built-in step)\n  parameters:\n";
-            print_params(workflow::builtin_step_params(step));
-            return 0;
-          }
         const auto& p = registry.get(*name);
-        std::cout << p.name() << " (attribute, " << p.origin() << ", version " << p.version() << ")\n  " << p.summary()
-                  << "\n  parameters:\n";
+        std::cout << p.name() << " (" << workflow::to_string(p.kind()) << ", " << p.origin() << ", version "
+                  << p.version() << ")\n  " << p.summary() << "\n  parameters:\n";
         print_params(p.params());
         return 0;
       }
-      std::cout << "attributes:\n";
-      for (const auto* p : registry.list())
-        std::cout << "  " << std::left << std::setw(16) << p->name() << p->summary()
-                  << (p->origin() == "built-in" ? "" : "  [" + p->origin() + "]") << "\n";
-      std::cout << "built-in steps:\n";
-      for (const auto& step : workflow::builtin_step_names())
-        std::cout << "  " << step << "\n";
+      const std::pair<workflow::StepKind, const char*> kinds[] = {{workflow::StepKind::attribute, "attributes"},
+                                                                  {workflow::StepKind::extract, "extraction"},
+                                                                  {workflow::StepKind::component, "component steps"},
+                                                                  {workflow::StepKind::export_step, "exports"},
+                                                                  {workflow::StepKind::report, "report"}};
+      for (const auto& [kind, heading] : kinds) {
+        std::cout << heading << ":\n";
+        for (const auto* p : registry.list()) {
+          if (p->kind() != kind) continue;
+          std::cout << "  " << std::left << std::setw(16) << p->name() << p->summary()
+                    << (p->origin() == "built-in" ? "" : "  [" + p->origin() + "]") << "\n      parameters:";
+          for (const auto& spec : p->params())
+            std::cout << ' ' << spec.name;
+          std::cout << (p->params().empty() ? " none\n" : "\n");
+        }
+      }
+      std::cout << "'geotandem plugins NAME' describes one step's parameters\n";
       std::cout << "plugin search path: " << workflow::PluginRegistry::default_search_path() << "\n";
       return 0;
     };

@@ -11,6 +11,8 @@
 #include "geotandem/runtime/worker.hpp"
 #include "geotandem/synth/synthetic.hpp"
 #include "geotandem/volume/io.hpp"
+#include "geotandem/workflow/chain.hpp"
+#include "plugins_setup.hpp"
 
 namespace geotandem::app {
 
@@ -27,7 +29,7 @@ std::string describe_cube_file(const std::string& path, const std::string& nan, 
       .dump();
 }
 
-std::unique_ptr<volume::Volume> open_described_volume(const std::string& description) {
+std::shared_ptr<const volume::Volume> open_described_volume(const std::string& description, Logger& log) {
   nlohmann::json d;
   try {
     d = nlohmann::json::parse(description);
@@ -45,6 +47,16 @@ std::unique_ptr<volume::Volume> open_described_volume(const std::string& descrip
       options.shape = {shape[0], shape[1], shape[2]};
       options.seed = d.at("seed").get<std::uint64_t>();
       return synth::make_analytic(options);
+    }
+    if (kind == "chain") { // a recipe's input and attribute chain, fused block by block in the worker
+      // The registry (and the plugin libraries it loaded) lives as long as the volume.
+      struct Held {
+        workflow::PluginRegistry registry;
+        std::shared_ptr<const volume::Volume> volume;
+      };
+      auto held = std::make_shared<Held>(Held{make_plugin_registry(log), nullptr});
+      held->volume = workflow::open_chain_volume(workflow::ChainDescription::from_json(d.at("chain")), held->registry);
+      return std::shared_ptr<const volume::Volume>(held, held->volume.get());
     }
     throw InvalidArgument("volume description of unknown kind '" + kind + "'", {},
                           "run the same geotandem version on the manager and every worker");
@@ -69,7 +81,9 @@ void add_worker_command(CLI::App& app, Context& context, Runner& run) {
   cmd->callback([options, timeout, &context, &run] {
     run = [options, timeout, &context] {
       options->manager_timeout = std::chrono::milliseconds(static_cast<std::int64_t>(*timeout * 1000));
-      return runtime::run_worker(*options, open_described_volume, context.log, context.cancel);
+      Logger& log = context.log;
+      return runtime::run_worker(
+          *options, [&log](const std::string& d) { return open_described_volume(d, log); }, log, context.cancel);
     };
   });
 }

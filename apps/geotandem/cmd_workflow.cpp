@@ -20,11 +20,14 @@ void add_workflow_command(CLI::App& app, Context& context, Runner& run) {
   auto args = std::make_shared<Args>();
   auto* cmd = app.add_subcommand(
       "run-workflow",
-      "Run a recipe: compute the attribute, extract its isosurface into a component store, remove bubbles, "
-      "sort by azimuth, export and write an HTML report. A rerun reuses the finished steps.");
+      "Run a recipe: compute the attribute, extract its isosurface into a component store, run the component "
+      "steps (remove bubbles, sort by azimuth, plugins), export and write an HTML report. A rerun reuses the "
+      "finished extraction.");
   cmd->add_option("recipe", args->recipe, "the recipe (YAML); see docs/recipe-schema.md and workflows/")->required();
   cmd->add_option("--set", args->sets, "override a recipe value, e.g. --set steps.extract.iso=0.4 (repeatable)");
-  cmd->add_flag("--dry-run", args->dry_run, "validate and build the whole chain, compute nothing");
+  cmd->add_flag("--dry-run", args->dry_run,
+                "validate the recipe and build the whole chain (plugins, parameters, input), then stop: "
+                "nothing is computed and nothing is written");
   cmd->add_flag("--fresh", args->fresh, "replace a store left in the output directory by other parameters");
   cmd->add_option("--scheduler", args->scheduler, "local, slurm or lsf (overrides execution.scheduler)");
   cmd->callback([args, &context, &run] {
@@ -33,14 +36,16 @@ void add_workflow_command(CLI::App& app, Context& context, Runner& run) {
       auto sets = args->sets;
       if (!args->scheduler.empty()) sets.push_back("execution.scheduler=" + args->scheduler);
       auto recipe = workflow::load_recipe(args->recipe, registry, sets);
-      if (recipe.execution.scheduler != "local" || recipe.execution.workers > 1)
+      if (recipe.execution.scheduler != "local")
         context.log.warning("execution: scheduler '" + recipe.execution.scheduler + "' with " +
                             std::to_string(recipe.execution.workers) +
-                            " worker(s) is validated, but this build runs the extraction in this process");
+                            " worker(s) is validated, but this build starts workers locally only: the "
+                            "extraction runs in this process");
       workflow::RunSettings settings;
       settings.dry_run = args->dry_run;
       settings.fresh = args->fresh;
       settings.progress = [&context] { return context.progress(); };
+      settings.worker_command = {self_executable(), "worker"};
       auto outcome = workflow::run_workflow(recipe, registry, settings, context.log, context.cancel);
       if (args->dry_run) {
         std::cout << args->recipe << ": valid; nothing computed (dry run)\n";

@@ -6,7 +6,7 @@ namespace geotandem::app {
 
 workflow::PluginRegistry make_plugin_registry(Logger& log) {
   workflow::PluginRegistry registry;
-  builtin::register_attributes(registry);
+  builtin::register_builtins(registry);
   registry.discover(workflow::PluginRegistry::default_search_path(), log);
   return registry;
 }

@@ -1,5 +1,5 @@
 #pragma once
-// Builds the plugin registry a command uses: the built-in attributes, added by an explicit call,
+// Builds the plugin registry a command uses: the built-in steps and attributes, added by an explicit call,
 // then the shared libraries on the plugin search path.
 
 #include "geotandem/core/log.hpp"

@@ -223,6 +223,7 @@ const gt_plugin_descriptor descriptor = {
     specs,
     param_count,
     {halo, compute},
+    {nullptr}, // component step callbacks (interface 1.1): not this plugin's kind
 };
 
 } // namespace

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include "geotandem/core/error.hpp"
+#include "geotandem/workflow/builtin_steps.hpp"
 #include "geotandem/workflow/recipe.hpp"
 
 using namespace geotandem;
@@ -36,7 +37,10 @@ execution:
 
 class Recipes : public ::testing::Test {
 protected:
-  void SetUp() override { registry.load_library(std::string(TEST_PLUGIN_DIR) + "/boxsum/geotandem_boxsum.so"); }
+  void SetUp() override {
+    register_builtin_steps(registry);
+    registry.load_library(std::string(TEST_PLUGIN_DIR) + "/boxsum/geotandem_boxsum.so");
+  }
 
   // Parses `text`, expects an InvalidArgument and returns its message.
   std::string error_of(const std::string& text, const std::vector<std::string>& overrides = {}) {

@@ -77,3 +77,26 @@ TEST(WorkflowRecipes, CustomAttributeRecipeNeedsItsPlugin) {
   EXPECT_NE(r.exit_code, 0);
   EXPECT_NE(r.err.find("avg_abs_amplitude"), std::string::npos) << r.err;
 }
+
+TEST(WorkflowRecipes, ValidateRefusesWhatExtractionWouldRefuseAndDryRunWritesNothing) {
+  geotandem::testing::ScratchDir dir;
+  const std::string quickstart = std::string(GEOTANDEM_WORKFLOWS_DIR) + "/quickstart.yaml";
+  // block_size 4 used to pass validate and fail when extraction started.
+  auto small = run_geotandem("validate '" + quickstart + "' --set steps.extract.block_size=4");
+  EXPECT_EQ(small.exit_code, 2) << small.err;
+  EXPECT_NE(small.err.find("'block_size' is 4"), std::string::npos) << small.err;
+  EXPECT_NE(small.err.find("at least 8"), std::string::npos) << small.err;
+  // The same bound on the command line: one declaration.
+  auto cli =
+      run_geotandem("extract '" + dir.file("none.sgy") + "' --iso 1 --block-size 4 --out '" + dir.file("store") + "'");
+  EXPECT_EQ(cli.exit_code, 2) << cli.err;
+  EXPECT_NE(cli.err.find("--block-size"), std::string::npos) << cli.err;
+  EXPECT_NE(cli.err.find("at least 8"), std::string::npos) << cli.err;
+  // A dry run of a synthetic recipe leaves nothing behind (it used to write truth.json).
+  const fs::path out = dir.path() / "dry";
+  auto dry = run_geotandem("run-workflow '" + quickstart + "' --dry-run --set 'output.directory=" + out.string() + "'");
+  EXPECT_EQ(dry.exit_code, 0) << dry.err;
+  EXPECT_NE(dry.out.find("nothing computed (dry run)"), std::string::npos) << dry.out;
+  EXPECT_FALSE(fs::exists(out)) << "a dry run created " << out;
+  EXPECT_FALSE(fs::exists(dir.path() / "store"));
+}

@@ -207,7 +207,7 @@ private:
   detail::WorkerLink link_;
   RunSettings settings_;
   tandem::TandemOptions options_tandem_;
-  std::unique_ptr<volume::Volume> volume_;
+  std::shared_ptr<const volume::Volume> volume_;
   std::optional<store::ShardWriter> writer_;
   std::optional<ShardSink> sink_;
   std::unique_ptr<tandem::WorkingSurface> surface_;

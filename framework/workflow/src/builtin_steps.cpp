@@ -1,73 +1,179 @@
-// Parameter specs of the built-in steps that are not attribute plugins. They drive validation,
-// `geotandem plugins`, and docs/recipe-schema.md.
+// The workflow's own steps: the extraction, bubble removal, azimuth sorting, exports and the
+// report. Each declares its parameters here and nowhere else; the runner reaches them through the
+// registry by kind.
 
-#include <map>
+#include "geotandem/workflow/builtin_steps.hpp"
+
+#include <sstream>
 
 #include "geotandem/core/error.hpp"
-#include "geotandem/workflow/recipe.hpp"
+#include "geotandem/store/export.hpp"
+#include "geotandem/workflow/component_steps.hpp"
+#include "geotandem/workflow/extract_step.hpp"
+#include "geotandem/workflow/report.hpp"
 
 namespace geotandem::workflow {
 namespace {
 
-ParamSpec real(std::string name, std::optional<std::string> def, std::string help, std::optional<double> lo,
-               std::optional<double> hi = {}) {
-  return ParamSpec{std::move(name), ParamType::real, std::move(def), std::move(help), lo, hi, {}};
-}
-ParamSpec integer(std::string name, std::string def, std::string help, double lo, double hi) {
-  return ParamSpec{std::move(name), ParamType::integer, std::move(def), std::move(help), lo, hi, {}};
-}
-ParamSpec boolean(std::string name, std::string def, std::string help) {
-  return ParamSpec{std::move(name), ParamType::boolean, std::move(def), std::move(help), {}, {}, {}};
-}
-ParamSpec choice(std::string name, std::string def, std::string help, std::vector<std::string> choices) {
-  return ParamSpec{std::move(name), ParamType::choice, std::move(def), std::move(help), {}, {}, std::move(choices)};
-}
-ParamSpec text(std::string name, std::string def, std::string help) {
-  return ParamSpec{std::move(name), ParamType::text, std::move(def), std::move(help), {}, {}, {}};
+ParamSpec spec(std::string name, ParamType type, std::optional<std::string> def, std::string help,
+               std::optional<double> lo = {}, std::optional<double> hi = {}, std::vector<std::string> choices = {}) {
+  ParamSpec s;
+  s.name = std::move(name);
+  s.type = type;
+  s.default_value = std::move(def);
+  s.help = std::move(help);
+  s.min_value = lo;
+  s.max_value = hi;
+  s.choices = std::move(choices);
+  return s;
 }
 
-const std::map<std::string, std::vector<ParamSpec>>& table() {
-  static const std::map<std::string, std::vector<ParamSpec>> specs = {
-      {"extract",
-       {real("iso", std::nullopt, "isovalue: samples >= iso are inside a body", std::nullopt),
-        real("max_error", "0.5", "E0, the largest shape error a collapse may make, in voxels", 1e-6, 100.0),
-        real("isotropy", "0.4", "alpha, weight of triangle shape against surface fidelity", 0.0, 1.0),
-        choice("axis", "i", "extraction axis: i (inline), j (crossline) or k (sample)", {"i", "j", "k"}),
-        integer("block_size", "128", "leaf block edge in cells for the block tree (0: the whole cube as one block)", 0,
-                4096),
-        choice("mode", "tandem-dump",
-               "tandem-dump (default), tandem (no early dumping), brute (extract, then simplify)",
-               {"tandem-dump", "tandem", "brute"}),
-        boolean("extended_time_lag", "true", "delay collapses near open block faces (the seed's section 3.2)")}},
-      {"remove_bubbles",
-       {real("min_volume", "0", "keep components of at least this volume, in world units (m^3 or m^2*ms)", 0.0),
-        real("min_volume_fraction", "0", "keep components of at least this fraction of the largest volume", 0.0, 1.0),
-        real("min_volume_percentile", "0", "keep components at or above this percentile of volumes", 0.0, 100.0),
-        integer("min_triangles", "0", "keep components of at least this many triangles", 0, 1e12),
-        boolean("closed_only", "false", "drop components cut by the cube's border"),
-        text("selection", "kept", "name of the selection this step writes")}},
-      {"sort_by_azimuth",
-       {integer("bins", "18", "number of azimuth bins over 0-180 degrees", 1, 180),
-        real("azimuth_min", "0", "keep azimuths from this value (degrees, axial; may wrap past 180)", 0.0, 180.0),
-        real("azimuth_max", "180", "keep azimuths up to this value (degrees)", 0.0, 180.0),
-        text("selection", "sorted", "name of the selection this step writes")}},
-  };
-  return specs;
-}
+class BuiltinStep : public Plugin {
+public:
+  BuiltinStep(std::string name, StepKind kind, std::string summary, std::vector<ParamSpec> params)
+      : name_(std::move(name)), kind_(kind), summary_(std::move(summary)), params_(std::move(params)) {}
+  const std::string& name() const override { return name_; }
+  StepKind kind() const override { return kind_; }
+  const std::string& summary() const override { return summary_; }
+  const std::vector<ParamSpec>& params() const override { return params_; }
+  const std::string& origin() const override { return origin_; }
+  const std::string& version() const override { return version_; }
+
+private:
+  std::string name_;
+  StepKind kind_;
+  std::string summary_;
+  std::vector<ParamSpec> params_;
+  std::string origin_ = "built-in";
+  std::string version_ = builtin_version;
+};
+
+class ExtractStep final : public BuiltinStep {
+public:
+  ExtractStep()
+      : BuiltinStep("extract", StepKind::extract,
+                    "the isosurface by the extended tandem algorithm into the component store", extract_params()) {}
+  void check(const ParamValues& values) const override { check_extract_params(values); }
+  ExtractResult extract(const volume::Volume& input, store::ComponentStore& store, const ParamValues& values,
+                        const nlohmann::json& description, StepContext& context) const override {
+    ExtractSettings settings = extract_settings(values);
+    settings.parameters = description;
+    if (description.contains("workers") && description.contains("chain")) { // manager/worker runtime
+      settings.parameters.erase("worker_command");
+      settings.workers = description.at("workers").get<std::size_t>();
+      settings.volume_description = nlohmann::json{{"kind", "chain"}, {"chain", description.at("chain")}}.dump();
+      settings.worker_command = description.at("worker_command").get<std::vector<std::string>>();
+    }
+    return extract_to_store(input, store, settings, context.log, context.progress, context.cancel);
+  }
+};
+
+class RemoveBubbles final : public BuiltinStep {
+public:
+  RemoveBubbles()
+      : BuiltinStep("remove_bubbles", StepKind::component, "keeps the components above a volume threshold",
+                    {spec("min_volume", ParamType::real, "0",
+                          "keep components of at least this volume, in world units (m^3 or m^2*ms)", 0.0),
+                     spec("min_volume_fraction", ParamType::real, "0",
+                          "keep components of at least this fraction of the largest volume", 0.0, 1.0),
+                     spec("min_volume_percentile", ParamType::real, "0",
+                          "keep components at or above this percentile of volumes", 0.0, 100.0),
+                     spec("min_triangles", ParamType::integer, "0", "keep components of at least this many triangles",
+                          0.0, 1e12),
+                     spec("closed_only", ParamType::boolean, "false", "drop components cut by the cube's border"),
+                     spec("selection", ParamType::text, "kept", "name of the selection this step writes")}) {}
+  ComponentOutcome select(store::ComponentStore& store, const ParamValues& p, const std::string& from,
+                          StepContext&) const override {
+    BubbleRemoval rules;
+    rules.min_volume = p.at("min_volume").real;
+    rules.min_volume_fraction = p.at("min_volume_fraction").real;
+    rules.min_volume_percentile = p.at("min_volume_percentile").real;
+    rules.min_triangles = static_cast<std::uint64_t>(p.at("min_triangles").integer);
+    rules.closed_only = p.at("closed_only").boolean;
+    rules.from = from;
+    rules.selection = p.at("selection").text;
+    auto r = remove_bubbles(store, rules);
+    std::ostringstream note;
+    note << "volume threshold " << r.threshold << " "
+         << (store.geometry().z_unit == volume::SampleUnit::milliseconds ? "m^2*ms" : "m^3");
+    return {r.before, r.after, rules.selection, note.str(), {{"volume_threshold", r.threshold}}};
+  }
+};
+
+class SortByAzimuth final : public BuiltinStep {
+public:
+  SortByAzimuth()
+      : BuiltinStep(
+            "sort_by_azimuth", StepKind::component,
+            "ranks the components by the population of their azimuth bin, the dominant direction first",
+            {spec("bins", ParamType::integer, "18", "number of azimuth bins over 0-180 degrees", 1.0, 180.0),
+             spec("azimuth_min", ParamType::real, "0",
+                  "keep azimuths from this value (degrees, axial; may wrap past 180)", 0.0, 180.0),
+             spec("azimuth_max", ParamType::real, "180", "keep azimuths up to this value (degrees)", 0.0, 180.0),
+             spec("selection", ParamType::text, "sorted", "name of the selection this step writes")}) {}
+  ComponentOutcome select(store::ComponentStore& store, const ParamValues& p, const std::string& from,
+                          StepContext&) const override {
+    AzimuthSorting rules;
+    rules.bins = static_cast<int>(p.at("bins").integer);
+    rules.azimuth_min = p.at("azimuth_min").real;
+    rules.azimuth_max = p.at("azimuth_max").real;
+    rules.from = from;
+    rules.selection = p.at("selection").text;
+    auto r = sort_by_azimuth(store, rules);
+    std::ostringstream note;
+    note.precision(3);
+    note << "mean azimuth " << r.mean_azimuth << " deg, resultant length " << r.resultant_length;
+    return {r.before, r.after, rules.selection, note.str(), {{"azimuth_bins", rules.bins}}};
+  }
+};
+
+class ExportStep final : public BuiltinStep {
+public:
+  ExportStep()
+      : BuiltinStep("export", StepKind::export_step, "writes the components of a selection as surface files",
+                    {spec("format", ParamType::choice, std::nullopt, "file format: ply, obj, vtp or ts", {}, {},
+                          {"ply", "obj", "vtp", "ts"}),
+                     spec("selection", ParamType::text, "", "the selection to write (empty: the newest one)"),
+                     spec("path", ParamType::text, "",
+                          "file (or directory with per_component), relative to the output directory; "
+                          "empty: bodies.FORMAT"),
+                     spec("per_component", ParamType::boolean, "false", "one file per component")}) {}
+  ExportOutcome export_components(const store::ComponentStore& store, const ParamValues& p, const std::string& current,
+                                  const std::filesystem::path& out_dir, StepContext& context) const override {
+    store::Query q;
+    q.selection = p.at("selection").text.empty() ? current : p.at("selection").text;
+    auto rows = store.query(q);
+    store::ExportOptions options;
+    options.format = store::parse_export_format(p.at("format").text);
+    options.per_component = p.at("per_component").boolean;
+    std::string path = p.at("path").text.empty() ? "bodies." + p.at("format").text : p.at("path").text;
+    auto summary = store::export_components(store, rows, out_dir / path, options, context.progress, context.cancel);
+    return {rows.size(), summary.components, path};
+  }
+};
+
+class ReportWriter final : public BuiltinStep {
+public:
+  ReportWriter()
+      : BuiltinStep("report", StepKind::report,
+                    "one self-contained HTML file: the recipe, timings, counts, plots of the components",
+                    {spec("path", ParamType::text, "report.html", "the file, relative to the output directory")}) {}
+  std::string write_report(const ReportData& data, const ParamValues& p,
+                           const std::filesystem::path& out_dir) const override {
+    std::filesystem::path path = out_dir / p.at("path").text;
+    workflow::write_report(data, path.string());
+    return path.string();
+  }
+};
 
 } // namespace
 
-const std::vector<ParamSpec>& builtin_step_params(const std::string& name) {
-  auto it = table().find(name);
-  if (it == table().end()) throw InvalidArgument("no built-in step named '" + name + "'");
-  return it->second;
-}
-
-std::vector<std::string> builtin_step_names() {
-  std::vector<std::string> names;
-  for (const auto& [name, specs] : table())
-    names.push_back(name);
-  return names;
+void register_builtin_steps(PluginRegistry& registry) {
+  registry.add(std::make_shared<ExtractStep>());
+  registry.add(std::make_shared<RemoveBubbles>());
+  registry.add(std::make_shared<SortByAzimuth>());
+  registry.add(std::make_shared<ExportStep>());
+  registry.add(std::make_shared<ReportWriter>());
 }
 
 } // namespace geotandem::workflow

@@ -1,5 +1,6 @@
 #include "geotandem/workflow/extract_step.hpp"
 
+#include <charconv>
 #include <chrono>
 #include <fstream>
 
@@ -34,6 +35,78 @@ int parse_axis(const std::string& text) {
   throw InvalidArgument("unknown axis '" + text + "'", {}, "use i (inline), j (crossline) or k (sample)");
 }
 
+namespace {
+
+std::string number_text(double value) {
+  char buffer[64];
+  auto result = std::to_chars(buffer, buffer + sizeof buffer, value);
+  return std::string(buffer, result.ptr);
+}
+
+std::vector<ParamSpec> make_extract_params() {
+  const ExtractSettings d;
+  auto spec = [](std::string name, ParamType type, std::optional<std::string> def, std::string help,
+                 std::optional<double> lo = {}, std::optional<double> hi = {}, std::vector<std::string> choices = {}) {
+    ParamSpec s;
+    s.name = std::move(name);
+    s.type = type;
+    s.default_value = std::move(def);
+    s.help = std::move(help);
+    s.min_value = lo;
+    s.max_value = hi;
+    s.choices = std::move(choices);
+    return s;
+  };
+  return {
+      spec("iso", ParamType::real, std::nullopt, "isovalue: samples >= iso are inside a body"),
+      spec("max_error", ParamType::real, number_text(d.max_error),
+           "E0, the largest shape error a collapse may make, in voxels", 1e-6, 100.0),
+      spec("isotropy", ParamType::real, number_text(d.isotropy),
+           "alpha, weight of triangle shape against surface fidelity", 0.0, 1.0),
+      spec("axis", ParamType::choice, std::string(1, "ijk"[d.axis]),
+           "extraction axis: i (inline), j (crossline) or k (sample)", {}, {}, {"i", "j", "k"}),
+      spec("block_size", ParamType::integer, std::to_string(d.block_size),
+           "leaf block edge in cells for the block tree: 0 (the whole cube as one block) or at least " +
+               std::to_string(min_block_size),
+           0.0, 4096.0),
+      spec("mode", ParamType::choice, to_string(d.mode),
+           "tandem-dump (default), tandem (no early dumping), brute (extract, then simplify)", {}, {},
+           {"tandem-dump", "tandem", "brute"}),
+      spec("extended_time_lag", ParamType::boolean, d.extended_time_lag ? "true" : "false",
+           "delay collapses near open block faces (the seed's section 3.2)"),
+  };
+}
+
+} // namespace
+
+const std::vector<ParamSpec>& extract_params() {
+  static const std::vector<ParamSpec> specs = make_extract_params();
+  return specs;
+}
+
+void check_extract_params(const ParamValues& values) {
+  std::int64_t block = values.at("block_size").integer;
+  if (block != 0 && block < min_block_size)
+    throw InvalidArgument("parameter 'block_size' is " + std::to_string(block) + ", below the smallest block of " +
+                              std::to_string(min_block_size) + " cells",
+                          {},
+                          "use 0 (one block) or at least " + std::to_string(min_block_size) +
+                              "; blocks of 64 to 256 cells are typical");
+}
+
+ExtractSettings extract_settings(const ParamValues& values) {
+  check_extract_params(values);
+  ExtractSettings e;
+  e.iso = static_cast<float>(values.at("iso").real);
+  e.max_error = values.at("max_error").real;
+  e.isotropy = values.at("isotropy").real;
+  e.axis = parse_axis(values.at("axis").text);
+  e.block_size = values.at("block_size").integer;
+  e.mode = parse_extract_mode(values.at("mode").text);
+  e.extended_time_lag = values.at("extended_time_lag").boolean;
+  return e;
+}
+
 std::int64_t peak_rss_kb() {
   std::ifstream status("/proc/self/status");
   std::string line;
@@ -48,9 +121,9 @@ ExtractResult extract_to_store(const volume::Volume& volume, store::ComponentSto
   if (!(store.geometry() == volume.geometry()))
     throw InvalidArgument("the store was made for another cube geometry", {store.directory().string()},
                           "extract into a new store directory");
-  if (settings.block_size != 0 && settings.block_size < 8)
-    throw InvalidArgument("block size must be 0 (one block) or at least 8 cells, got " +
-                              std::to_string(settings.block_size),
+  if (settings.block_size != 0 && settings.block_size < min_block_size)
+    throw InvalidArgument("block size must be 0 (one block) or at least " + std::to_string(min_block_size) +
+                              " cells, got " + std::to_string(settings.block_size),
                           {}, "blocks of 64 to 256 cells are typical");
   if (settings.workers > 0) return extract_with_workers(volume, store, settings, log, progress, cancel);
   auto start = std::chrono::steady_clock::now();

@@ -1,11 +1,14 @@
 #include "geotandem/workflow/recipe.hpp"
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <set>
 
 #include "geotandem/core/error.hpp"
+#include "geotandem/synth/options.hpp"
 #include "geotandem/workflow/suggest.hpp"
+#include "recipe_overrides.hpp"
 #include "yaml_reader.hpp"
 
 namespace fs = std::filesystem;
@@ -17,12 +20,6 @@ using detail::error_at;
 using detail::MapReader;
 
 constexpr std::int64_t big = std::int64_t(1) << 40;
-
-StepKind kind_of(const std::string& name) {
-  if (name == "extract") return StepKind::extract;
-  if (name == "remove_bubbles" || name == "sort_by_azimuth") return StepKind::component;
-  return StepKind::attribute;
-}
 
 void parse_input(MapReader& m, InputSpec& in) {
   in.where = detail::where_of(m.map());
@@ -51,8 +48,11 @@ void parse_input(MapReader& m, InputSpec& in) {
         std::string t = detail::scalar_of(m.file(), shape[a], "a shape entry");
         char* end = nullptr;
         long long v = std::strtoll(t.c_str(), &end, 10);
-        if (t.empty() || *end != '\0' || v < 16 || v > 100000)
-          throw error_at(m.file(), shape[a], "shape entry '" + t + "' must be an integer from 16 to 100000");
+        if (t.empty() || *end != '\0' || v < synth::min_edge || v > 100000)
+          throw error_at(m.file(), shape[a],
+                         "shape entry '" + t + "' must be an integer from " + std::to_string(synth::min_edge) +
+                             " to 100000",
+                         "the planted bodies of a synthetic cube need room");
         in.shape[a] = v;
       }
     }
@@ -88,48 +88,62 @@ ParamValues parse_params(MapReader& m, const std::vector<ParamSpec>& specs, cons
   return values;
 }
 
+// Runs the step's own checks (beyond each parameter's spec). The error is placed at the parameter
+// it names ("parameter 'block_size' ...") when the recipe gives it, else at the step.
+void check_step(MapReader& m, const Plugin& plugin, const ParamValues& values, const std::string& what) {
+  try {
+    plugin.check(values);
+  } catch (const Error& e) {
+    YAML::Node at;
+    at.reset(m.map());
+    for (const auto& spec : plugin.params())
+      if (e.message().find("'" + spec.name + "'") != std::string::npos && m.has(spec.name)) {
+        at.reset(m.node(spec.name));
+        break;
+      }
+    throw error_at(m.file(), at, e.message() + " in " + what, e.hint());
+  }
+}
+
 StepSpec parse_step(const std::string& file, const YAML::Node& node, std::size_t index, const PluginRegistry& plugins) {
   MapReader m(file, node, "step " + std::to_string(index + 1));
   StepSpec step;
   step.where = detail::where_of(node);
   if (!m.has("step"))
     throw error_at(file, node, "step " + std::to_string(index + 1) + " needs 'step: NAME'",
-                   "NAME is an attribute (see 'geotandem plugins') or extract, remove_bubbles, sort_by_azimuth");
+                   "NAME is a step listed by 'geotandem plugins' (an attribute, extract, remove_bubbles, ...)");
   step.name = m.required_text("step");
-  step.kind = kind_of(step.name);
   std::string what = "step " + std::to_string(index + 1) + " (" + step.name + ")";
-  m.rename(what);
-  const std::vector<ParamSpec>* specs = nullptr;
-  if (step.kind == StepKind::attribute) {
-    const Plugin* plugin = plugins.find(step.name);
-    if (!plugin) {
-      std::vector<std::string> names = builtin_step_names();
-      for (const Plugin* p : plugins.list())
-        names.push_back(p->name());
-      std::string hint = suggestion_hint(step.name, names);
-      try {
-        plugins.get(step.name);
-      } catch (const Error& e) {
-        hint = e.hint();
-        for (const auto& n : builtin_step_names())
-          if (nearest(step.name, {n}) == n) hint = "did you mean '" + n + "'?";
-      }
-      throw error_at(file, m.node("step"), "unknown step or plugin '" + step.name + "'", hint);
+  const Plugin* plugin = plugins.find(step.name);
+  if (!plugin) {
+    std::string hint;
+    try {
+      plugins.get(step.name);
+    } catch (const Error& e) {
+      hint = e.hint();
     }
-    specs = &plugin->params();
-    step.arity = plugin->input_count();
-  } else {
-    specs = &builtin_step_params(step.name);
+    throw error_at(file, m.node("step"), "unknown step or plugin '" + step.name + "'", hint);
   }
+  step.kind = plugin->kind();
+  if (step.kind == StepKind::export_step || step.kind == StepKind::report)
+    throw error_at(file, m.node("step"),
+                   what + " is " + (step.kind == StepKind::export_step ? "an export" : "the report") +
+                       ", which belongs in the output section, not in the steps",
+                   step.kind == StepKind::export_step ? "output: {exports: [{format: vtp}]}"
+                                                      : "output: {report: FILE}");
+  m.rename(what);
+  const std::vector<ParamSpec>& specs = plugin->params();
+  step.arity = plugin->input_count();
   step.as = m.text("as", step.name);
   if (m.has("input") && m.has("inputs"))
     throw error_at(file, node, what + " has both 'input' and 'inputs'", "use one of them");
   step.inputs = m.has("inputs") ? m.text_list("inputs") : m.text_list("input");
-  step.params = parse_params(m, *specs, what);
+  step.params = parse_params(m, specs, what);
   std::vector<std::string> known = {"step", "as", "input", "inputs"};
-  for (const auto& s : *specs)
+  for (const auto& s : specs)
     known.push_back(s.name);
   m.finish(known);
+  check_step(m, *plugin, step.params, what);
   return step;
 }
 
@@ -174,28 +188,79 @@ void check_chain(const std::string& file, const YAML::Node& steps_node, std::vec
     throw error_at(file, steps_node, "the steps have no extract step", "add '- step: extract' with 'iso:'");
 }
 
-void parse_output(MapReader& m, OutputSpec& out, const std::string& recipe_stem) {
+// The step of `kind` named `name` in the registry, or an error saying the registry lacks it.
+const Plugin& output_step(const PluginRegistry& plugins, const std::string& name, StepKind kind) {
+  const Plugin* step = plugins.find(name);
+  if (!step || step->kind() != kind)
+    throw InvalidArgument(std::string("no ") + to_string(kind) + " step '" + name + "' is registered", {},
+                          "register the built-in steps (workflow::register_builtin_steps)");
+  return *step;
+}
+
+// The output section: where results go, and the export and report steps it asks for.
+void parse_output(MapReader& m, Recipe& r, const std::string& recipe_stem, const PluginRegistry& plugins) {
+  OutputSpec& out = r.output;
+  std::vector<std::string> selections; // written by the component steps
+  for (const auto& step : r.steps)
+    if (step.kind == StepKind::component && step.params.count("selection"))
+      selections.push_back(step.params.at("selection").text);
   out.directory = m.text("directory", recipe_stem + "-out");
   out.store = m.text("store", "store");
-  out.report = m.text("report", "report.html");
   out.attribute_file = m.text("attribute", "");
   if (m.has("exports")) {
+    const Plugin& exporter = output_step(plugins, "export", StepKind::export_step);
     YAML::Node list = m.node("exports");
     if (!list.IsSequence()) throw error_at(m.file(), list, "'exports' must be a list");
-    for (const auto& item : list) {
-      MapReader e(m.file(), item, "an export");
+    for (std::size_t n = 0; n < list.size(); ++n) {
+      std::string what = "export " + std::to_string(n + 1);
+      MapReader e(m.file(), list[n], what);
+      StepSpec step;
+      step.kind = StepKind::export_step;
+      step.name = step.as = exporter.name();
+      step.where = detail::where_of(list[n]);
+      step.params = parse_params(e, exporter.params(), what);
+      std::vector<std::string> known;
+      for (const auto& s : exporter.params())
+        known.push_back(s.name);
+      e.finish(known);
+      check_step(e, exporter, step.params, what);
+      const std::string& wanted = step.params.at("selection").text;
+      if (!wanted.empty() && std::find(selections.begin(), selections.end(), wanted) == selections.end())
+        throw error_at(m.file(), e.node("selection"),
+                       what + " exports selection '" + wanted + "', which no component step of the recipe writes",
+                       selections.empty() ? std::string("leave 'selection' out to export every component")
+                                          : suggestion_hint(wanted, selections));
       ExportSpec spec;
-      spec.format = e.required_text("format");
-      if (spec.format != "ply" && spec.format != "obj" && spec.format != "vtp" && spec.format != "ts")
-        throw error_at(m.file(), e.node("format"), "unknown export format '" + spec.format + "'",
-                       suggestion_hint(spec.format, {"ply", "obj", "vtp", "ts"}));
-      spec.selection = e.text("selection", "");
-      spec.path = e.text("path", "bodies." + spec.format);
-      spec.per_component = e.boolean("per_component", false);
-      e.finish({"format", "selection", "path", "per_component"});
+      spec.format = step.params.at("format").text;
+      spec.selection = step.params.at("selection").text;
+      spec.path = step.params.at("path").text.empty() ? "bodies." + spec.format : step.params.at("path").text;
+      for (const auto& earlier : out.exports)
+        if (fs::path(earlier.path).lexically_normal() == fs::path(spec.path).lexically_normal())
+          throw error_at(m.file(), list[n],
+                         what + " writes " + spec.path + ", like an earlier export: the second would overwrite it",
+                         "give each export its own 'path'");
+      spec.per_component = step.params.at("per_component").boolean;
       out.exports.push_back(spec);
+      r.finish.push_back(std::move(step));
     }
   }
+  const Plugin& reporter = output_step(plugins, "report", StepKind::report);
+  StepSpec report;
+  report.kind = StepKind::report;
+  report.name = report.as = reporter.name();
+  report.where = detail::where_of(m.map());
+  report.params = default_values(reporter.params());
+  if (m.has("report")) {
+    YAML::Node at = m.node("report");
+    std::string text = detail::scalar_of(m.file(), at, "'report' in output");
+    try {
+      report.params["path"] = parse_param(reporter.params().front(), text);
+    } catch (const Error& e) {
+      throw error_at(m.file(), at, e.message() + " in output", e.hint());
+    }
+  }
+  out.report = report.params.at("path").text;
+  r.finish.push_back(std::move(report));
   m.finish({"directory", "store", "report", "attribute", "exports"});
 }
 
@@ -243,54 +308,6 @@ void parse_execution(MapReader& m, ExecutionSpec& ex) {
   m.finish({"scheduler", "workers", "resources"});
 }
 
-// Applies one --set override to the YAML tree. Steps are addressed by index (steps.2.iso) or by
-// their 'as' / step name (steps.extract.iso).
-void apply_override(YAML::Node root, const std::string& text) {
-  auto eq = text.find('=');
-  if (eq == std::string::npos || eq == 0)
-    throw InvalidArgument("--set '" + text + "' is not key=value", {}, "for example --set execution.workers=4");
-  std::string path = text.substr(0, eq), value = text.substr(eq + 1);
-  std::vector<std::string> parts;
-  for (std::size_t start = 0;;) {
-    auto dot = path.find('.', start);
-    parts.push_back(path.substr(start, dot == std::string::npos ? std::string::npos : dot - start));
-    if (dot == std::string::npos) break;
-    start = dot + 1;
-  }
-  YAML::Node node;
-  node.reset(root);
-  for (std::size_t n = 0; n + 1 < parts.size(); ++n) {
-    const std::string& part = parts[n];
-    if (node.IsSequence()) {
-      YAML::Node found;
-      bool matched = false; // a default YAML::Node is a valid null node, so track the match apart
-      char* end = nullptr;
-      long index = std::strtol(part.c_str(), &end, 10);
-      if (*end == '\0' && index >= 1 && static_cast<std::size_t>(index) <= node.size()) {
-        found.reset(node[static_cast<std::size_t>(index - 1)]);
-        matched = true;
-      } else {
-        for (std::size_t i = 0; i < node.size() && !matched; ++i) {
-          YAML::Node item = node[i];
-          if (item.IsMap() && ((item["as"] && item["as"].Scalar() == part) ||
-                               (!item["as"] && item["step"] && item["step"].Scalar() == part))) {
-            found.reset(item);
-            matched = true;
-          }
-        }
-      }
-      if (!matched)
-        throw InvalidArgument("--set " + text + ": no step '" + part + "'", {},
-                              "address steps by their 1-based index or by name");
-      node.reset(found);
-    } else {
-      if (!node[part]) node[part] = YAML::Node(YAML::NodeType::Map);
-      node.reset(node[part]);
-    }
-  }
-  node[parts.back()] = YAML::Load(value);
-}
-
 nlohmann::json to_json(const Recipe& r) {
   using nlohmann::json;
   json j;
@@ -332,7 +349,7 @@ Recipe parse_recipe(const std::string& text, const std::string& name, const Plug
                           "check indentation and the ':' after each key");
   }
   for (const auto& o : overrides)
-    apply_override(root, o);
+    detail::apply_override(root, o);
 
   Recipe r;
   r.path = name;
@@ -351,11 +368,10 @@ Recipe parse_recipe(const std::string& text, const std::string& name, const Plug
     r.steps.push_back(parse_step(name, steps[n], n, plugins));
   check_chain(name, steps, r.steps);
   std::string stem = fs::path(name).stem().string();
-  if (top.has("output")) {
-    MapReader out(name, top.node("output"), "output");
-    parse_output(out, r.output, stem);
-  } else {
-    r.output.directory = stem + "-out";
+  {
+    YAML::Node empty(YAML::NodeType::Map);
+    MapReader out(name, top.has("output") ? top.node("output") : empty, "output");
+    parse_output(out, r, stem, plugins);
   }
   if (top.has("execution")) {
     MapReader ex(name, top.node("execution"), "execution");

@@ -5,13 +5,12 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
-#include <sstream>
+#include <optional>
 
 #include "geotandem/core/error.hpp"
-#include "geotandem/store/export.hpp"
 #include "geotandem/synth/synthetic.hpp"
 #include "geotandem/volume/io.hpp"
-#include "geotandem/workflow/component_steps.hpp"
+#include "geotandem/workflow/chain.hpp"
 #include "geotandem/workflow/extract_step.hpp"
 #include "geotandem/workflow/report.hpp"
 
@@ -29,18 +28,6 @@ std::string utc_now() {
   std::time_t t = std::time(nullptr);
   char text[32];
   std::strftime(text, sizeof text, "%Y-%m-%dT%H:%M:%SZ", std::gmtime(&t));
-  return text;
-}
-
-// FNV-1a: a stable 64-bit fingerprint of canonical JSON text (std::hash is not stable).
-std::string fingerprint(const nlohmann::json& j) {
-  std::uint64_t h = 1469598103934665603ull;
-  for (unsigned char c : j.dump()) {
-    h ^= c;
-    h *= 1099511628211ull;
-  }
-  char text[17];
-  std::snprintf(text, sizeof text, "%016llx", static_cast<unsigned long long>(h));
   return text;
 }
 
@@ -88,244 +75,204 @@ private:
   nlohmann::json json_;
 };
 
-std::shared_ptr<const volume::Volume> open_input(const Recipe& r, const fs::path& out_dir, Logger& log) {
-  const InputSpec& in = r.input;
-  if (in.synthetic) {
-    std::unique_ptr<synth::SyntheticCube> cube;
-    if (in.synthetic_kind == "analytic") {
-      synth::AnalyticOptions o;
-      o.shape = {in.shape[0], in.shape[1], in.shape[2]};
-      o.seed = in.seed;
-      cube = synth::make_analytic(o);
-    } else {
-      synth::SeismicOptions o;
-      o.shape = {in.shape[0], in.shape[1], in.shape[2]};
-      o.seed = in.seed;
-      o.snr = in.snr;
-      cube = synth::make_seismic(o);
-    }
-    synth::write_ground_truth(cube->truth(), (out_dir / "truth.json").string());
-    log.info("input: " + cube->source() + " (ground truth in " + (out_dir / "truth.json").string() + ")");
-    return std::shared_ptr<const volume::Volume>(std::move(cube));
-  }
-  fs::path path = in.file;
-  if (path.is_relative() && !r.base_dir.empty()) path = fs::path(r.base_dir) / path;
-  volume::OpenOptions options;
-  options.nan_policy = volume::parse_nan_policy(in.nan);
-  options.variable = in.variable;
-  auto cube = volume::open_volume(path.string(), options);
-  log.info("input: " + cube->format() + " " + cube->source());
-  return std::shared_ptr<const volume::Volume>(std::move(cube));
-}
-
-ExtractSettings extract_settings(const StepSpec& s) {
-  ExtractSettings e;
-  e.iso = static_cast<float>(s.params.at("iso").real);
-  e.max_error = s.params.at("max_error").real;
-  e.isotropy = s.params.at("isotropy").real;
-  e.axis = parse_axis(s.params.at("axis").text);
-  e.block_size = s.params.at("block_size").integer;
-  e.mode = parse_extract_mode(s.params.at("mode").text);
-  e.extended_time_lag = s.params.at("extended_time_lag").boolean;
-  return e;
-}
-
 std::unique_ptr<Progress> progress_of(const RunSettings& settings) {
   return settings.progress ? settings.progress() : std::make_unique<NullProgress>();
 }
+
+// One run of a validated recipe: walks its steps, then its output steps, calling each through the
+// registry by kind. Holds what passes between steps: the store, the newest selection, the report.
+class ChainRun {
+public:
+  ChainRun(const Recipe& recipe, const PluginRegistry& plugins, const RunSettings& settings, Logger& log,
+           const CancelToken& cancel, const ChainDescription& chain, const ChainVolumes& volumes)
+      : recipe_(recipe), plugins_(plugins), settings_(settings), log_(log), cancel_(cancel), chain_(chain),
+        volumes_(volumes), out_dir_(recipe.output.directory), store_dir_(out_dir_ / recipe.output.store),
+        state_(out_dir_ / "state.json"), print_(chain.fingerprint()) {
+    report_.title = "geotandem run: " + fs::path(recipe.path).stem().string();
+    report_.recipe_path = recipe.path;
+    report_.recipe = recipe.canonical;
+    report_.started = utc_now();
+  }
+
+  RunOutcome run() {
+    outcome_.output_dir = out_dir_.string();
+    outcome_.store_dir = store_dir_.string();
+    for (const StepSpec& step : recipe_.steps)
+      run_step(step);
+    for (const StepSpec& step : recipe_.finish)
+      run_step(step);
+    return outcome_;
+  }
+
+private:
+  void run_step(const StepSpec& step) {
+    const Plugin& plugin = plugins_.get(step.name);
+    switch (plugin.kind()) {
+    case StepKind::attribute: return; // built lazily in the chain; computed as the extraction reads
+    case StepKind::extract: return extract(plugin, step);
+    case StepKind::component: return select(plugin, step);
+    case StepKind::export_step: return export_components(plugin, step);
+    case StepKind::report: return write_report(plugin, step);
+    }
+    throw InvalidArgument("step '" + step.name + "' has a kind this runner does not know", {recipe_.path});
+  }
+
+  StepContext context(Progress& progress) { return StepContext{log_, progress, cancel_}; }
+
+  void extract(const Plugin& plugin, const StepSpec& step) {
+    if (settings_.fresh && fs::exists(store_dir_)) {
+      log_.info("--fresh: removing the previous store " + store_dir_.string());
+      fs::remove_all(store_dir_);
+      state_.clear();
+    }
+    if (store::ComponentStore::exists(store_dir_) && state_.fingerprint_of("extract") != print_)
+      throw InvalidArgument("the output directory holds a store made with other inputs or parameters",
+                            {store_dir_.string()}, "pass --fresh to replace it, or choose another output directory");
+    write_attribute_file();
+    store_.emplace(store::ComponentStore::open_or_create(store_dir_, volumes_.result->geometry(),
+                                                         {"geotandem run-workflow", recipe_.path}));
+    auto t = Clock::now();
+    if (state_.done("extract", print_)) {
+      outcome_.extraction_reused = true;
+      log_.info("extract: reusing the finished extraction in " + store_dir_.string());
+      report_.triangles_per_layer = state_.get("extract").value("triangles_per_layer", std::vector<std::uint64_t>{});
+      report_.steps.push_back({step.name, 0.0, 0, store_->size(), "reused from a previous run with the same inputs"});
+    } else {
+      state_.set("extract", {{"fingerprint", print_}, {"done", false}});
+      nlohmann::json description = {
+          {"recipe", recipe_.path}, {"chain", chain_.to_json()}, {"chain_fingerprint", print_}};
+      const ExecutionSpec& ex = recipe_.execution;
+      if (ex.scheduler == "local" && ex.workers >= 2 && !settings_.worker_command.empty()) {
+        description["workers"] = ex.workers; // the extract step hands the chain to that many workers
+        description["worker_command"] = settings_.worker_command;
+      }
+      auto progress = progress_of(settings_);
+      StepContext c = context(*progress);
+      ExtractResult r = plugin.extract(*volumes_.result, *store_, step.params, description, c);
+      state_.set("extract", {{"fingerprint", print_},
+                             {"done", true},
+                             {"run", r.run},
+                             {"components", r.components},
+                             {"triangles_per_layer", r.triangles_per_layer}});
+      report_.triangles_per_layer = r.triangles_per_layer;
+      report_.steps.push_back({step.name, since(t), 0, store_->size(),
+                               (step.params.count("mode") ? step.params.at("mode").text + ", " : std::string()) +
+                                   std::to_string(r.input_triangles) + " marching-cubes triangles, " +
+                                   std::to_string(r.collapses) + " collapses"});
+    }
+    outcome_.components = outcome_.kept = store_->size();
+    report_.volume_unit = store_->geometry().z_unit == volume::SampleUnit::milliseconds ? "m^2*ms" : "m^3";
+  }
+
+  // Optional: the final attribute cube on disk (an option of the output, not a step).
+  void write_attribute_file() {
+    if (recipe_.output.attribute_file.empty()) return;
+    fs::path path = out_dir_ / recipe_.output.attribute_file;
+    if (state_.done("attribute_file", print_) && fs::exists(path)) return;
+    auto t = Clock::now();
+    auto progress = progress_of(settings_);
+    volume::WriteOptions w;
+    w.overwrite = true;
+    volume::write_volume(*volumes_.result, path.string(), w, progress.get(), cancel_);
+    state_.set("attribute_file", {{"fingerprint", print_}, {"done", true}, {"path", path.string()}});
+    report_.steps.push_back({"write attribute", since(t), 0, 0, path.filename().string()});
+    report_.outputs.push_back(path.filename().string());
+  }
+
+  void select(const Plugin& plugin, const StepSpec& step) {
+    auto t = Clock::now();
+    auto progress = progress_of(settings_);
+    StepContext c = context(*progress);
+    ComponentOutcome r = plugin.select(*store_, step.params, selection_, c);
+    if (r.figures.count("volume_threshold")) report_.bubble_threshold = r.figures.at("volume_threshold");
+    if (r.figures.count("azimuth_bins")) report_.azimuth_bins = static_cast<int>(r.figures.at("azimuth_bins"));
+    report_.steps.push_back({step.name, since(t), r.before, r.after, r.note});
+    selection_ = r.selection;
+    outcome_.kept = r.after;
+    cancel_.throw_if_cancelled();
+  }
+
+  void export_components(const Plugin& plugin, const StepSpec& step) {
+    auto t = Clock::now();
+    auto progress = progress_of(settings_);
+    StepContext c = context(*progress);
+    ExportOutcome r = plugin.export_components(*store_, step.params, selection_, out_dir_, c);
+    const std::string label = step.params.count("format") ? step.name + " " + step.params.at("format").text : step.name;
+    report_.steps.push_back({label, since(t), r.rows, r.components, r.path});
+    report_.outputs.push_back(r.path);
+  }
+
+  // The report: every component of the store, marked kept when in the final selection.
+  void write_report(const Plugin& plugin, const StepSpec& step) {
+    std::vector<std::uint64_t> kept_keys;
+    if (!selection_.empty()) kept_keys = store_->load_selection(selection_).keys;
+    std::sort(kept_keys.begin(), kept_keys.end());
+    for (const auto& row : store_->query()) {
+      ReportComponent c;
+      c.key = row.key;
+      c.volume = row.stats.volume;
+      c.azimuth = row.stats.azimuth;
+      c.elongation = row.stats.elongation;
+      c.triangles = row.stats.triangle_count;
+      c.closed = row.stats.closed;
+      c.kept = selection_.empty() || std::binary_search(kept_keys.begin(), kept_keys.end(), row.key);
+      report_.components.push_back(c);
+    }
+    report_.outputs.push_back(recipe_.output.store + "/");
+    if (recipe_.input.synthetic) report_.outputs.push_back("truth.json");
+    report_.total_seconds = since(report_started_);
+    report_.peak_rss_kb = peak_rss_kb();
+    outcome_.report = plugin.write_report(report_, step.params, out_dir_);
+    state_.set("report", {{"done", true}, {"path", outcome_.report}, {"finished", utc_now()}});
+  }
+
+  const Recipe& recipe_;
+  const PluginRegistry& plugins_;
+  const RunSettings& settings_;
+  Logger& log_;
+  const CancelToken& cancel_;
+  const ChainDescription& chain_;
+  const ChainVolumes& volumes_;
+  fs::path out_dir_, store_dir_;
+  State state_;
+  std::string print_;
+  std::optional<store::ComponentStore> store_;
+  std::string selection_; // the newest selection: input of the next step and of exports
+  ReportData report_;
+  RunOutcome outcome_;
+  Clock::time_point report_started_ = Clock::now();
+};
 
 } // namespace
 
 RunOutcome run_workflow(const Recipe& recipe, const PluginRegistry& plugins, const RunSettings& settings, Logger& log,
                         const CancelToken& cancel) {
-  auto started = Clock::now();
-  RunOutcome outcome;
-  fs::path out_dir = recipe.output.directory;
-  fs::path store_dir = out_dir / recipe.output.store;
-  outcome.output_dir = out_dir.string();
-  outcome.store_dir = store_dir.string();
-
-  ReportData report;
-  report.title = "geotandem run: " + fs::path(recipe.path).stem().string();
-  report.recipe_path = recipe.path;
-  report.recipe = recipe.canonical;
-  report.started = utc_now();
-
-  if (!settings.dry_run) fs::create_directories(out_dir);
-  // The input and the attribute chain: lazy volumes, nothing is computed until extraction reads.
-  auto input = settings.dry_run && recipe.input.synthetic ? nullptr : open_input(recipe, out_dir, log);
-  if (settings.dry_run && recipe.input.synthetic) {
-    // A dry run builds the synthetic cube's description only (cheap) to check the chain.
-    input = open_input(recipe, fs::temp_directory_path(), log);
+  // The input and the attribute chain: lazy volumes, nothing is computed or written until the
+  // extraction reads them.
+  const ChainDescription chain = describe_chain(recipe, plugins);
+  ChainVolumes volumes;
+  try {
+    volumes = open_chain(chain, plugins);
+  } catch (const InvalidArgument& e) {
+    throw InvalidArgument(e.message(), {recipe.path}, e.hint());
   }
-  std::map<std::string, std::shared_ptr<const volume::Volume>> results{{"input", input}};
-  std::shared_ptr<const volume::Volume> extract_input;
-  const StepSpec* extract = nullptr;
-  std::vector<const StepSpec*> component_steps;
-  for (const auto& step : recipe.steps) {
-    if (step.kind == StepKind::attribute) {
-      std::vector<std::shared_ptr<const volume::Volume>> inputs;
-      for (const auto& name : step.inputs)
-        inputs.push_back(results.at(name));
-      try {
-        results[step.as] = plugins.get(step.name).make_attribute(std::move(inputs), step.params);
-      } catch (const Error& e) {
-        throw InvalidArgument(e.message(), {recipe.path, step.where.line, step.where.column}, e.hint());
-      }
-    } else if (step.kind == StepKind::extract) {
-      extract = &step;
-      extract_input = results.at(step.inputs.front());
-    } else {
-      component_steps.push_back(&step);
-    }
-  }
+  log.info("input: " + volumes.input->source());
   if (settings.dry_run) {
-    log.info("dry run: the recipe is valid and its chain builds; the extraction would read " + extract_input->source());
+    log.info("dry run: the recipe is valid and its chain builds; the extraction would read " +
+             volumes.result->source() + "; nothing was written");
+    RunOutcome outcome;
+    outcome.output_dir = recipe.output.directory;
+    outcome.store_dir = (fs::path(recipe.output.directory) / recipe.output.store).string();
     return outcome;
   }
-
-  State state(out_dir / "state.json");
-  nlohmann::json extract_identity = {{"input", recipe.canonical["input"]}, {"steps", nlohmann::json::array()}};
-  for (const auto& step : recipe.steps) {
-    if (step.kind == StepKind::component) break;
-    nlohmann::json s = {{"step", step.name}, {"as", step.as}, {"inputs", step.inputs}};
-    for (const auto& [k, v] : step.params)
-      s["params"][k] = v.text;
-    extract_identity["steps"].push_back(s);
+  fs::path out_dir = recipe.output.directory;
+  fs::create_directories(out_dir);
+  if (const auto* cube = dynamic_cast<const synth::SyntheticCube*>(volumes.input.get())) {
+    synth::write_ground_truth(cube->truth(), (out_dir / "truth.json").string());
+    log.info("ground truth of the synthetic cube in " + (out_dir / "truth.json").string());
   }
-  std::string extract_print = fingerprint(extract_identity);
-
-  if (settings.fresh && fs::exists(store_dir)) {
-    log.info("--fresh: removing the previous store " + store_dir.string());
-    fs::remove_all(store_dir);
-    state.clear();
-  }
-  if (store::ComponentStore::exists(store_dir) && state.fingerprint_of("extract") != extract_print)
-    throw InvalidArgument("the output directory holds a store made with other inputs or parameters",
-                          {store_dir.string()}, "pass --fresh to replace it, or choose another output directory");
-
-  // Optional: the final attribute cube on disk (an option, not a step).
-  if (!recipe.output.attribute_file.empty()) {
-    fs::path path = out_dir / recipe.output.attribute_file;
-    if (!state.done("attribute_file", extract_print) || !fs::exists(path)) {
-      auto t = Clock::now();
-      auto progress = progress_of(settings);
-      volume::WriteOptions w;
-      w.overwrite = true;
-      volume::write_volume(*extract_input, path.string(), w, progress.get(), cancel);
-      state.set("attribute_file", {{"fingerprint", extract_print}, {"done", true}, {"path", path.string()}});
-      report.steps.push_back({"write attribute", since(t), 0, 0, path.filename().string()});
-      report.outputs.push_back(path.filename().string());
-    }
-  }
-
-  auto store = store::ComponentStore::open_or_create(store_dir, extract_input->geometry(),
-                                                     {"geotandem run-workflow", recipe.path});
-  {
-    auto t = Clock::now();
-    if (state.done("extract", extract_print)) {
-      outcome.extraction_reused = true;
-      const auto& s = state.get("extract");
-      log.info("extract: reusing the finished extraction in " + store_dir.string());
-      report.triangles_per_layer = s.value("triangles_per_layer", std::vector<std::uint64_t>{});
-      report.steps.push_back({"extract", 0.0, 0, store.size(), "reused from a previous run with the same inputs"});
-    } else {
-      state.set("extract", {{"fingerprint", extract_print}, {"done", false}});
-      ExtractSettings e = extract_settings(*extract);
-      e.parameters = {{"recipe", recipe.path}, {"steps", extract_identity["steps"]}};
-      auto progress = progress_of(settings);
-      ExtractResult r = extract_to_store(*extract_input, store, e, log, *progress, cancel);
-      state.set("extract", {{"fingerprint", extract_print},
-                            {"done", true},
-                            {"run", r.run},
-                            {"components", r.components},
-                            {"triangles_per_layer", r.triangles_per_layer}});
-      report.triangles_per_layer = r.triangles_per_layer;
-      report.steps.push_back({"extract", since(t), 0, store.size(),
-                              std::string(to_string(e.mode)) + ", " + std::to_string(r.input_triangles) +
-                                  " marching-cubes triangles, " + std::to_string(r.collapses) + " collapses"});
-    }
-  }
-  outcome.components = store.size();
-  report.volume_unit = store.geometry().z_unit == volume::SampleUnit::milliseconds ? "m^2*ms" : "m^3";
-
-  std::string selection; // the newest selection, input of the next step and of exports
-  for (const StepSpec* step : component_steps) {
-    auto t = Clock::now();
-    const auto& p = step->params;
-    if (step->name == "remove_bubbles") {
-      BubbleRemoval rules;
-      rules.min_volume = p.at("min_volume").real;
-      rules.min_volume_fraction = p.at("min_volume_fraction").real;
-      rules.min_volume_percentile = p.at("min_volume_percentile").real;
-      rules.min_triangles = static_cast<std::uint64_t>(p.at("min_triangles").integer);
-      rules.closed_only = p.at("closed_only").boolean;
-      rules.from = selection;
-      rules.selection = p.at("selection").text;
-      auto r = remove_bubbles(store, rules);
-      report.bubble_threshold = r.threshold;
-      std::ostringstream note;
-      note << "volume threshold " << r.threshold << " " << report.volume_unit;
-      report.steps.push_back({"remove_bubbles", since(t), r.before, r.after, note.str()});
-      selection = rules.selection;
-    } else if (step->name == "sort_by_azimuth") {
-      AzimuthSorting rules;
-      rules.bins = static_cast<int>(p.at("bins").integer);
-      rules.azimuth_min = p.at("azimuth_min").real;
-      rules.azimuth_max = p.at("azimuth_max").real;
-      rules.from = selection;
-      rules.selection = p.at("selection").text;
-      auto r = sort_by_azimuth(store, rules);
-      report.azimuth_bins = rules.bins;
-      std::ostringstream note;
-      note.precision(3);
-      note << "mean azimuth " << r.mean_azimuth << " deg, resultant length " << r.resultant_length;
-      report.steps.push_back({"sort_by_azimuth", since(t), r.before, r.after, note.str()});
-      selection = rules.selection;
-    }
-    cancel.throw_if_cancelled();
-  }
-
-  std::vector<std::uint64_t> kept_keys;
-  if (!selection.empty()) kept_keys = store.load_selection(selection).keys;
-  outcome.kept = selection.empty() ? outcome.components : kept_keys.size();
-
-  for (const auto& e : recipe.output.exports) {
-    auto t = Clock::now();
-    store::Query q;
-    q.selection = e.selection.empty() ? selection : e.selection;
-    auto rows = store.query(q);
-    store::ExportOptions options;
-    options.format = store::parse_export_format(e.format);
-    options.per_component = e.per_component;
-    auto progress = progress_of(settings);
-    auto summary = store::export_components(store, rows, out_dir / e.path, options, *progress, cancel);
-    report.steps.push_back({"export " + e.format, since(t), rows.size(), summary.components, e.path});
-    report.outputs.push_back(e.path);
-  }
-
-  // The report: every component of the store, marked kept when in the final selection.
-  std::sort(kept_keys.begin(), kept_keys.end());
-  for (const auto& row : store.query()) {
-    ReportComponent c;
-    c.key = row.key;
-    c.volume = row.stats.volume;
-    c.azimuth = row.stats.azimuth;
-    c.elongation = row.stats.elongation;
-    c.triangles = row.stats.triangle_count;
-    c.closed = row.stats.closed;
-    c.kept = selection.empty() || std::binary_search(kept_keys.begin(), kept_keys.end(), row.key);
-    report.components.push_back(c);
-  }
-  report.outputs.push_back(recipe.output.store + "/");
-  if (recipe.input.synthetic) report.outputs.push_back("truth.json"); // written by open_input
-  report.total_seconds = since(started);
-  report.peak_rss_kb = peak_rss_kb();
-  fs::path report_path = out_dir / recipe.output.report;
-  write_report(report, report_path.string());
-  outcome.report = report_path.string();
-  state.set("report", {{"done", true}, {"path", report_path.string()}, {"finished", utc_now()}});
-  return outcome;
+  ChainRun run(recipe, plugins, settings, log, cancel, chain, volumes);
+  return run.run();
 }
 
 } // namespace geotandem::workflow

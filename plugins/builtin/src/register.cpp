@@ -4,6 +4,7 @@
 
 #include "geotandem/attributes/catalog.hpp"
 #include "geotandem/core/error.hpp"
+#include "geotandem/workflow/builtin_steps.hpp"
 
 namespace geotandem::builtin {
 namespace {
@@ -18,11 +19,16 @@ workflow::ParamSpec convert(const attributes::ParamSpec& p) {
   }
   s.default_value = attributes::to_string(p.default_value);
   s.help = p.help + (p.unit.empty() ? "" : " (" + p.unit + ")");
-  if (p.odd) s.help += "; odd";
-  if (!p.range.min_open && std::isfinite(p.range.min)) s.min_value = p.range.min;
-  if (!p.range.max_open && std::isfinite(p.range.max)) s.max_value = p.range.max;
-  // Open bounds and oddness are checked by the attribute itself when the chain is built, which
-  // still happens before any work starts.
+  s.unit = p.unit;
+  s.odd = p.odd;
+  if (std::isfinite(p.range.min)) {
+    s.min_value = p.range.min;
+    s.min_open = p.range.min_open;
+  }
+  if (std::isfinite(p.range.max)) {
+    s.max_value = p.range.max;
+    s.max_open = p.range.max_open;
+  }
   s.choices = p.choices;
   return s;
 }
@@ -34,34 +40,42 @@ public:
       params_.push_back(convert(p));
   }
   const std::string& name() const override { return spec_.name; }
-  workflow::PluginKind kind() const override { return workflow::PluginKind::attribute; }
+  workflow::StepKind kind() const override { return workflow::StepKind::attribute; }
   const std::string& summary() const override { return spec_.summary; }
   const std::vector<workflow::ParamSpec>& params() const override { return params_; }
   const std::string& origin() const override { return origin_; }
   const std::string& version() const override { return version_; }
   int input_count() const override { return spec_.inputs; }
 
+  // Every single-parameter rule is in the converted spec; this runs the attribute's own
+  // resolution too, so that any rule it adds later is still checked at validation.
+  void check(const workflow::ParamValues& values) const override { attributes::resolve(spec_, given(values)); }
+
   using Plugin::make_attribute;
   std::shared_ptr<volume::Volume> make_attribute(std::vector<std::shared_ptr<const volume::Volume>> inputs,
                                                  const workflow::ParamValues& values) const override {
-    attributes::ParamValues given;
+    return attributes::make_attribute(spec_.name, std::move(inputs), given(values));
+  }
+
+private:
+  attributes::ParamValues given(const workflow::ParamValues& values) const {
+    attributes::ParamValues out;
     for (const auto& p : spec_.params) {
       auto it = values.find(p.name);
       if (it == values.end()) continue;
       switch (p.type) {
-      case attributes::ParamType::integer: given[p.name] = it->second.integer; break;
-      case attributes::ParamType::real: given[p.name] = it->second.real; break;
-      case attributes::ParamType::choice: given[p.name] = it->second.text; break;
+      case attributes::ParamType::integer: out[p.name] = it->second.integer; break;
+      case attributes::ParamType::real: out[p.name] = it->second.real; break;
+      case attributes::ParamType::choice: out[p.name] = it->second.text; break;
       }
     }
-    return attributes::make_attribute(spec_.name, std::move(inputs), given);
+    return out;
   }
 
-private:
   const attributes::AttributeSpec& spec_;
   std::vector<workflow::ParamSpec> params_;
   std::string origin_ = "built-in";
-  std::string version_ = "0.1.0";
+  std::string version_ = workflow::builtin_version;
 };
 
 } // namespace
@@ -69,6 +83,11 @@ private:
 void register_attributes(workflow::PluginRegistry& registry) {
   for (const auto& spec : attributes::builtin_attributes())
     registry.add(std::make_shared<BuiltinAttribute>(spec));
+}
+
+void register_builtins(workflow::PluginRegistry& registry) {
+  register_attributes(registry);
+  workflow::register_builtin_steps(registry);
 }
 
 } // namespace geotandem::builtin

@@ -15,7 +15,7 @@ namespace geotandem::runtime {
 // Rebuilds the input volume in a worker from the description the manager sends (JSON text).
 // Provided by the application (geotandem worker): a cube file, a synthetic cube, a recipe's input
 // with its attribute chain. Throws what opening the volume throws.
-using VolumeFactory = std::function<std::unique_ptr<volume::Volume>(const std::string& description_json)>;
+using VolumeFactory = std::function<std::shared_ptr<const volume::Volume>(const std::string& description_json)>;
 
 struct RunSettings {
   std::string volume;           // the description (JSON text) handed to the VolumeFactory

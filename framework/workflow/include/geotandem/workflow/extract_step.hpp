@@ -13,7 +13,9 @@
 #include "geotandem/core/log.hpp"
 #include "geotandem/core/progress.hpp"
 #include "geotandem/store/store.hpp"
+#include "geotandem/tandem/simplify.hpp"
 #include "geotandem/volume/volume.hpp"
+#include "geotandem/workflow/plugin.hpp"
 
 namespace geotandem::workflow {
 
@@ -21,14 +23,24 @@ enum class ExtractMode { tandem_dump, tandem, brute };
 ExtractMode parse_extract_mode(const std::string& text);
 const char* to_string(ExtractMode mode);
 
+// The smallest leaf edge of the block tree, in cells (0 means one block). The block tree and the
+// merges are correct down to 1 cell (leaves of 1 to 7 cells give the same component keys as one
+// block on a 48^3 analytic cube), so this bound is about cost, not correctness: every leaf and
+// merge has a fixed overhead, and 2-cell leaves took 25 times as long as 16-cell ones there.
+// Recipes and `geotandem extract` refuse smaller blocks at validation.
+inline constexpr std::int64_t min_block_size = 8;
+
+// The defaults stated here are the only ones: the extract step's parameters (extract_params(),
+// used by recipes and by `geotandem extract`) take theirs from a default ExtractSettings, whose
+// simplification defaults come from tandem::SimplifyOptions.
 struct ExtractSettings {
   float iso = 0.0f;
-  double max_error = 0.5;      // E0, voxels
-  double isotropy = 0.4;       // alpha
-  int axis = 0;                // 0 = i (inline), 1 = j, 2 = k
-  std::int64_t block_size = 0; // leaf edge of the block tree, in cells (0: one block)
+  double max_error = tandem::SimplifyOptions{}.max_error; // E0, voxels
+  double isotropy = tandem::SimplifyOptions{}.isotropy;   // alpha
+  int axis = 0;                                           // 0 = i (inline), 1 = j, 2 = k
+  std::int64_t block_size = 128;                          // leaf edge of the block tree, in cells (0: one block)
   ExtractMode mode = ExtractMode::tandem_dump;
-  bool extended_time_lag = true;
+  bool extended_time_lag = tandem::SimplifyOptions{}.extended_time_lag;
   nlohmann::json parameters; // extra description recorded with the run (the recipe, the command)
   // The manager/worker runtime (extract_workers.cpp): with workers > 0 the blocks are extracted by
   // that many local worker processes running `worker_command` (e.g. {"/usr/bin/geotandem",
@@ -54,6 +66,15 @@ struct ExtractResult {
 
 // Parses "i", "j", "k" (or 0, 1, 2); throws InvalidArgument otherwise.
 int parse_axis(const std::string& text);
+
+// The extraction's declared parameters (iso, max_error, isotropy, axis, block_size, mode,
+// extended_time_lag), defaults from ExtractSettings{}.
+const std::vector<ParamSpec>& extract_params();
+// What parse_param cannot see alone: block_size is 0 or at least min_block_size. Throws
+// InvalidArgument naming the parameter.
+void check_extract_params(const ParamValues& values);
+// The settings of validated values (every parameter of extract_params()).
+ExtractSettings extract_settings(const ParamValues& values);
 
 // Extracts the isosurface of `volume` at settings.iso into `store` (which must be writable and
 // have the volume's geometry), as one block or, with settings.block_size > 0, through the block

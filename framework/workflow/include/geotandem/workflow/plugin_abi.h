@@ -3,11 +3,17 @@
  * A plugin is a shared library named `geotandem_<name>.so` that exports one function,
  * `geotandem_plugin_entry`, returning a pointer to a static descriptor. Only C types cross the
  * boundary. The descriptor carries its own size and the interface version it was built for; the
- * host refuses a plugin whose major version differs from its own, or whose descriptor is smaller
- * than the host needs, and says which versions it saw and which file.
+ * host refuses a plugin whose major version differs from its own, and says which versions it saw
+ * and which file.
  *
  * Version policy: a new major version changes or removes something; a minor version only appends
- * fields at the end of the descriptor (the host reads them only when struct_size covers them).
+ * fields at the end of the descriptor. The host reads a descriptor up to its struct_size: a plugin
+ * built against an older minor version (a smaller descriptor) loads, and the fields it does not
+ * have read as zero. Version 1.0 ends after `attribute`; 1.1 appends `component`.
+ *
+ * Kinds: an attribute plugin maps volumes to a volume, box by box (gt_attribute_ops); a component
+ * step plugin sees the measures of the extracted components and returns a selection, optionally
+ * ranked (gt_component_ops); the host writes it into the store as a named selection.
  *
  * Errors: every callback returns 0 on success; on failure it returns non-zero and writes a
  * NUL-terminated message of at most `error_size` bytes into `error`. A plugin must never throw a
@@ -23,7 +29,7 @@ extern "C" {
 #endif
 
 #define GEOTANDEM_PLUGIN_ABI_MAJOR 1
-#define GEOTANDEM_PLUGIN_ABI_MINOR 0
+#define GEOTANDEM_PLUGIN_ABI_MINOR 1
 #define GEOTANDEM_PLUGIN_ENTRY_NAME "geotandem_plugin_entry"
 
 typedef enum gt_param_type {
@@ -74,7 +80,10 @@ typedef struct gt_box {
   int64_t hi[3];
 } gt_box;
 
-typedef enum gt_plugin_kind { GT_PLUGIN_ATTRIBUTE = 1 } gt_plugin_kind;
+typedef enum gt_plugin_kind {
+  GT_PLUGIN_ATTRIBUTE = 1,
+  GT_PLUGIN_COMPONENT_STEP = 2 /* since 1.1 */
+} gt_plugin_kind;
 
 /* An attribute maps one input volume to one output volume of the same shape. For an output box
  * the host reads the input over the box grown by the halo and clipped to the cube, then calls
@@ -87,6 +96,35 @@ typedef struct gt_attribute_ops {
                  float* output, const gt_box* output_box, char* error, size_t error_size);
 } gt_attribute_ops;
 
+/* The measures of one extracted component, in world units (metres; milliseconds for a time axis).
+ * Since 1.1. */
+typedef struct gt_component {
+  uint64_t key; /* the component's identity in the store */
+  uint64_t vertex_count;
+  uint64_t triangle_count;
+  int closed;        /* 1: a closed surface (encloses a volume) */
+  int cut_by_border; /* 1: touches the cube's outer faces */
+  double volume;     /* enclosed volume; 0 when not closed */
+  double area;
+  double centroid[3]; /* area-weighted, world x, y, z */
+  double box_min[3];  /* axis-aligned bounds, world x, y, z */
+  double box_max[3];
+  double obb_half_extents[3]; /* oriented bounding box, longest first */
+  double azimuth;             /* degrees clockwise from north of the main horizontal axis, [0, 180) */
+  double dip;                 /* degrees of the main axis below the horizontal, [0, 90] */
+  double elongation;          /* 1 - second / first horizontal extent, [0, 1] */
+} gt_component;
+
+/* A component step: from `count` components (the previous step's selection, or every component),
+ * writes the keys it keeps into `selected` (room for `count` keys) and their number into
+ * `selected_count`. The order written is kept: a plugin that ranks writes the best first (and
+ * sets `ranked` to 1 so reports say so); one that only filters writes them in the order given.
+ * Every key must be one of the components given, at most once. */
+typedef struct gt_component_ops {
+  int (*select)(const gt_params* params, const gt_component* components, uint64_t count, uint64_t* selected,
+                uint64_t* selected_count, int* ranked, char* error, size_t error_size);
+} gt_component_ops;
+
 typedef struct gt_plugin_descriptor {
   uint32_t struct_size; /* sizeof(gt_plugin_descriptor) as the plugin was built */
   uint32_t abi_major;   /* GEOTANDEM_PLUGIN_ABI_MAJOR as the plugin was built */
@@ -98,6 +136,8 @@ typedef struct gt_plugin_descriptor {
   const gt_param_spec* params;
   uint32_t param_count;
   gt_attribute_ops attribute; /* for GT_PLUGIN_ATTRIBUTE */
+  /* --- 1.0 ends here --- */
+  gt_component_ops component; /* for GT_PLUGIN_COMPONENT_STEP (since 1.1) */
 } gt_plugin_descriptor;
 
 typedef const gt_plugin_descriptor* (*gt_plugin_entry_fn)(void);

@@ -33,17 +33,13 @@ struct InputSpec {
   Where where;
 };
 
-// The kinds of steps, in the order a chain must respect: volume steps (attributes, including
-// combinators such as a product of two attributes), then one extraction, then component steps.
-enum class StepKind { attribute, extract, component };
-
 struct StepSpec {
-  StepKind kind = StepKind::attribute;
-  std::string name;                // plugin or built-in step name ("chaos", "extract", ...)
-  std::string as;                  // the name later steps use for its result (default: name)
-  std::vector<std::string> inputs; // names of earlier results; "input" is the recipe's cube
-  int arity = 1;                   // inputs an attribute needs
-  ParamValues params;              // every parameter, defaults filled in
+  StepKind kind = StepKind::attribute; // the step's own kind, from the registry
+  std::string name;                    // the step's name in the registry ("chaos", "extract", ...)
+  std::string as;                      // the name later steps use for its result (default: name)
+  std::vector<std::string> inputs;     // names of earlier results; "input" is the recipe's cube
+  int arity = 1;                       // inputs an attribute needs
+  ParamValues params;                  // every parameter, defaults filled in
   Where where;
 };
 
@@ -83,14 +79,13 @@ struct Recipe {
   InputSpec input;
   std::vector<StepSpec> steps;
   OutputSpec output;
+  // The steps the output section asks for, run after `steps`: one export step per entry of
+  // output.exports, then the report step.
+  std::vector<StepSpec> finish;
   ExecutionSpec execution;
   // The recipe after defaults and overrides, as JSON: shown in reports, hashed for reruns.
   nlohmann::json canonical;
 };
-
-// The built-in steps that are not attribute plugins, with their parameter specs.
-const std::vector<ParamSpec>& builtin_step_params(const std::string& name);
-std::vector<std::string> builtin_step_names();
 
 // Reads and validates a recipe. `overrides` are "dotted.path=value" strings from --set (for
 // example "execution.workers=4", "steps.extract.iso=0.4", "input.synthetic.seed=3"); a bad override

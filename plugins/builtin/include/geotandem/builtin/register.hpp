@@ -11,4 +11,8 @@ namespace geotandem::builtin {
 // the same name is already registered.
 void register_attributes(workflow::PluginRegistry& registry);
 
+// Every built-in step: the attributes above and the workflow's own steps (extract,
+// remove_bubbles, sort_by_azimuth, export, report).
+void register_builtins(workflow::PluginRegistry& registry);
+
 } // namespace geotandem::builtin

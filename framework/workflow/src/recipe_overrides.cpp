@@ -1,0 +1,58 @@
+// --set overrides, applied to the recipe's YAML tree before validation.
+
+#include "recipe_overrides.hpp"
+
+#include <cstdlib>
+#include <vector>
+
+#include "geotandem/core/error.hpp"
+
+namespace geotandem::workflow::detail {
+
+void apply_override(YAML::Node root, const std::string& text) {
+  auto eq = text.find('=');
+  if (eq == std::string::npos || eq == 0)
+    throw InvalidArgument("--set '" + text + "' is not key=value", {}, "for example --set execution.workers=4");
+  std::string path = text.substr(0, eq), value = text.substr(eq + 1);
+  std::vector<std::string> parts;
+  for (std::size_t start = 0;;) {
+    auto dot = path.find('.', start);
+    parts.push_back(path.substr(start, dot == std::string::npos ? std::string::npos : dot - start));
+    if (dot == std::string::npos) break;
+    start = dot + 1;
+  }
+  YAML::Node node;
+  node.reset(root);
+  for (std::size_t n = 0; n + 1 < parts.size(); ++n) {
+    const std::string& part = parts[n];
+    if (node.IsSequence()) {
+      YAML::Node found;
+      bool matched = false; // a default YAML::Node is a valid null node, so track the match apart
+      char* end = nullptr;
+      long index = std::strtol(part.c_str(), &end, 10);
+      if (*end == '\0' && index >= 1 && static_cast<std::size_t>(index) <= node.size()) {
+        found.reset(node[static_cast<std::size_t>(index - 1)]);
+        matched = true;
+      } else {
+        for (std::size_t i = 0; i < node.size() && !matched; ++i) {
+          YAML::Node item = node[i];
+          if (item.IsMap() && ((item["as"] && item["as"].Scalar() == part) ||
+                               (!item["as"] && item["step"] && item["step"].Scalar() == part))) {
+            found.reset(item);
+            matched = true;
+          }
+        }
+      }
+      if (!matched)
+        throw InvalidArgument("--set " + text + ": no step '" + part + "'", {},
+                              "address steps by their 1-based index or by name");
+      node.reset(found);
+    } else {
+      if (!node[part]) node[part] = YAML::Node(YAML::NodeType::Map);
+      node.reset(node[part]);
+    }
+  }
+  node[parts.back()] = YAML::Load(value);
+}
+
+} // namespace geotandem::workflow::detail

@@ -1,0 +1,15 @@
+#pragma once
+// --set overrides of a recipe: "dotted.path=value" applied to the YAML tree before validation.
+
+#include <string>
+
+#include <yaml-cpp/yaml.h>
+
+namespace geotandem::workflow::detail {
+
+// Applies one --set override to the YAML tree. Steps are addressed by index (steps.2.iso) or by
+// their 'as' / step name (steps.extract.iso). Throws InvalidArgument for a malformed override or
+// an unknown step.
+void apply_override(YAML::Node root, const std::string& text);
+
+} // namespace geotandem::workflow::detail

@@ -62,6 +62,34 @@ TEST(Workers, OneTwoAndFourWorkersGiveTheComponentsOfTheInProcessRun) {
   }
 }
 
+// The quickstart recipe (a synthetic seismic cube, a chaos and envelope attribute chain) with its
+// chain rebuilt and fused block by block in 2 and 3 workers, against the in-process run.
+TEST(Workers, ARecipesAttributeChainRunsInTheWorkers) {
+  ScratchDir dir;
+  const std::string recipe = std::string(GEOTANDEM_SOURCE_DIR) + "/workflows/quickstart.yaml";
+  const std::string small = " --set 'input.synthetic.shape=[64,64,48]' --set steps.extract.block_size=16";
+  auto r = run_geotandem("-q run-workflow '" + recipe + "' --set output.directory='" + dir.file("w1") + "'" + small);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto reference = components_of(dir.file("w1") + "/store", false);
+  ASSERT_GT(reference.size(), 5u);
+  for (int workers : {2, 3}) {
+    const std::string out = dir.file("w" + std::to_string(workers));
+    r = run_geotandem("--log-level info run-workflow '" + recipe + "' --set output.directory='" + out +
+                      "' --set execution.workers=" + std::to_string(workers) + small);
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_NE(r.err.find("extracting with " + std::to_string(workers) + " local workers"), std::string::npos) << r.err;
+    const auto got = components_of(out + "/store", true);
+    ASSERT_EQ(got.size(), reference.size());
+    for (const auto& [key, c] : reference) {
+      ASSERT_TRUE(got.count(key)) << "component " << key << " missing with " << workers << " workers";
+      EXPECT_NEAR(got.at(key).volume, c.volume, 0.005 * std::abs(c.volume) + 1e-9) << key;
+      if (!got.at(key).cut) {
+        EXPECT_TRUE(got.at(key).manifold) << key;
+      }
+    }
+  }
+}
+
 // Waits until the manager has at least one worker child; empty after the timeout.
 std::vector<pid_t> workers_of(pid_t manager, double timeout_s) {
   const auto until = std::chrono::steady_clock::now() + std::chrono::duration<double>(timeout_s);

@@ -79,6 +79,40 @@ TEST(Manager, AWorkerThatCannotOpenTheInputEndsTheRunWithItsReason) {
   EXPECT_NE(text.find("/nonexistent/cube.raw"), std::string::npos) << text;
 }
 
+// A worker started by hand (as a cluster scheduler would) joins a run that one local worker began,
+// and takes part: the run ends with the components of the in-process extraction.
+TEST(Manager, AWorkerJoiningLateTakesPart) {
+  ManagerRun run("48 44 40");
+  auto ref = testing::run_geotandem("-q extract '" + run.cube + "' --iso 0.5 --block-size 8 --workers 0 --out '" +
+                                    run.dir.file("ref") + "'");
+  ASSERT_EQ(ref.exit_code, 0) << ref.err;
+  run.options.workers = 1;
+  LocalLauncher launcher;
+  Logger log(std::cerr, LogLevel::info);
+  Manager manager(run.options, *run.store, &launcher, log, run.progress, run.cancel);
+  const std::string token = manager.new_token();
+  const std::string endpoint = manager.endpoint();
+  pid_t late = 0;
+  std::thread starter([&] {
+    std::this_thread::sleep_for(std::chrono::milliseconds(300));
+    late =
+        testing::spawn_geotandem({"-q", "worker", "--connect", endpoint, "--token", token}, run.dir.file("late.log"));
+  });
+  ManagerReport report;
+  EXPECT_NO_THROW(report = manager.run());
+  starter.join();
+  const int code = testing::wait_exit(late, 60);
+  EXPECT_EQ(code, 0) << testing::read_text(run.dir.file("late.log"));
+  EXPECT_EQ(report.workers, 2u) << "the late worker did not join";
+  const auto expected = testing::components_of(run.dir.file("ref"), false);
+  const auto got = testing::components_of(run.dir.file("store"), false);
+  ASSERT_EQ(got.size(), expected.size());
+  for (const auto& [key, c] : expected) {
+    ASSERT_TRUE(got.count(key)) << key;
+    EXPECT_NEAR(got.at(key).volume, c.volume, 0.005 * std::abs(c.volume) + 1e-9);
+  }
+}
+
 // Random bytes, truncated and damaged messages, oversized claims, replayed task results and HELLOs
 // under unknown tokens, sent from several foreign peers while two real workers run.
 void send_garbage(const std::string& endpoint, std::atomic<bool>& stop, std::atomic<int>& sent) {

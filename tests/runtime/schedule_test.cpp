@@ -64,62 +64,59 @@ TEST(Schedule, Figure10ReplayWithThreeWorkers) {
   // W2 ? -> MERGE 6: W2 holds {3, 4, 6}.
   expect(2, TaskKind::merge);
   s.done(2);
-  // W2 ? -> SEND W1? No: W2 holds {3,4,6}; W1 extracts 7, brother of 6 (maximal nodes 2 and 6;
-  // 7 is in the subtree of brother(6)): W2 ? -> SEND W1.
-  const Decision send2 = expect(2, TaskKind::send, tandem::kNoNode, 1);
-  EXPECT_TRUE(s.arrived(2, send2.transfer));
-  // W2 ? -> EXTRACT 11 (nothing held).
+  // W2 holds {3,4,6}; W1 extracts 7, adjacent but smaller: the smaller side travels, so W2 does
+  // not send. No unprocessed leaf is adjacent to {2, 6}: W2 ? -> EXTRACT 11, the first left.
   expect(2, TaskKind::extract, 11);
-  // W1 finishes 7, merges {3,4,6}: the whole left half.
+  // W1 has 7 (brother of 6, held by W2, which claims 4 leaves): W1 ? -> SEND W2, then EXTRACT 13.
   s.done(1);
-  expect(1, TaskKind::merge);
-  s.done(1);
-  EXPECT_EQ(s.leaves_held(1), 4u);
-  // W1 ? : nobody holds an adjacent aggregate? W3 extracts 10 (right-up-front): node 1 (left) and
-  // leaf 10 in the subtree of brother(1) = 8; ancestry {10, 9} of types front, up != right:
-  // adjacent. W2's leaf 11 too; sizes tie, the lowest id wins: W1 ? -> SEND W2.
   const Decision send1b = expect(1, TaskKind::send, tandem::kNoNode, 2);
   EXPECT_TRUE(s.arrived(1, send1b.transfer));
   expect(1, TaskKind::extract, 13);
+  // W3 has 10: node 1 (the whole left half, now claimed by W2) passes the test with it (ancestry
+  // {10, 9}: front, up, none opposite to left), and 11 is its brother: W3 ? -> SEND W2, EXTRACT 14.
   s.done(3);
-  // W3 holds 10; W2 claims {3,4,6,7,11}: W3 ? -> SEND W2.
   const Decision send3b = expect(3, TaskKind::send, tandem::kNoNode, 2);
   EXPECT_TRUE(s.arrived(3, send3b.transfer));
   expect(3, TaskKind::extract, 14);
+  // W2 finishes 11 and merges both surfaces waiting for it.
   s.done(2);
   expect(2, TaskKind::merge);
   s.done(2);
   expect(2, TaskKind::merge);
   s.done(2);
   EXPECT_EQ(s.leaves_held(2), 6u);
-  // W2 ? : W1 (13) and W3 (14) are neighbours of {left, 9}.
-  const Decision d2 = s.next(2);
-  ASSERT_EQ(d2.kind, TaskKind::send);
-  EXPECT_NE(d2.target, 2u);
-  EXPECT_TRUE(s.arrived(2, d2.transfer));
+  // Its neighbours W1 (13) and W3 (14) are smaller and nothing is left to extract: W2 ? -> WAIT.
+  expect(2, TaskKind::wait);
   EXPECT_EQ(s.unprocessed(), 0u);
-  // Drain: whoever asks; the run ends with one FINISHED(final).
-  int finals = 0;
-  for (int round = 0; round < 50 && !s.complete(); ++round)
-    for (WorkerId w : {1u, 2u, 3u}) {
-      if (s.busy(w)) {
-        s.done(w);
-        continue;
-      }
-      const Decision d = s.next(w);
-      if (d.kind == TaskKind::send) {
-        EXPECT_TRUE(s.arrived(w, d.transfer));
-      }
-      if (d.kind == TaskKind::finished && d.final) ++finals;
-      EXPECT_NE(d.kind, TaskKind::extract);
-    }
+  // W1 has 13 (adjacent to node 9 of W2, and brother of W3's 14): the larger wins, SEND W2.
+  s.done(1);
+  const Decision send1c = expect(1, TaskKind::send, tandem::kNoNode, 2);
+  EXPECT_TRUE(s.arrived(1, send1c.transfer));
+  s.done(3);
+  const Decision send3c = expect(3, TaskKind::send, tandem::kNoNode, 2);
+  EXPECT_TRUE(s.arrived(3, send3c.transfer));
+  // W1 and W3 hold nothing and nothing is left: they wait until the run is complete.
+  expect(1, TaskKind::wait);
+  expect(3, TaskKind::wait);
+  expect(2, TaskKind::merge);
+  s.done(2);
+  expect(2, TaskKind::merge);
+  s.done(2);
+  EXPECT_EQ(s.leaves_held(2), 8u);
+  // W2 holds the whole surface: FINISHED (final); then everyone is told FINISHED.
+  const Decision last = expect(2, TaskKind::finished);
+  EXPECT_TRUE(last.final);
+  EXPECT_FALSE(s.complete());
+  s.done(2);
   EXPECT_TRUE(s.complete());
-  EXPECT_EQ(finals, 1);
   EXPECT_EQ(s.counts().extract, 8u);
-  EXPECT_EQ(s.counts().merge, s.counts().send);
-  EXPECT_EQ(s.counts().merge, 7u); // eight surfaces become one
-  for (WorkerId w : {1u, 2u, 3u})
-    EXPECT_EQ(s.next(w).kind, TaskKind::finished);
+  EXPECT_EQ(s.counts().send, 6u);
+  EXPECT_EQ(s.counts().merge, 6u); // with one extraction into a held surface (11): 7 joins in all
+  for (WorkerId w : {1u, 2u, 3u}) {
+    const Decision d = s.next(w);
+    EXPECT_EQ(d.kind, TaskKind::finished);
+    EXPECT_FALSE(d.final);
+  }
 }
 
 TEST(Schedule, OneWorkerProcessesAndAggregatesEverything) {

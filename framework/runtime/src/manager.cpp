@@ -81,6 +81,7 @@ struct Manager::Impl {
   WorkerId next_worker = 1;
   ManagerReport report;
   Clock::time_point start = Clock::now(), last_beat = Clock::now();
+  double cpu_at_start = cpu_seconds();
   std::uint64_t progress_done = 0;
 
   Impl(ManagerOptions o, store::ComponentStore& s, Launcher* l, Logger& lg, Progress& p, const CancelToken& c)
@@ -354,6 +355,8 @@ struct Manager::Impl {
   }
 
   ManagerReport run() {
+    start = Clock::now();
+    cpu_at_start = cpu_seconds();
     progress.begin("extraction, " + std::to_string(report.leaves) + " blocks", report.leaves + 1, "blocks+final");
     if (launcher)
       for (std::size_t i = 0; i < options.workers; ++i)
@@ -413,8 +416,9 @@ struct Manager::Impl {
       std::this_thread::sleep_for(std::chrono::milliseconds(10));
     stop_workers();
     progress.end();
-    report.manager_cpu_seconds = cpu_seconds();
-    report.manager_peak_rss_kb = peak_rss_kb();
+    report.manager_cpu_seconds = cpu_seconds() - cpu_at_start;
+    report.manager_peak_rss_kb = peak_rss_kb(); // of the whole process, so far
+
     return report;
   }
 };

@@ -59,7 +59,7 @@ Aggregate Schedule::claimed(const Worker& w) const {
 }
 
 // has_neighbor_worker: the live worker, other than this one, whose claimed leaves are
-// restricted-adjacent to this one's; the one claiming most leaves first (the smaller side travels).
+// restricted-adjacent to this one's and at least as many; the one claiming most leaves first.
 std::optional<WorkerId> Schedule::neighbor(WorkerId id) {
   const Aggregate& mine = worker(id).held;
   std::optional<WorkerId> best;
@@ -67,7 +67,9 @@ std::optional<WorkerId> Schedule::neighbor(WorkerId id) {
   for (const auto& [other, w] : workers_) {
     if (other == id) continue;
     const Aggregate theirs = claimed(w);
-    if (!theirs.empty() && mine.adjacent(theirs) && theirs.size() > best_size) {
+    // The smaller side travels: a worker does not send to a smaller neighbour (that one sends to
+    // it when it asks), so large aggregates stay put and their workers go on extracting.
+    if (!theirs.empty() && theirs.size() >= mine.size() && mine.adjacent(theirs) && theirs.size() > best_size) {
       best = other;
       best_size = theirs.size();
     }

@@ -6,8 +6,9 @@
 // A worker that asks gets, in this order:
 //   1. MERGE when a surface sent to it has arrived (has_waiting_surface); WAIT while one is still
 //      on its way (it must not give its aggregate away meanwhile);
-//   2. SEND to a neighbour worker when its aggregate is restricted-adjacent to that worker's
-//      (has_neighbor_worker; the neighbour's aggregate counts the surfaces on their way to it);
+//   2. SEND to a neighbour worker when its aggregate is restricted-adjacent to that worker's and
+//      not larger (has_neighbor_worker; the neighbour's aggregate counts the surfaces on their way
+//      to it; the smaller side travels, so a large aggregate stays put and its worker extracts);
 //   3. EXTRACT of an unprocessed leaf, one restricted-adjacent to its aggregate if there is one
 //      (has_unprocessed_block);
 //   4. FINISHED: the final one when it holds every leaf and nothing is on its way (it finishes the

@@ -3,3 +3,8 @@
 add_executable(bench_store ${CMAKE_CURRENT_SOURCE_DIR}/store/store_bench.cpp)
 target_link_libraries(bench_store PRIVATE geotandem::store geotandem::mesh)
 geotandem_target_defaults(bench_store)
+
+# bench_store_check: `store check` (every record read back and verified) on 100 000 components.
+add_executable(bench_store_check ${CMAKE_CURRENT_SOURCE_DIR}/store/check_bench.cpp)
+target_link_libraries(bench_store_check PRIVATE geotandem::store geotandem::mesh)
+geotandem_target_defaults(bench_store_check)

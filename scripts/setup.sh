@@ -1,6 +1,8 @@
 #!/usr/bin/env bash
 # Installs every Debian 12 package geotandem needs (idempotent), then configures and builds.
 # Usage: scripts/setup.sh [PRESET ...]   (default preset: release)
+# libjs-three: three.js, inlined into run reports for the 3-D view of the bodies; chromium: the
+# headless browser the report test draws that view with.
 # Environment: GEOTANDEM_SKIP_APT=1 skips the package step (for machines that already have them).
 set -euo pipefail
 here="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
@@ -15,7 +17,9 @@ packages=(
   nlohmann-json3-dev libyaml-cpp-dev libcli11-dev
   libsqlite3-dev sqlite3 libxxhash-dev zlib1g-dev
   clang-format clang-tidy
+  clang libclang-rt-14-dev
   slurmctld slurmd slurm-client munge
+  libjs-three chromium
 )
 
 as_root() {

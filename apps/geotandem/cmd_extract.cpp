@@ -44,6 +44,8 @@ void add_extract_command(CLI::App& app, Context& context, Runner& run) {
                      block_size = default_of("block_size"), mode = default_of("mode");
     bool no_extended_time_lag = false;
     std::optional<std::size_t> workers;
+    bool fresh = false; // reliab
+    volume::SegyOptions segy;
   };
   auto a = std::make_shared<Args>();
   auto* cmd =
@@ -79,12 +81,20 @@ void add_extract_command(CLI::App& app, Context& context, Runner& run) {
   cmd->add_option("--variable", a->variable, "the array to read from a multidimensional file with several");
   cmd->add_option("--workers", a->workers,
                   "local worker processes extracting and merging the blocks (manager/worker runtime); 0: in this "
-                  "process. Default: one per core with --block-size, in this process for one block");
+                  "process (the default). Use with --block-size; --workers $(nproc) uses every core");
+  // reliab: start afresh instead of resuming (refused while another process writes the store).
+  cmd->add_flag("--fresh", a->fresh, "replace the store in --out instead of resuming it");
+  cmd->add_option("--inline-byte", a->segy.inline_byte, "SEG-Y: trace header byte (1-based) of the inline numbers")
+      ->capture_default_str();
+  cmd->add_option("--crossline-byte", a->segy.crossline_byte,
+                  "SEG-Y: trace header byte (1-based) of the crossline numbers")
+      ->capture_default_str();
   cmd->callback([a, &context, &run] {
     run = [a, &context] {
       volume::OpenOptions open;
       open.nan_policy = volume::parse_nan_policy(a->nan);
       open.variable = a->variable;
+      open.segy = a->segy;
       workflow::ParamValues values;
       values["iso"] = value_of("iso", "--iso", a->iso);
       values["max_error"] = value_of("max_error", "--max-error", a->max_error);
@@ -100,12 +110,16 @@ void add_extract_command(CLI::App& app, Context& context, Runner& run) {
       } catch (const Error& e) {
         throw InvalidArgument("--block-size: " + e.message(), {}, e.hint());
       }
-      s.workers = a->workers.value_or(s.block_size > 0 ? std::max(1u, std::thread::hardware_concurrency()) : 0u);
+      // --workers 0 (in this process) stays the default until the store-safety checks of the
+      // in-process route (exit codes of input errors, shard names in resumed stores) hold for
+      // workers too; --workers N opts in.
+      s.workers = a->workers.value_or(0u);
       if (s.workers > 0) {
-        s.volume_description = describe_cube_file(a->cube, a->nan, a->variable);
+        s.volume_description = describe_cube_file(a->cube, a->nan, a->variable, a->segy);
         s.worker_command = {self_executable(), "worker"};
       }
       auto cube = volume::open_volume(a->cube, open);
+      if (a->fresh) store::ComponentStore::remove(a->out); // reliab
       s.parameters = {{"command", "geotandem extract"}, {"cube", a->cube}};
       auto store = store::ComponentStore::open_or_create(a->out, cube->geometry(), {"geotandem extract", a->cube});
       auto progress = context.progress();

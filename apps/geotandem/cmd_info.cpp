@@ -1,5 +1,6 @@
 // geotandem info FILE: what a cube is (format, shape, geometry, value range), for people and scripts.
 
+#include <algorithm>
 #include <cmath>
 #include <iomanip>
 #include <iostream>
@@ -17,6 +18,7 @@ struct Info {
   std::string options_nan;
   bool json = false;
   bool no_stats = false;
+  volume::SegyOptions segy;
 };
 
 struct ValueStats {
@@ -60,6 +62,11 @@ nlohmann::json describe(const volume::Volume& cube, const ValueStats* stats) {
   nlohmann::json j;
   j["source"] = cube.source();
   j["format"] = cube.format();
+  // How the file encodes the cube (SEG-Y: sample format, byte order, header bytes used).
+  nlohmann::json details = nlohmann::json::object();
+  for (const auto& d : cube.format_details())
+    details[d.key] = d.value;
+  j["details"] = details;
   j["shape"] = {{"inline", g.shape[0]}, {"crossline", g.shape[1]}, {"sample", g.shape[2]}};
   j["inline"] = {
       {"first", g.inline0}, {"step", g.inline_step}, {"last", g.inline0 + g.inline_step * double(g.shape[0] - 1)}};
@@ -95,10 +102,16 @@ nlohmann::json describe(const volume::Volume& cube, const ValueStats* stats) {
   return j;
 }
 
-void print_text(const nlohmann::json& j) {
+// `details` in the reader's order (the JSON object sorts its keys).
+void print_text(const nlohmann::json& j, const std::vector<volume::FormatDetail>& details) {
   auto& o = std::cout;
   o << "file:       " << j["source"].get<std::string>() << "\n";
   o << "format:     " << j["format"].get<std::string>() << "\n";
+  for (const auto& d : details) {
+    std::string label = d.key;
+    std::replace(label.begin(), label.end(), '_', ' ');
+    o << "  " << std::left << std::setw(16) << (label + ":") << std::right << d.value << "\n";
+  }
   o << "shape:      " << j["shape"]["inline"] << " inlines x " << j["shape"]["crossline"] << " crosslines x "
     << j["shape"]["sample"] << " samples (" << j["samples"] << " samples)\n";
   o << "inlines:    " << j["inline"]["first"] << " to " << j["inline"]["last"] << " step " << j["inline"]["step"]
@@ -128,11 +141,18 @@ void add_info_command(CLI::App& app, Context& context, Runner& run) {
   cmd->add_option("file", info->path, "the cube (netCDF, HDF5, Zarr, GeoTIFF, ENVI, SEG-Y, raw+json)")->required();
   cmd->add_flag("--json", info->json, "print JSON for scripts instead of text");
   cmd->add_flag("--no-stats", info->no_stats, "skip the value scan (fast on huge cubes)");
+  cmd->add_option("--inline-byte", info->segy.inline_byte,
+                  "SEG-Y: trace header byte (1-based) of the inline numbers (often 9 or 5 in older files)")
+      ->capture_default_str();
+  cmd->add_option("--crossline-byte", info->segy.crossline_byte,
+                  "SEG-Y: trace header byte (1-based) of the crossline numbers (often 21 or 13)")
+      ->capture_default_str();
   cmd->callback([info, &context, &run] {
     run = [info, &context] {
       volume::OpenOptions options;
       options.nan_policy = volume::NanPolicy::fill; // info reports non-finite samples instead of failing
       options.fill_value = std::numeric_limits<float>::quiet_NaN();
+      options.segy = info->segy;
       auto cube = volume::open_volume(info->path, options);
       std::optional<ValueStats> stats;
       if (!info->no_stats) {
@@ -143,7 +163,7 @@ void add_info_command(CLI::App& app, Context& context, Runner& run) {
       if (info->json)
         std::cout << j.dump(2) << "\n";
       else
-        print_text(j);
+        print_text(j, cube->format_details());
       return 0;
     };
   });

@@ -1,5 +1,5 @@
-// geotandem store ls|show|export|runs|selections STORE: look into a component store without
-// reading its raw data (ls, show, runs) and export what a filter selects.
+// geotandem store ls|show|export|runs|selections|check STORE: look into a component store without
+// reading its raw data (ls, show, runs), export what a filter selects, verify every record.
 
 #include <charconv>
 #include <cstdio>
@@ -8,6 +8,7 @@
 
 #include "command.hpp"
 #include "geotandem/core/error.hpp"
+#include "geotandem/store/check.hpp"
 #include "geotandem/store/export.hpp"
 #include "geotandem/store/store.hpp"
 
@@ -171,7 +172,7 @@ struct ShowArgs {
 struct ExportArgs {
   std::string store, format, out;
   Filters filters;
-  bool per_component = false, float32 = false;
+  bool per_component = false, float32 = false, overwrite = false, skip_damaged = false;
 };
 
 struct ListArgs {
@@ -234,6 +235,9 @@ void add_export(CLI::App* parent, Context& context, Runner& run) {
   cmd->add_option("--out", args->out, "the output file, or directory with --per-component")->required();
   cmd->add_flag("--per-component", args->per_component, "one file per component, named geobody_<key>.<ext>");
   cmd->add_flag("--float32", args->float32, "PLY: float32 vertices instead of float64");
+  cmd->add_flag("--overwrite", args->overwrite, "replace output files that already exist");
+  cmd->add_flag("--skip-damaged", args->skip_damaged,
+                "verify every record first and export the intact ones, listing the damaged keys");
   args->filters.add_to(cmd);
   cmd->callback([args, &context, &run] {
     run = [args, &context] {
@@ -241,6 +245,8 @@ void add_export(CLI::App* parent, Context& context, Runner& run) {
       options.format = store::parse_export_format(args->format);
       options.per_component = args->per_component;
       options.ply_float32 = args->float32;
+      options.overwrite = args->overwrite;
+      options.skip_damaged = args->skip_damaged;
       auto s = store::ComponentStore::open(args->store);
       auto rows = s.query(args->filters.query());
       auto progress = context.progress();
@@ -248,6 +254,15 @@ void add_export(CLI::App* parent, Context& context, Runner& run) {
       std::cout << "exported " << summary.components << " components (" << summary.vertices << " vertices, "
                 << summary.triangles << " triangles) to " << summary.files.size() << " file"
                 << (summary.files.size() == 1 ? "" : "s") << (args->per_component ? " in " : ": ") << args->out << "\n";
+      if (!summary.skipped.empty()) {
+        std::cout << "skipped " << summary.skipped.size() << " damaged component"
+                  << (summary.skipped.size() == 1 ? "" : "s") << ":";
+        for (auto key : summary.skipped)
+          std::cout << " " << key;
+        std::cout << "\n";
+        context.log.warning("skipped " + std::to_string(summary.skipped.size()) +
+                            " damaged components; rerun the extraction into the store to write them again");
+      }
       return 0;
     };
   });
@@ -314,6 +329,47 @@ void add_selections(CLI::App* parent, Runner& run) {
   });
 }
 
+void add_check(CLI::App* parent, Context& context, Runner& run) {
+  auto args = std::make_shared<ListArgs>();
+  auto* cmd = parent->add_subcommand(
+      "check", "Read back and verify every component record (checksums); list the damaged ones by key. "
+               "Exit status 4 when any is damaged. Rerunning the same extraction into the store writes them again; "
+               "'store export --skip-damaged' exports the others.");
+  cmd->alias("verify");
+  cmd->add_option("store", args->store, "the store directory")->required();
+  cmd->add_flag("--json", args->json, "print JSON");
+  cmd->callback([args, &context, &run] {
+    run = [args, &context] {
+      auto s = store::ComponentStore::open(args->store);
+      auto progress = context.progress();
+      auto report = store::check_store(s, *progress, context.cancel);
+      if (args->json) {
+        nlohmann::json damaged = nlohmann::json::array();
+        for (const auto& d : report.damaged)
+          damaged.push_back({{"key", d.key},
+                             {"shard", d.location.shard},
+                             {"offset", d.location.offset},
+                             {"length", d.location.length},
+                             {"problem", d.problem}});
+        std::cout
+            << nlohmann::json{{"checked", report.checked}, {"damaged", damaged}, {"seconds", report.seconds}}.dump(2)
+            << "\n";
+      } else {
+        for (const auto& d : report.damaged)
+          std::cout << "damaged: key " << d.key << ": " << d.problem << "\n";
+        std::cout << "checked " << report.checked << " components in " << format_number(report.seconds, "%.3f")
+                  << " s: ";
+        if (report.damaged.empty())
+          std::cout << "all intact\n";
+        else
+          std::cout << report.damaged.size() << " damaged (rerun the same extraction into this store to write them "
+                    << "again, or export the others with 'store export --skip-damaged')\n";
+      }
+      return report.damaged.empty() ? 0 : 4;
+    };
+  });
+}
+
 } // namespace
 
 void add_store_command(CLI::App& app, Context& context, Runner& run) {
@@ -324,6 +380,7 @@ void add_store_command(CLI::App& app, Context& context, Runner& run) {
   add_export(cmd, context, run);
   add_runs(cmd, run);
   add_selections(cmd, run);
+  add_check(cmd, context, run);
 }
 
 } // namespace geotandem::app

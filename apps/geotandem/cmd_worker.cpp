@@ -23,9 +23,13 @@ std::string self_executable() {
   return path.string();
 }
 
-std::string describe_cube_file(const std::string& path, const std::string& nan, const std::string& variable) {
-  return nlohmann::json{
-      {"kind", "file"}, {"path", std::filesystem::absolute(path).string()}, {"nan", nan}, {"variable", variable}}
+std::string describe_cube_file(const std::string& path, const std::string& nan, const std::string& variable,
+                               const volume::SegyOptions& segy) {
+  return nlohmann::json{{"kind", "file"},
+                        {"path", std::filesystem::absolute(path).string()},
+                        {"nan", nan},
+                        {"variable", variable},
+                        {"segy", {{"inline_byte", segy.inline_byte}, {"crossline_byte", segy.crossline_byte}}}}
       .dump();
 }
 
@@ -38,6 +42,10 @@ std::shared_ptr<const volume::Volume> open_described_volume(const std::string& d
       volume::OpenOptions open;
       open.nan_policy = volume::parse_nan_policy(d.at("nan").get<std::string>());
       open.variable = d.at("variable").get<std::string>();
+      if (d.contains("segy")) {
+        open.segy.inline_byte = d["segy"].at("inline_byte").get<int>();
+        open.segy.crossline_byte = d["segy"].at("crossline_byte").get<int>();
+      }
       return volume::open_volume(d.at("path").get<std::string>(), open);
     }
     if (kind == "analytic") {

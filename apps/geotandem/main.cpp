@@ -1,21 +1,57 @@
 // geotandem: one executable, one subcommand per use. main builds the world (logger, cancel token,
 // signal handling) and passes it down; nothing is registered by static initialisers.
 
-#include <csignal>
+#include <atomic>
+#include <cstdlib>
+#include <filesystem>
 #include <iostream>
+#include <new>
+#include <stdexcept>
 
 #include "command.hpp"
 #include "geotandem/core/error.hpp"
+#include "geotandem/core/interrupt.hpp"
 
 namespace {
 
-std::atomic<bool>* g_cancel_flag = nullptr; // only touched by the signal handler
+// The size of the last allocation that failed, for the "out of memory" message.
+std::atomic<std::size_t> g_failed_allocation{0};
 
-extern "C" void on_interrupt(int) {
-  if (g_cancel_flag) g_cancel_flag->store(true, std::memory_order_relaxed);
+std::string byte_text(std::size_t bytes) {
+  const char* units[] = {"bytes", "KiB", "MiB", "GiB", "TiB", "PiB", "EiB"};
+  double value = static_cast<double>(bytes);
+  int unit = 0;
+  while (value >= 1024 && unit < 6) {
+    value /= 1024;
+    ++unit;
+  }
+  char text[64];
+  std::snprintf(text, sizeof text, unit == 0 ? "%.0f %s" : "%.1f %s", value, units[unit]);
+  return text;
 }
 
 } // namespace
+
+// operator new records the size it could not get (the standard bad_alloc carries none); the
+// library's operator delete frees with std::free, as for its own operator new. Left to the
+// sanitizers' own allocator in sanitizer builds.
+#if !defined(__SANITIZE_ADDRESS__) && !defined(__SANITIZE_THREAD__)
+void* operator new(std::size_t size) {
+  if (size == 0) size = 1;
+  for (;;) {
+    if (void* p = std::malloc(size)) return p;
+    std::new_handler handler = std::get_new_handler();
+    if (!handler) {
+      g_failed_allocation.store(size, std::memory_order_relaxed);
+      throw std::bad_alloc();
+    }
+    handler();
+  }
+}
+void* operator new[](std::size_t size) {
+  return ::operator new(size);
+}
+#endif
 
 int main(int argc, char** argv) {
   using namespace geotandem;
@@ -50,15 +86,29 @@ int main(int argc, char** argv) {
     return cli.exit(e) == 0 ? 0 : 2;
   }
 
-  g_cancel_flag = context.cancel.raw_flag();
-  std::signal(SIGINT, on_interrupt);
-  std::signal(SIGTERM, on_interrupt);
+  install_interrupt_handling(context.cancel);
   try {
     log.set_level(parse_log_level(level));
     return run();
   } catch (const Error& e) {
     std::cerr << "geotandem: error: " << e.what() << '\n';
     return e.exit_code();
+  } catch (const std::bad_alloc&) {
+    // Out of memory is a size the machine cannot hold, not a bug: say how much was asked.
+    const std::size_t asked = g_failed_allocation.load(std::memory_order_relaxed);
+    std::cerr << "geotandem: error: out of memory"
+              << (asked ? " (an allocation of " + byte_text(asked) + " failed)" : std::string())
+              << " (use a smaller cube or box, a --block-size, or a machine with more memory)\n";
+    return 5;
+  } catch (const std::length_error& e) {
+    std::cerr << "geotandem: error: a size larger than this machine can hold was asked (" << e.what()
+              << ") (check the cube's shape; use a smaller cube or box)\n";
+    return 5;
+  } catch (const std::filesystem::filesystem_error& e) {
+    // A path the user gave that cannot be created, read or removed.
+    std::cerr << "geotandem: error: " << e.path1().string() << ": " << e.code().message()
+              << " (check the path and its permissions)\n";
+    return 3;
   } catch (const std::exception& e) {
     std::cerr << "geotandem: internal error: " << e.what()
               << " (this is a bug; please report it with the command line that caused it)\n";

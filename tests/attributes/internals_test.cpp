@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <Eigen/Eigenvalues>
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 
@@ -156,6 +157,40 @@ TEST(Eigenvalues, MatchEigenOnRandomAndDegenerateMatrices) {
     EXPECT_NEAR(l[2], ascending(0), 1e-7 * scale);
     EXPECT_GE(l[0], l[1]);
     EXPECT_GE(l[1], l[2]);
+  }
+}
+
+// The series replacing cos(acos(r)/3) and its sine, against the trigonometric functions, on a fine
+// grid and at the ends (r = 1: a repeated smallest eigenvalue, where sin must stay accurate).
+TEST(Eigenvalues, ThirdOfAcosMatchesTrigonometry) {
+  for (int n = 0; n <= 200000; ++n) {
+    const double r = -1.0 + n / 100000.0;
+    const double phi = std::acos(std::clamp(r, -1.0, 1.0)) / 3.0;
+    const detail::CosSin cs = detail::third_of_acos(r);
+    ASSERT_NEAR(cs.c, std::cos(phi), 2e-12) << "r = " << r;
+    ASSERT_NEAR(cs.s, std::sin(phi), 2e-12 + 1e-9 * std::sin(phi)) << "r = " << r;
+  }
+  for (double r : {1.0, 1.0 - 1e-15, 1.0 - 1e-12, 1.0 - 1e-9}) {
+    const double phi = std::acos(r) / 3.0;
+    EXPECT_NEAR(detail::third_of_acos(r).s, std::sin(phi), 1e-9 * std::sin(phi) + 1e-300) << "r = " << r;
+  }
+  EXPECT_EQ(detail::third_of_acos(1.0).s, 0.0);
+  EXPECT_EQ(detail::third_of_acos(1.5).c, 1.0);
+}
+
+// Planar tensors (l1 >> l2 = l3): the common case in seismic, where chaos is small. A repeated root
+// makes r = 1 - O(rounding), and any formula through r then errs by about sqrt(1e-16) of l1 on the
+// repeated pair (the trigonometric one as well): 2e-8 here, below a float's resolution of l1.
+TEST(Eigenvalues, PlanarTensorsAreAccurate) {
+  for (int c = 0; c < 100; ++c) {
+    Eigen::Vector3d n(noise(c, 1, 2, 3), noise(c, 4, 5, 6), 1.0 + noise(c, 7, 8, 9));
+    n.normalize();
+    const double weak = std::pow(10.0, -1.0 - c % 6); // l2 = l3 = weak, l1 = 1 + weak
+    const Eigen::Matrix3d a = n * n.transpose() + weak * Eigen::Matrix3d::Identity();
+    const auto l = detail::sym3_eigenvalues(a(0, 0), a(1, 1), a(2, 2), a(0, 1), a(0, 2), a(1, 2));
+    EXPECT_NEAR(l[0], 1.0 + weak, 1e-12);
+    EXPECT_NEAR(l[1], weak, 2e-8) << "weak = " << weak;
+    EXPECT_NEAR(l[2], weak, 2e-8) << "weak = " << weak;
   }
 }
 

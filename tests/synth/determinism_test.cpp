@@ -130,3 +130,33 @@ TEST(Determinism, SeismicBoxesAgreeAtOtherFrequencies) {
 
 } // namespace
 } // namespace geotandem::synth
+
+namespace geotandem::synth {
+namespace {
+
+// A seismic cube keeps the per-trace part of recent traces in a per-thread cache keyed by the
+// cube: reading two cubes in turn (same shape, different seeds, so the same trace indices) must
+// give each cube its own samples, as if read alone.
+TEST(SeismicTraceCache, CubesReadInTurnKeepTheirOwnTraces) {
+  const volume::Index3 shape{70, 66, 40};
+  auto one = make({"seismic", 3}, shape);
+  auto two = make({"seismic", 4}, shape);
+  const auto two_whole = two->read(two->geometry().bounds());
+  const volume::Box box{{1, 2, 0}, {69, 65, 40}};
+  const auto first = one->read(box);
+  const auto other = two->read(box);
+  const auto again = one->read(box);
+  EXPECT_TRUE(same_bits(first, again)) << "cube one changed after cube two was read";
+  EXPECT_FALSE(same_bits(first, other)) << "two seeds gave the same samples: the test could not fail";
+  std::size_t n = 0;
+  for (auto i = box.lo[0]; i < box.hi[0]; ++i)
+    for (auto j = box.lo[1]; j < box.hi[1]; ++j)
+      for (auto k = box.lo[2]; k < box.hi[2]; ++k, ++n)
+        ASSERT_EQ(other[n], two_whole[static_cast<std::size_t>((i * shape[1] + j) * shape[2] + k)])
+            << "cube two at (" << i << ", " << j << ", " << k << ")";
+  // A fresh cube of seed 3 (a new cache key) agrees with the first one.
+  EXPECT_TRUE(same_bits(make({"seismic", 3}, shape)->read(box), first));
+}
+
+} // namespace
+} // namespace geotandem::synth

@@ -140,12 +140,16 @@ TEST(McBlocks, LayersKeepTheirContract) {
   }
 }
 
-TEST(McBlocks, ReadsOneCrossSectionAtATime) {
+// McOptions::slab_samples sets how many cross-sections one read fetches; with one section's worth
+// the extractor reads exactly one cross-section at a time.
+TEST(McBlocks, ReadsOneCrossSectionAtATimeWithASmallSlab) {
   const auto v = mixed_field({12, 11, 13}, 7);
   const Box cells{{1, 2, 0}, {10, 9, 12}};
   for (int axis = 0; axis < 3; ++axis) {
     const RecordingVolume recording(*v);
-    LayerExtractor x(recording, cells, McOptions{0.0f, axis});
+    McOptions options{0.0f, axis};
+    options.slab_samples = 1;
+    LayerExtractor x(recording, cells, options);
     Layer layer;
     std::size_t layers = 0;
     while (x.next(layer)) {
@@ -163,6 +167,61 @@ TEST(McBlocks, ReadsOneCrossSectionAtATime) {
           EXPECT_EQ(reads[r].lo[a], cells.lo[a]);
           EXPECT_EQ(reads[r].hi[a], cells.hi[a] + 1);
         }
+    }
+  }
+}
+
+// With a larger budget the block's samples are read in slabs of consecutive cross-sections, each
+// sample exactly once (a computed volume pays its halo once per slab), in order, never ahead of
+// what the next layer needs by more than one slab; and the layers are the same whatever the slab.
+TEST(McBlocks, ReadsEachSampleOnceInSlabsAndLayersDoNotDependOnTheSlab) {
+  const auto v = mixed_field({12, 11, 13}, 7);
+  const Box cells{{1, 2, 0}, {10, 9, 12}};
+  for (int axis = 0; axis < 3; ++axis) {
+    std::int64_t section = 1;
+    for (int a = 0; a < 3; ++a)
+      if (a != axis) section *= cells.size(a) + 1;
+    const std::int64_t sections = cells.size(axis) + 1;
+    std::vector<Layer> reference;
+    for (const std::int64_t per_slab : {std::int64_t{1}, std::int64_t{3}, std::int64_t{4}, sections, sections + 5}) {
+      const RecordingVolume recording(*v);
+      McOptions options{0.0f, axis};
+      options.slab_samples = per_slab * section;
+      LayerExtractor x(recording, cells, options);
+      std::vector<Layer> layers;
+      for (Layer layer; x.next(layer);) {
+        // Layer k needs cross-sections up to k; the reads reach at most one slab beyond.
+        const Box& newest = recording.reads().back();
+        EXPECT_GE(newest.hi[axis], layer.rank + 1);
+        EXPECT_LE(newest.lo[axis], layer.rank) << "slab read before it was needed";
+        layers.push_back(layer);
+      }
+      const auto& reads = recording.reads();
+      const std::int64_t slab = std::min(per_slab, sections);
+      ASSERT_EQ(static_cast<std::int64_t>(reads.size()), (sections + slab - 1) / slab) << "slab " << per_slab;
+      std::int64_t next = cells.lo[axis];
+      for (const Box& read : reads) {
+        EXPECT_EQ(read.lo[axis], next) << "slabs must follow each other without overlap or gap";
+        EXPECT_LE(read.size(axis), slab);
+        next = read.hi[axis];
+        for (int a = 0; a < 3; ++a)
+          if (a != axis) {
+            EXPECT_EQ(read.lo[a], cells.lo[a]);
+            EXPECT_EQ(read.hi[a], cells.hi[a] + 1);
+          }
+      }
+      EXPECT_EQ(next, cells.hi[axis] + 1);
+      if (reference.empty()) {
+        reference = layers;
+        continue;
+      }
+      ASSERT_EQ(layers.size(), reference.size());
+      for (std::size_t n = 0; n < layers.size(); ++n) {
+        EXPECT_EQ(layers[n].rank, reference[n].rank);
+        EXPECT_EQ(layers[n].vertex_ids, reference[n].vertex_ids) << "axis " << axis << ", slab " << per_slab;
+        EXPECT_EQ(layers[n].positions, reference[n].positions) << "axis " << axis << ", slab " << per_slab;
+        EXPECT_EQ(layers[n].triangles, reference[n].triangles) << "axis " << axis << ", slab " << per_slab;
+      }
     }
   }
 }

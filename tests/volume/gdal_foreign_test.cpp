@@ -1,5 +1,5 @@
 // GDAL-backed formats as other tools leave them: files written through GDAL directly (coordinate
-// variables, other dimension orders, HDF5, ENVI), arrays that are not cubes, broken files, and MEM
+// variables, other dimension orders, HDF5), arrays that are not cubes, broken files, and MEM
 // datasets handed over without a file.
 
 #include <gdal_priv.h>
@@ -83,41 +83,6 @@ TEST(GdalMdForeign, Hdf5CopyOfANetcdfFileOpensAsHdf5) {
   EXPECT_EQ(cube->geometry(), source->geometry());
   expect_formula(cube->read(cube->geometry().bounds()), cube->geometry().bounds());
   expect_formula(cube->read({{3, 7, 5}, {11, 10, 17}}), {{3, 7, 5}, {11, 10, 17}});
-}
-
-TEST(GdalRasterForeign, EnviWrittenThroughGdalOpensWithDefaults) {
-  ScratchDir dir;
-  const std::string path = dir.file("cube.bin");
-  const gv::Index3 shape{6, 9, 11};
-  GDALAllRegister();
-  {
-    GDALDriver* driver = GetGDALDriverManager()->GetDriverByName("ENVI");
-    ASSERT_NE(driver, nullptr);
-    GDALDataset* dataset = driver->Create(path.c_str(), static_cast<int>(shape[2]), static_cast<int>(shape[1]),
-                                          static_cast<int>(shape[0]), GDT_Float32, nullptr);
-    ASSERT_NE(dataset, nullptr);
-    std::vector<float> slice(static_cast<std::size_t>(shape[1] * shape[2]));
-    for (int b = 1; b <= shape[0]; ++b) {
-      for (std::int64_t j = 0; j < shape[1]; ++j)
-        for (std::int64_t k = 0; k < shape[2]; ++k)
-          slice[static_cast<std::size_t>(j * shape[2] + k)] = value_at(b - 1, j, k);
-      ASSERT_EQ(dataset->GetRasterBand(b)->RasterIO(
-                    GF_Write, 0, 0, static_cast<int>(shape[2]), static_cast<int>(shape[1]), slice.data(),
-                    static_cast<int>(shape[2]), static_cast<int>(shape[1]), GDT_Float32, 0, 0, nullptr),
-                CE_None);
-    }
-    GDALClose(GDALDataset::ToHandle(dataset));
-  }
-  EXPECT_EQ(gv::detect_format(path), "ENVI");
-  const auto cube = gv::open_volume(path);
-  EXPECT_EQ(cube->format(), "ENVI");
-  const gv::Geometry& g = cube->geometry();
-  EXPECT_EQ(g.shape, shape);
-  EXPECT_EQ(g.inline0, 0);
-  EXPECT_EQ(g.crossline0, 0);
-  EXPECT_EQ(g.dz, gv::Geometry{}.dz);
-  expect_formula(cube->read(g.bounds()), g.bounds());
-  expect_formula(cube->read({{2, 3, 4}, {5, 9, 10}}), {{2, 3, 4}, {5, 9, 10}});
 }
 
 // ---- arrays that are not cubes, and broken files ----------------------------------------------

@@ -126,11 +126,11 @@ TEST(SegyBroken, ShuffledTracesAreRefused) {
 TEST(SegyBroken, UnsupportedSampleFormatIsNamed) {
   ScratchDir dir;
   SegySpec s;
-  s.format = SEGY_SIGNED_SHORT_2_BYTE;
-  const std::string path = dir.file("int16.sgy");
+  s.format = SEGY_NOT_IN_USE_2; // 7: 24-bit integers
+  const std::string path = dir.file("int24.sgy");
   write_with_segyio(path, s);
   const std::string message = message_of<FormatError>([&] { open_volume(path); });
-  EXPECT_NE(message.find("format code 3"), std::string::npos) << message;
+  EXPECT_NE(message.find("format code 7 (24-bit integer"), std::string::npos) << message;
   EXPECT_NE(message.find(path), std::string::npos) << message;
 }
 

@@ -1,13 +1,18 @@
 #pragma once
 // SEG-Y files written through segyio's C API (not through our writer), with known line numbers,
-// coordinates and samples, and the defects the tests need (missing, swapped or shuffled traces,
-// gaps, extended headers). Shared by segy_test.cpp and segy_broken_test.cpp.
+// coordinates and samples, in any sample format segyio writes and either byte order, with line
+// numbers at any header bytes, and the defects the tests need (missing, swapped or shuffled
+// traces, gaps, extended headers); and segyio's own reading of such a file, the oracle the reader
+// is compared with. Shared by the segy*_test.cpp files.
 
 #include <gtest/gtest.h>
 #include <segyio/segy.h>
 
 #include <algorithm>
 #include <array>
+#include <cstdint>
+#include <cstring>
+#include <map>
 #include <random>
 #include <string>
 #include <vector>
@@ -35,10 +40,57 @@ struct SegySpec {
   bool gap_in_inlines = false;               // skip one inline number halfway
   int extended_headers = 0;                  // extended textual headers after the binary header
   bool counts_in_trace_headers_only = false; // binary header samples and interval left at 0
+  bool little_endian = false;                // every header field and sample little-endian
+  int inline_byte = SEGY_TR_INLINE;          // where the line numbers go (the other positions stay 0)
+  int crossline_byte = SEGY_TR_CROSSLINE;
+  bool record_and_sequence = false; // field record 1 at byte 9, trace sequence at byte 21 (a 1 x N "grid")
 
   long trace0() const { return 3600L + 3200L * extended_headers; }
   int inline_number(int i) const { return il0 + (i + (gap_in_inlines && i >= ni / 2 ? 1 : 0)) * il_step; }
 };
+
+// The sample formats segyio writes and geotandem reads.
+inline bool readable_format(int format) {
+  return format == SEGY_IBM_FLOAT_4_BYTE || format == SEGY_SIGNED_INTEGER_4_BYTE ||
+         format == SEGY_SIGNED_SHORT_2_BYTE || format == SEGY_IEEE_FLOAT_4_BYTE || format == SEGY_SIGNED_CHAR_1_BYTE;
+}
+
+// The value written at (i, j, k) in a file of `format`: the formula for floats (exact in IBM
+// too); integers that fill the type's range for the integer formats. 32-bit values reach past
+// 2^24, where a float cannot hold every integer: the reader must round as a plain conversion does.
+inline std::int64_t integer_value(int format, int i, int j, int k) {
+  const std::int64_t id = (100 * i + j) * 64 + k; // unique while j < 100, k < 64
+  switch (format) {
+  case SEGY_SIGNED_INTEGER_4_BYTE: return id * 48611 - 1000000000; // |v| < 2^31 for id < 44000
+  case SEGY_SIGNED_SHORT_2_BYTE: return (id * 37) % 65536 - 32768;
+  default: return (id * 7) % 256 - 128; // 8-bit
+  }
+}
+
+inline float expected_sample(int format, int i, int j, int k) {
+  if (format == SEGY_IBM_FLOAT_4_BYTE || format == SEGY_IEEE_FLOAT_4_BYTE) return formula(i, j, k);
+  return static_cast<float>(integer_value(format, i, j, k));
+}
+
+// One trace's samples in the file's encoding, big-endian (segyio swaps them when it writes a
+// little-endian file).
+inline std::vector<char> encoded_trace(int format, int i, int j, int ns) {
+  std::vector<char> bytes;
+  auto append = [&](auto value) {
+    const auto* p = reinterpret_cast<const char*>(&value);
+    bytes.insert(bytes.end(), p, p + sizeof(value));
+  };
+  for (int k = 0; k < ns; ++k) {
+    switch (format) {
+    case SEGY_SIGNED_INTEGER_4_BYTE: append(static_cast<std::int32_t>(integer_value(format, i, j, k))); break;
+    case SEGY_SIGNED_SHORT_2_BYTE: append(static_cast<std::int16_t>(integer_value(format, i, j, k))); break;
+    case SEGY_SIGNED_CHAR_1_BYTE: append(static_cast<std::int8_t>(integer_value(format, i, j, k))); break;
+    default: append(formula(i, j, k)); break;
+    }
+  }
+  segy_from_native(format, ns, bytes.data());
+  return bytes;
+}
 
 inline double stored_factor(int scalar) {
   return scalar == 0 ? 1.0 : scalar > 0 ? 1.0 / scalar : -scalar;
@@ -47,6 +99,11 @@ inline double stored_factor(int scalar) {
 inline void write_with_segyio(const std::string& path, const SegySpec& s) {
   segy_file* fp = segy_open(path.c_str(), "w+b");
   ASSERT_NE(fp, nullptr);
+  // Formats geotandem does not read are laid out as 4-byte IEEE: only the code in the binary
+  // header matters to the tests that write them.
+  const int layout = readable_format(s.format) ? s.format : SEGY_IEEE_FLOAT_4_BYTE;
+  // From here on segyio writes every header field and sample in the file's byte order.
+  ASSERT_EQ(segy_set_format(fp, layout | (s.little_endian ? static_cast<int>(SEGY_LSB) : 0)), SEGY_OK);
   std::string text(3200, ' ');
   text.replace(0, 20, "C01 TEST CUBE SEGYIO");
   ASSERT_EQ(segy_write_textheader(fp, 0, text.c_str()), SEGY_OK);
@@ -60,8 +117,6 @@ inline void write_with_segyio(const std::string& path, const SegySpec& s) {
   ASSERT_EQ(segy_write_binheader(fp, bin.data()), SEGY_OK);
   for (int n = 0; n < s.extended_headers; ++n)
     ASSERT_EQ(segy_write_textheader(fp, n + 1, text.c_str()), SEGY_OK);
-  // Unsupported codes are laid out as 4-byte IEEE: only the code in the binary header matters.
-  const int layout = s.format == SEGY_SIGNED_SHORT_2_BYTE ? SEGY_IEEE_FLOAT_4_BYTE : s.format;
   const int bytes = segy_trsize(layout, s.ns);
 
   // Positions in file order.
@@ -82,9 +137,13 @@ inline void write_with_segyio(const std::string& path, const SegySpec& s) {
   for (const auto& [i, j] : order)
     for (int offset = 1; offset <= s.offsets; ++offset, ++trace) {
       std::array<char, SEGY_TRACE_HEADER_SIZE> h{};
-      segy_set_field(h.data(), SEGY_TR_INLINE, s.inline_number(i));
-      segy_set_field(h.data(), SEGY_TR_CROSSLINE, s.xl0 + j * s.xl_step);
+      segy_set_field(h.data(), s.inline_byte, s.inline_number(i));
+      segy_set_field(h.data(), s.crossline_byte, s.xl0 + j * s.xl_step);
       segy_set_field(h.data(), SEGY_TR_OFFSET, offset);
+      if (s.record_and_sequence) {
+        segy_set_field(h.data(), SEGY_TR_FIELD_RECORD, 1);
+        segy_set_field(h.data(), SEGY_TR_ENSEMBLE, trace + 1);
+      }
       segy_set_field(h.data(), SEGY_TR_SAMPLE_COUNT, s.ns);
       segy_set_field(h.data(), SEGY_TR_SAMPLE_INTER, s.interval_us);
       segy_set_field(h.data(), SEGY_TR_DELAY_REC_TIME, s.delay_ms);
@@ -95,13 +154,87 @@ inline void write_with_segyio(const std::string& path, const SegySpec& s) {
         segy_set_field(h.data(), SEGY_TR_CDP_Y, static_cast<int>(std::lround(xy[1] * factor)));
       }
       ASSERT_EQ(segy_write_traceheader(fp, trace, h.data(), s.trace0(), bytes), SEGY_OK);
-      std::vector<float> samples(static_cast<std::size_t>(s.ns));
-      for (int k = 0; k < s.ns; ++k)
-        samples[static_cast<std::size_t>(k)] = formula(i, j, k);
-      segy_from_native(layout, s.ns, samples.data());
+      const std::vector<char> samples = encoded_trace(layout, i, j, s.ns);
       ASSERT_EQ(segy_writetrace(fp, trace, samples.data(), s.trace0(), bytes), SEGY_OK);
     }
   ASSERT_EQ(segy_close(fp), SEGY_OK);
+}
+
+// segyio's own reading of a post-stack file, told its byte order and where the line numbers are
+// (as a segyio user would): every trace decoded by segyio (integers as integers), converted to
+// float as any loader does, and placed at the (inline, crossline) its header names, in C order
+// [inline][crossline][sample] of ascending line positions. ni and nj come back through the
+// pointers.
+inline std::vector<float> read_with_segyio(const std::string& path, bool little_endian, int inline_byte,
+                                           int crossline_byte, int* ni_out, int* nj_out) {
+  std::vector<float> cube;
+  segy_file* fp = segy_open(path.c_str(), "rb");
+  EXPECT_NE(fp, nullptr);
+  if (!fp) return cube;
+  if (little_endian) segy_set_format(fp, SEGY_IEEE_FLOAT_4_BYTE | static_cast<int>(SEGY_LSB));
+  std::array<char, SEGY_BINARY_HEADER_SIZE> bin{};
+  EXPECT_EQ(segy_binheader(fp, bin.data()), SEGY_OK);
+  const int format = segy_format(bin.data());
+  int ns = segy_samples(bin.data());
+  if (ns == 0) { // as segyio's Python reader does: the first trace header's count
+    std::array<char, SEGY_TRACE_HEADER_SIZE> first{};
+    EXPECT_EQ(segy_traceheader(fp, 0, first.data(), segy_trace0(bin.data()), 0), SEGY_OK);
+    segy_get_field(first.data(), SEGY_TR_SAMPLE_COUNT, &ns);
+  }
+  EXPECT_EQ(segy_set_format(fp, format | (little_endian ? static_cast<int>(SEGY_LSB) : 0)), SEGY_OK);
+  const long trace0 = segy_trace0(bin.data());
+  const int bytes = segy_trsize(format, ns);
+  int traces = 0;
+  EXPECT_EQ(segy_traces(fp, &traces, trace0, bytes), SEGY_OK);
+  // Line numbers of every trace, then their ranks.
+  std::map<int, int> inlines, crosslines;
+  std::vector<std::array<int, 2>> lines(static_cast<std::size_t>(traces));
+  for (int t = 0; t < traces; ++t) {
+    std::array<char, SEGY_TRACE_HEADER_SIZE> h{};
+    EXPECT_EQ(segy_traceheader(fp, t, h.data(), trace0, bytes), SEGY_OK);
+    std::int32_t il = 0, xl = 0;
+    segy_get_field(h.data(), inline_byte, &il);
+    segy_get_field(h.data(), crossline_byte, &xl);
+    lines[static_cast<std::size_t>(t)] = {il, xl};
+    inlines[il] = 0;
+    crosslines[xl] = 0;
+  }
+  int rank = 0;
+  for (auto& [number, r] : inlines)
+    r = rank++;
+  rank = 0;
+  for (auto& [number, r] : crosslines)
+    r = rank++;
+  const auto ni = static_cast<std::size_t>(inlines.size()), nj = static_cast<std::size_t>(crosslines.size());
+  *ni_out = static_cast<int>(ni);
+  *nj_out = static_cast<int>(nj);
+  cube.assign(ni * nj * static_cast<std::size_t>(ns), 0.0f);
+  std::vector<char> raw(static_cast<std::size_t>(bytes));
+  for (int t = 0; t < traces; ++t) {
+    EXPECT_EQ(segy_readtrace(fp, t, raw.data(), trace0, bytes), SEGY_OK);
+    EXPECT_EQ(segy_to_native(format, ns, raw.data()), SEGY_OK);
+    const auto [il, xl] = lines[static_cast<std::size_t>(t)];
+    float* out = cube.data() + (static_cast<std::size_t>(inlines[il]) * nj + static_cast<std::size_t>(crosslines[xl])) *
+                                   static_cast<std::size_t>(ns);
+    for (int k = 0; k < ns; ++k) {
+      const char* p = raw.data() + static_cast<std::size_t>(k) * static_cast<std::size_t>(bytes / ns);
+      if (format == SEGY_SIGNED_INTEGER_4_BYTE) {
+        std::int32_t v;
+        std::memcpy(&v, p, 4);
+        out[k] = static_cast<float>(v);
+      } else if (format == SEGY_SIGNED_SHORT_2_BYTE) {
+        std::int16_t v;
+        std::memcpy(&v, p, 2);
+        out[k] = static_cast<float>(v);
+      } else if (format == SEGY_SIGNED_CHAR_1_BYTE) {
+        out[k] = static_cast<float>(static_cast<std::int8_t>(*p));
+      } else {
+        std::memcpy(&out[k], p, 4);
+      }
+    }
+  }
+  segy_close(fp);
+  return cube;
 }
 
 } // namespace geotandem::volume::testing

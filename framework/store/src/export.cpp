@@ -5,10 +5,12 @@
 
 #include <cerrno>
 #include <fstream>
+#include <optional>
 
 #include "export_writers.hpp"
 #include "file_io.hpp"
 #include "geotandem/core/error.hpp"
+#include "geotandem/store/check.hpp"
 
 namespace geotandem::store {
 
@@ -88,6 +90,25 @@ void write_file(const ComponentStore& store, const std::vector<const ComponentRo
   if (ec) throw IoError("cannot move the export into place: " + ec.message(), {path.string()});
 }
 
+// The store directory that holds `path` (itself or an ancestor), if any.
+std::optional<std::filesystem::path> enclosing_store(const std::filesystem::path& path) {
+  std::error_code ec;
+  auto p = std::filesystem::weakly_canonical(std::filesystem::absolute(path, ec), ec);
+  if (ec) return std::nullopt;
+  for (auto dir = p; !dir.empty(); dir = dir.parent_path()) {
+    if (ComponentStore::exists(dir)) return dir;
+    if (dir == dir.root_path()) break;
+  }
+  return std::nullopt;
+}
+
+void refuse_existing(const std::filesystem::path& path, const ExportOptions& options) {
+  std::error_code ec;
+  if (!options.overwrite && std::filesystem::exists(std::filesystem::symlink_status(path, ec)))
+    throw IoError("the export target already exists", {path.string()},
+                  "pass --overwrite to replace it, or name another file");
+}
+
 } // namespace
 
 ExportSummary export_components(const ComponentStore& store, const std::vector<ComponentRow>& rows,
@@ -96,24 +117,50 @@ ExportSummary export_components(const ComponentStore& store, const std::vector<C
   if (rows.empty())
     throw InvalidArgument("no component to export", {store.directory().string()},
                           "widen the filters; 'geotandem store ls' shows what the store holds");
+  if (auto store_dir = enclosing_store(out))
+    throw InvalidArgument("will not write an export inside a store directory (" + store_dir->string() + ")",
+                          {out.string()}, "only the store writes there; export to a path outside it");
   ExportSummary summary;
-  for (const auto& row : rows) {
+  std::vector<ComponentRow> intact;
+  const std::vector<ComponentRow>* chosen = &rows;
+  if (options.skip_damaged) {
+    progress.begin("verifying", rows.size(), "components");
+    std::uint64_t verified = 0;
+    for (const auto& row : rows) {
+      cancel.throw_if_cancelled();
+      if (verify_component(store, row))
+        summary.skipped.push_back(row.key);
+      else
+        intact.push_back(row);
+      progress.update(++verified);
+    }
+    progress.end();
+    if (intact.empty())
+      throw FormatError("every selected component is damaged; nothing to export", {store.directory().string()},
+                        "'geotandem store check' lists them; rerun the extraction to write them again");
+    chosen = &intact;
+  }
+  const auto& rows_out = *chosen;
+  for (const auto& row : rows_out) {
     summary.vertices += row.location.vertex_count;
     summary.triangles += row.location.triangle_count;
   }
-  summary.components = rows.size();
+  summary.components = rows_out.size();
   std::uint64_t done = 0;
   auto tick = [&] {
     cancel.throw_if_cancelled();
     progress.update(++done);
   };
   std::error_code ec;
-  progress.begin("exporting", rows.size(), "components");
+  progress.begin("exporting", rows_out.size(), "components");
   if (options.per_component) {
+    for (const auto& row : rows_out)
+      refuse_existing(out / (options.name_prefix + std::to_string(row.key) + "." + file_extension(options.format)),
+                      options);
     std::filesystem::create_directories(out, ec);
     if (ec || !std::filesystem::is_directory(out))
       throw IoError("cannot create the export directory" + (ec ? ": " + ec.message() : std::string()), {out.string()});
-    for (const auto& row : rows) {
+    for (const auto& row : rows_out) {
       auto path = out / (options.name_prefix + std::to_string(row.key) + "." + file_extension(options.format));
       write_file(store, {&row}, path, options, tick);
       summary.files.push_back(path);
@@ -123,8 +170,9 @@ ExportSummary export_components(const ComponentStore& store, const std::vector<C
     if (std::filesystem::is_directory(out))
       throw InvalidArgument("the export target is a directory", {out.string()},
                             "name a file, or export one file per component into the directory");
+    refuse_existing(out, options);
     std::vector<const ComponentRow*> pointers;
-    for (const auto& row : rows)
+    for (const auto& row : rows_out)
       pointers.push_back(&row);
     write_file(store, pointers, out, options, tick);
     summary.files.push_back(out);

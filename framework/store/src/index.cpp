@@ -208,8 +208,16 @@ std::size_t ComponentStore::commit(const std::vector<IndexEntry>& entries) {
       more += ",?";
     return more;
   }() + ")");
+  auto remove = db.prepare("DELETE FROM components WHERE key = ?");
   std::size_t added = 0;
   for (const auto& e : entries) {
+    if (e.replace) {
+      // The old row points at a damaged record; selections that name the key keep naming it.
+      db.exec("PRAGMA defer_foreign_keys=ON");
+      remove.reset();
+      remove.bind(1, to_sql(e.key));
+      remove.run();
+    }
     insert.reset();
     bind_entry(insert, e);
     insert.run();

@@ -1,6 +1,7 @@
 #include "geotandem/store/local_sink.hpp"
 
 #include "geotandem/core/error.hpp"
+#include "geotandem/store/check.hpp"
 
 namespace geotandem::store {
 
@@ -13,6 +14,11 @@ ShardWriter open_writer(ComponentStore& store, const LocalSinkOptions& options) 
   // This process is the index's only writer: whatever follows the last indexed record of its
   // shard is a torn or never-indexed tail of an earlier, killed run.
   writer_options.valid_end = store.indexed_end(options.writer);
+  // A shard cut short under the index (a damaged store): keep what is there; the rows that point
+  // past its end are damaged records, which the rerun writes again (see commit).
+  std::error_code ec;
+  auto size = std::filesystem::file_size(shard_path(store.directory(), options.writer), ec);
+  if (!ec && size < *writer_options.valid_end) writer_options.valid_end = size;
   return ShardWriter(store.directory(), options.writer, store.geometry(), writer_options);
 }
 
@@ -35,11 +41,21 @@ LocalSink::~LocalSink() {
 void LocalSink::commit(const mesh::Component& component) {
   std::lock_guard lock(mutex_);
   if (closed_) throw InvalidArgument("commit to a closed local sink", {store_.directory().string()});
-  if (pending_keys_.count(component.key) || store_.contains(component.key)) {
+  bool replace = false;
+  if (pending_keys_.count(component.key)) {
     ++duplicates_;
     return;
   }
+  if (auto row = store_.find(component.key)) {
+    if (!options_.redo_damaged || !verify_component(store_, *row)) {
+      ++duplicates_;
+      return;
+    }
+    replace = true;
+    ++redone_;
+  }
   IndexEntry entry;
+  entry.replace = replace;
   entry.key = component.key;
   entry.location = writer_.append(component);
   entry.stats = component.stats;
@@ -73,6 +89,11 @@ void LocalSink::flush_locked() {
 std::uint64_t LocalSink::committed() const {
   std::lock_guard lock(mutex_);
   return committed_;
+}
+
+std::uint64_t LocalSink::redone() const {
+  std::lock_guard lock(mutex_);
+  return redone_;
 }
 
 std::uint64_t LocalSink::duplicates() const {

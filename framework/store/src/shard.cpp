@@ -130,7 +130,9 @@ mesh::SurfaceMesh detail::read_record_from(int fd, const std::filesystem::path& 
   auto fail = [&](const std::string& what) -> FormatError {
     return FormatError("record of component " + std::to_string(key) + " at offset " + std::to_string(location.offset) +
                            ": " + what,
-                       {shard_file.string()}, "the shard is damaged; re-run the extraction of this component");
+                       {shard_file.string()},
+                       "the shard is damaged; 'geotandem store check' lists the damaged components, rerunning the same "
+                       "extraction into the store writes them again, 'store export --skip-damaged' exports the others");
   };
   auto expected = record_length(location.vertex_count, location.triangle_count);
   if (!expected || *expected != location.length) throw fail("the index's length and counts disagree");

@@ -1,5 +1,7 @@
 #include "sqlite.hpp"
 
+#include <cstdio>
+
 #include "geotandem/core/error.hpp"
 
 namespace geotandem::store::detail {
@@ -12,10 +14,26 @@ bool is_format_problem(int code) {
 
 } // namespace
 
-Database::Database(const std::string& path, bool create, bool read_only) : path_(path) {
+Database::Database(const std::string& path, bool create, bool read_only, bool immutable) : path_(path) {
   int flags = read_only ? SQLITE_OPEN_READONLY : SQLITE_OPEN_READWRITE;
   if (create && !read_only) flags |= SQLITE_OPEN_CREATE;
-  int rc = sqlite3_open_v2(path.c_str(), &db_, flags | SQLITE_OPEN_NOMUTEX, nullptr);
+  std::string name = path;
+  if (immutable && read_only) {
+    // A URI: reserved characters of the path are escaped.
+    name = "file:";
+    for (unsigned char c : path) {
+      if (c == '%' || c == '?' || c == '#') {
+        char hex[4];
+        std::snprintf(hex, sizeof hex, "%%%02X", c);
+        name += hex;
+      } else {
+        name += static_cast<char>(c);
+      }
+    }
+    name += "?immutable=1";
+    flags |= SQLITE_OPEN_URI;
+  }
+  int rc = sqlite3_open_v2(name.c_str(), &db_, flags | SQLITE_OPEN_NOMUTEX, nullptr);
   if (rc != SQLITE_OK) {
     std::string message = db_ ? sqlite3_errmsg(db_) : sqlite3_errstr(rc);
     sqlite3_close(db_);

@@ -16,7 +16,9 @@ class Statement;
 class Database {
 public:
   // Opens (and with `create`, creates) the database file. `read_only` opens it without write access.
-  Database(const std::string& path, bool create, bool read_only);
+  // `immutable`: the file cannot change while open (read-only media); SQLite then takes no locks and
+  // makes no WAL shared-memory file.
+  Database(const std::string& path, bool create, bool read_only, bool immutable = false);
   ~Database();
   Database(const Database&) = delete;
   Database& operator=(const Database&) = delete;

@@ -82,6 +82,7 @@ ComponentStore ComponentStore::create(const std::filesystem::path& dir, const vo
   impl->dir = dir;
   impl->geometry = geometry;
   impl->writable = true;
+  impl->writer_lock = lock_store_directory(dir, false);
   impl->db = std::make_unique<Database>(index_path(dir).string(), true, false);
   configure_connection(*impl->db, true);
   create_schema(*impl->db);
@@ -132,7 +133,17 @@ ComponentStore ComponentStore::open(const std::filesystem::path& dir, OpenMode m
   impl->writable = mode == OpenMode::read_write;
   if (!std::filesystem::is_regular_file(index_path(dir), ec))
     throw FormatError("the store has no index.sqlite", {dir.string()}, "the store is incomplete or damaged");
-  impl->db = std::make_unique<Database>(index_path(dir).string(), false, !impl->writable);
+  if (impl->writable) impl->writer_lock = lock_store_directory(dir, false);
+  // A store on read-only media or in a directory this user may not write, whose index has no
+  // write-ahead log to replay: opened as immutable, since SQLite could not make the WAL's
+  // shared-memory file there. With a log (a writer was killed), the ordinary read-only open reads
+  // it through the shared-memory file the writer left.
+  std::error_code wal_ec;
+  const auto wal = std::filesystem::path(index_path(dir).string() + "-wal");
+  const bool has_log = std::filesystem::exists(wal, wal_ec) && std::filesystem::file_size(wal, wal_ec) > 0;
+  const bool immutable =
+      !impl->writable && !has_log && (::access(dir.c_str(), W_OK) != 0 || ::access(index_path(dir).c_str(), W_OK) != 0);
+  impl->db = std::make_unique<Database>(index_path(dir).string(), false, !impl->writable, immutable);
   configure_connection(*impl->db, impl->writable);
   check_schema(*impl->db);
   return ComponentStore(std::move(impl));
@@ -171,14 +182,6 @@ const FileHandle& ComponentStore::Impl::shard_for_reading(const std::string& sha
   auto it = shards.find(shard);
   if (it == shards.end()) it = shards.emplace(shard, open_read(shard_path(dir, shard))).first;
   return it->second;
-}
-
-std::int64_t ComponentStore::begin_run(const std::string& parameters_json) {
-  impl_->require_writable("begin a run");
-  auto parameters = parse_json_argument(parameters_json, "the run parameters");
-  auto& db = *impl_->db;
-  db.prepare("INSERT INTO runs(parameters, started) VALUES(?, ?)").bind(1, parameters.dump()).bind(2, utc_now()).run();
-  return sqlite3_last_insert_rowid(db.handle());
 }
 
 void ComponentStore::end_run(std::int64_t run, const std::string& statistics_json) {

@@ -22,6 +22,9 @@ struct ComponentStore::Impl {
   std::unique_ptr<detail::Database> db;
   // Shards opened for reading, by writer name; kept open across reads.
   std::map<std::string, detail::FileHandle> shards;
+  // The store directory, held with a shared flock while the store is open for writing: remove()
+  // takes it exclusively, so it never deletes a store that a process is writing.
+  detail::FileHandle writer_lock;
 
   const detail::FileHandle& shard_for_reading(const std::string& shard);
   void require_writable(const char* what) const;
@@ -36,6 +39,10 @@ void create_schema(Database& db);
 void check_schema(Database& db);
 // Per-connection settings (WAL is persistent; synchronous and foreign keys are not).
 void configure_connection(Database& db, bool writable);
+
+// Takes the store's writer lock (shared: many writers of one store may coexist; exclusive: for
+// removal). Throws IoError when it cannot be had at once.
+FileHandle lock_store_directory(const std::filesystem::path& dir, bool exclusive);
 
 // The current time in UTC, ISO 8601 ("2024-05-01T12:00:00Z").
 std::string utc_now();

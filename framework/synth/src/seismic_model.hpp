@@ -6,6 +6,7 @@
 // wavelet at its fractional position, so traces are smooth laterally and need no interpolation.
 
 #include <cstdint>
+#include <utility>
 #include <variant>
 #include <vector>
 
@@ -74,6 +75,16 @@ struct Interval {
   double top, base;
 };
 
+// What a trace needs whatever samples of it are asked for: its chaotic intervals, fold and bright
+// spots (position and weight).
+struct TraceInfo {
+  std::uint64_t model = 0; // SeismicModel::cache_id it was computed for (0: none)
+  std::int64_t i = 0, j = 0;
+  std::vector<Interval> inside;
+  double stretch = 1.0, shift = 0.0;
+  std::vector<std::pair<double, double>> spots; // (sample position, weight > 0)
+};
+
 struct SeismicModel {
   Frame frame;
   std::uint64_t reflector_key = 0, chaotic_key = 0, noise_key = 0;
@@ -92,6 +103,16 @@ struct SeismicModel {
   void intervals(std::int64_t i, std::int64_t j, std::vector<Interval>& out) const;
   // Noiseless samples [k0, k1) of trace (i, j), written to out[0 .. k1 - k0).
   void trace(std::int64_t i, std::int64_t j, std::int64_t k0, std::int64_t k1, double* out) const;
+  // The per-trace part of trace(), for trace (i, j).
+  void describe(std::int64_t i, std::int64_t j, TraceInfo& out) const;
+
+  // Set once the model is complete (make_seismic): trace() then keeps the per-trace part of recent
+  // traces in a per-thread cache keyed by this id, since boxes stacked along the sample axis ask for
+  // the same traces. 0: no caching (the model may still change). A model must not change after.
+  std::uint64_t cache_id = 0;
+  static std::uint64_t next_cache_id();
+  // describe(i, j) through that cache (valid until this thread's next call).
+  const TraceInfo& trace_info(std::int64_t i, std::int64_t j) const;
 };
 
 struct SeismicLayout {

@@ -4,6 +4,7 @@
 #include <sstream>
 
 #include "geotandem/core/error.hpp"
+#include "geotandem/volume/size_guard.hpp"
 
 namespace geotandem::synth::detail {
 
@@ -28,6 +29,7 @@ void check_shape(const std::string& option, const volume::Index3& shape) {
                                 " axis; every axis needs " + std::to_string(min_edge) + " to " +
                                 std::to_string(max_edge) + " samples",
                             {}, "the planted bodies need room: use a larger shape");
+  volume::check_shape_fits(shape, option);
 }
 
 void check_survey(const SurveyOptions& s) {

@@ -15,6 +15,7 @@
 
 #include "geotandem/core/error.hpp"
 #include "mc_table.hpp"
+#include "slab_reader.hpp"
 
 namespace geotandem::tandem {
 
@@ -65,8 +66,9 @@ struct LayerExtractor::Impl {
   std::int64_t words = 0;                      // 64-bit words per row of sign bits
   std::int64_t rank = 0;                       // the next layer's rank
   bool first_read = false;
-  std::vector<float> values[2];        // [0]: cross-section rank - 1 ("A"), [1]: cross-section rank ("B")
-  std::vector<std::uint64_t> signs[2]; // sign bits of the same
+  std::unique_ptr<detail::SlabReader> slabs; // the block's samples, a slab of sections at a time
+  std::vector<float> values[2];              // [0]: cross-section rank - 1 ("A"), [1]: cross-section rank ("B")
+  std::vector<std::uint64_t> signs[2];       // sign bits of the same
   // Vertex number per crossed edge, row stride sv, relative to the first vertex of its
   // cross-section (or of the edges across): [buffer][0 = along u, 1 = along v], and across.
   std::vector<std::uint32_t> plane_slots[2][2];
@@ -115,6 +117,8 @@ LayerExtractor::Impl::Impl(const volume::Volume& vol, const Box& cells, const Mc
   sv = nv + 1;
   words = (sv + 63) / 64;
   rank = box.lo[a] + 1;
+  slabs = std::make_unique<detail::SlabReader>(vol, Box{box.lo, {box.hi[0] + 1, box.hi[1] + 1, box.hi[2] + 1}}, a,
+                                               options.slab_samples);
   const auto samples = static_cast<std::size_t>(su * sv);
   for (int s = 0; s < 2; ++s) {
     values[s].resize(samples);
@@ -146,10 +150,7 @@ LayerExtractor::Impl::Impl(const volume::Volume& vol, const Box& cells, const Mc
 }
 
 void LayerExtractor::Impl::read(int which, std::int64_t section) {
-  Box slice{box.lo, {box.hi[0] + 1, box.hi[1] + 1, box.hi[2] + 1}};
-  slice.lo[a] = section;
-  slice.hi[a] = section + 1;
-  volume.read(slice, values[which]);
+  slabs->read(section, values[which]);
   const float iso = options.iso;
   for (std::int64_t iu = 0; iu < su; ++iu) {
     const float* row = values[which].data() + iu * sv;

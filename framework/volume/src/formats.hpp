@@ -24,7 +24,8 @@ std::unique_ptr<Volume> open_gdal_dataset(GDALDataset* dataset, const std::strin
 void write_gdal_md(const Volume& volume, const std::string& path, Format format, const WriteOptions& options,
                    Progress& progress, const CancelToken& cancel);
 
-// GDAL classic rasters, one band per inline slice: GeoTIFF, ENVI. (gdal_raster.cpp)
+// GDAL classic rasters, GeoTIFF and ENVI: time-slice stacks (band = sample), or inline slices in
+// files geotandem wrote. (gdal_raster.cpp; writer: gdal_raster_write.cpp)
 std::unique_ptr<Volume> open_gdal_raster(const std::string& path, Format format, const OpenOptions& options);
 void write_geotiff(const Volume& volume, const std::string& path, const WriteOptions& options, Progress& progress,
                    const CancelToken& cancel);

@@ -74,6 +74,12 @@ struct GeometryField {
 };
 std::span<const GeometryField> geometry_fields();
 inline constexpr const char* z_unit_key = "geotandem_z_unit";
+// Classic rasters (GeoTIFF, ENVI): which axis the bands hold, as a metadata item of the default
+// domain. geotandem's writer marks its files inline_slices; files without the item are time-slice
+// stacks unless they carry geotandem_* geometry items (docs/formats-gdal.md).
+inline constexpr const char* raster_layout_key = "geotandem_layout";
+inline constexpr const char* inline_slices = "inline_slices";
+inline constexpr const char* time_slices = "time_slices";
 double field_value(const Geometry& geometry, const GeometryField& field);
 
 // Text that parses back to the same double; and its inverse (nullopt unless the whole text is a

@@ -1,6 +1,7 @@
 // GeoTIFF writer: one Float32 band per inline slice (band b = inline index b - 1), raster width =
 // samples, height = crosslines; tiled, band-interleaved, geometry as geotandem_* metadata items
-// of the default domain (docs/formats-gdal.md).
+// of the default domain and the layout as geotandem_layout = inline_slices, so that the reader
+// does not take the bands for time slices (docs/formats-gdal.md).
 
 #include <filesystem>
 #include <limits>
@@ -52,6 +53,8 @@ void write_geotiff(const Volume& volume, const std::string& path, const WriteOpt
     for (const gdal::GeometryField& field : gdal::geometry_fields())
       dataset->SetMetadataItem(field.key, gdal::format_double(gdal::field_value(g, field)).c_str());
     dataset->SetMetadataItem(gdal::z_unit_key, to_string(g.z_unit));
+    // Says that the bands are inlines, not time slices (the reader's default for other files).
+    dataset->SetMetadataItem(gdal::raster_layout_key, gdal::inline_slices);
     // Boxes as deep as the chunk in inlines and one tile wide, so that each tile is written once.
     const Index3 block{options.chunk, tile, tile};
     std::vector<int> bands;

@@ -27,6 +27,8 @@ std::string lower_extension(const std::string& path) {
 
 bool envi_header_beside(const std::string& path) {
   for (const fs::path& hdr : {fs::path(path + ".hdr"), fs::path(path).replace_extension(".hdr")}) {
+    std::error_code ec;
+    if (!fs::is_regular_file(hdr, ec)) continue; // a FIFO would block
     std::ifstream in(hdr);
     std::string first;
     if (in && std::getline(in, first) && first.rfind("ENVI", 0) == 0) return true;
@@ -35,9 +37,10 @@ bool envi_header_beside(const std::string& path) {
 }
 
 // SEG-Y has no magic number: a 3200-byte textual header (EBCDIC or ASCII, by convention starting
-// with 'C', sometimes blank), a 400-byte big-endian binary header with a known sample format code
-// at bytes 3225-3226, then traces. The size is not checked here: a truncated SEG-Y file must reach
-// the SEG-Y reader, which says what is missing.
+// with 'C', sometimes blank), a 400-byte binary header with a sample format code (1 to 16) at
+// bytes 3225-3226 in the file's byte order (big-endian by the standard, little-endian in some
+// files), then traces. Unsupported codes and the size are not checked here: such files must reach
+// the SEG-Y reader, which says what is wrong.
 bool looks_like_segy(const std::string& path, std::uintmax_t size) {
   if (size < 3600 + 240) return false;
   std::ifstream in(path, std::ios::binary);
@@ -47,8 +50,8 @@ bool looks_like_segy(const std::string& path, std::uintmax_t size) {
   unsigned char code[2] = {0, 0};
   in.seekg(3224);
   in.read(reinterpret_cast<char*>(code), 2);
-  int format = code[0] << 8 | code[1];
-  return in && (format == 1 || format == 2 || format == 3 || format == 5 || format == 8);
+  const int big = code[0] << 8 | code[1], little = code[1] << 8 | code[0];
+  return in && ((big >= 1 && big <= 16) || (little >= 1 && little <= 16));
 }
 
 // The writer for an output path, from its extension; nullptr when the extension is unknown.
@@ -91,6 +94,16 @@ Format sniff_format(const std::string& path) {
   auto status = fs::status(path, ec);
   if (ec || !fs::exists(status))
     throw IoError("no such file or directory", {path}, "check the path; formats are found from the file itself");
+  if (!fs::is_directory(status) && !fs::is_regular_file(status)) {
+    // A FIFO or a device would block or never end; neither is a cube.
+    const char* kind = fs::is_fifo(status)             ? "a FIFO (named pipe)"
+                       : fs::is_character_file(status) ? "a character device"
+                       : fs::is_block_file(status)     ? "a block device"
+                       : fs::is_socket(status)         ? "a socket"
+                                                       : "not a regular file";
+    throw IoError(std::string("cannot read a cube from ") + kind, {path},
+                  "give a cube file (or a Zarr directory); copy streamed data to a file first");
+  }
   if (fs::is_directory(status)) {
     for (const char* marker : {".zgroup", ".zarray", "zarr.json"})
       if (fs::exists(fs::path(path) / marker)) return Format::zarr;
@@ -181,6 +194,14 @@ void write_volume(const Volume& volume, const std::string& path, const WriteOpti
     throw InvalidArgument("cannot tell the output format from the extension '" + ext + "'", {path},
                           "use .nc (netCDF-4), .zarr, .tif (GeoTIFF), .segy or .raw");
   std::error_code ec;
+  // Nothing is written inside a component store but by the store.
+  for (auto dir = fs::weakly_canonical(fs::absolute(path, ec), ec).parent_path(); !dir.empty();
+       dir = dir.parent_path()) {
+    if (fs::is_regular_file(dir / "store.json", ec) && fs::exists(dir / "index.sqlite", ec))
+      throw InvalidArgument("will not write a cube inside a component store (" + dir.string() + ")", {path},
+                            "write it outside the store directory");
+    if (dir == dir.root_path()) break;
+  }
   if (fs::exists(path, ec)) {
     if (!options.overwrite) throw IoError("the output already exists", {path}, "remove it or pass --overwrite");
     fs::remove_all(path, ec);

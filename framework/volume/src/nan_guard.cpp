@@ -14,6 +14,7 @@ public:
   const Geometry& geometry() const override { return inner_->geometry(); }
   std::string format() const override { return inner_->format(); }
   std::string source() const override { return inner_->source(); }
+  std::vector<FormatDetail> format_details() const override { return inner_->format_details(); }
 
 protected:
   void read_box(const Box& box, std::span<float> out) const override {

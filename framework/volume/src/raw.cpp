@@ -18,6 +18,7 @@
 
 #include "formats.hpp"
 #include "geotandem/core/error.hpp"
+#include "geotandem/volume/size_guard.hpp"
 
 namespace fs = std::filesystem;
 
@@ -135,6 +136,13 @@ ErrorContext position_of(const std::string& file, const std::string& text, std::
 }
 
 Geometry read_sidecar(const std::string& sidecar) {
+  // A FIFO or device would block or never end; a sidecar is a page of JSON.
+  std::error_code ec;
+  if (!fs::is_regular_file(sidecar, ec))
+    throw IoError("the raw sidecar is not a regular file (a FIFO, a device or a directory)", {sidecar},
+                  "write the sidecar as a JSON file");
+  if (fs::file_size(sidecar, ec) > (1u << 20))
+    throw FormatError("the raw sidecar is larger than 1 MiB; a sidecar is a page of JSON", {sidecar});
   std::ifstream in(sidecar, std::ios::binary);
   if (!in) throw IoError("cannot read the raw sidecar", {sidecar}, "check that it exists and is readable");
   std::stringstream buffer;
@@ -343,7 +351,13 @@ std::unique_ptr<Volume> open_raw(const std::string& path, const OpenOptions&) {
   std::error_code ec;
   const std::uintmax_t size = fs::file_size(path, ec);
   if (ec) throw IoError("cannot get the size of the raw data file: " + ec.message(), {path});
-  const std::uintmax_t wanted = g.sample_count() * sizeof(float);
+  const auto counted = checked_byte_count(g.shape, sizeof(float));
+  if (!counted)
+    throw FormatError("the shape " + g.bounds().to_string() + " in " + sidecar +
+                          " needs more than 2^64 bytes of float32; the raw data file has " + std::to_string(size) +
+                          " bytes",
+                      {sidecar}, "check the shape in the sidecar");
+  const std::uintmax_t wanted = *counted;
   if (size != wanted)
     throw FormatError("the raw data file has " + std::to_string(size) + " bytes but the shape " +
                           g.bounds().to_string() + " in " + sidecar + " needs " + std::to_string(wanted) +

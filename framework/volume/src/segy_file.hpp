@@ -1,5 +1,5 @@
 #pragma once
-// Shared by the SEG-Y reader (segy.cpp) and writer (segy_writer.cpp): an owning segyio handle,
+// Shared by the SEG-Y reader (segy*.cpp) and writer (segy_writer.cpp): an owning segyio handle,
 // readable names for segyio's status codes, and the marks geotandem leaves in the textual header.
 
 #include <segyio/segy.h>

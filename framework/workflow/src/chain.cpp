@@ -37,6 +37,9 @@ std::shared_ptr<const volume::Volume> open_input(const nlohmann::json& in) {
   volume::OpenOptions options;
   options.nan_policy = volume::parse_nan_policy(in.value("nan", "error"));
   options.variable = in.value("variable", "");
+  if (in.contains("segy"))
+    options.segy = {in["segy"].value("inline_byte", options.segy.inline_byte),
+                    in["segy"].value("crossline_byte", options.segy.crossline_byte)};
   return std::shared_ptr<const volume::Volume>(volume::open_volume(in.at("file").get<std::string>(), options));
 }
 

@@ -2,6 +2,7 @@
 
 #include <charconv>
 #include <chrono>
+#include <cstdlib>
 #include <fstream>
 
 #include "geotandem/core/error.hpp"
@@ -9,6 +10,7 @@
 #include "geotandem/tandem/blocks.hpp"
 #include "geotandem/tandem/marching_cubes.hpp"
 #include "geotandem/tandem/tandem.hpp"
+#include "geotandem/volume/fingerprint.hpp"
 
 namespace geotandem::workflow {
 
@@ -115,6 +117,47 @@ std::int64_t peak_rss_kb() {
   return 0;
 }
 
+nlohmann::json extract_run_parameters(const volume::Volume& volume, const ExtractSettings& settings) {
+  nlohmann::json parameters = settings.parameters;
+  parameters["iso"] = settings.iso;
+  parameters["max_error"] = settings.max_error;
+  parameters["isotropy"] = settings.isotropy;
+  parameters["axis"] = std::string(1, "ijk"[settings.axis]);
+  parameters["block_size"] = settings.block_size;
+  parameters["mode"] = to_string(settings.mode);
+  parameters["extended_time_lag"] = settings.extended_time_lag;
+  parameters["source"] = volume.source();
+  // reliab: what decides the components. The store refuses a run of another identity (it would mix
+  // two extractions); a rerun of the same one resumes.
+  char iso_text[32]; // the float's shortest text, so that 0.6 reads 0.6 in messages
+  auto iso_end = std::to_chars(iso_text, iso_text + sizeof iso_text - 1, settings.iso).ptr;
+  *iso_end = '\0';
+  parameters["identity"] = {
+      {"iso", std::strtod(iso_text, nullptr)},
+      {"max_error", settings.max_error},
+      {"isotropy", settings.isotropy},
+      {"axis", parameters["axis"]},
+      {"block_size", settings.block_size},
+      {"mode", to_string(settings.mode)},
+      {"extended_time_lag", settings.extended_time_lag},
+      {"input", settings.parameters.contains("input_content") ? settings.parameters["input_content"]
+                                                              : volume::input_fingerprint(volume.source())},
+      {"chain", settings.parameters.is_object() && settings.parameters.contains("chain") ? settings.parameters["chain"]
+                                                                                         : nlohmann::json::object()}};
+
+  return parameters;
+}
+
+void warn_if_empty(ExtractResult& result, const ExtractSettings& settings, Logger& log) {
+  // reliab: an empty result is almost always an isovalue outside the data: say so.
+  if (result.components == 0 && result.duplicates == 0) {
+    const std::string warning = "no component was extracted: is the isovalue " + std::to_string(settings.iso) +
+                                " inside the cube's value range? ('geotandem info --stats' shows it)";
+    log.warning(warning);
+    result.statistics["warnings"] = {warning};
+  }
+}
+
 ExtractResult extract_to_store(const volume::Volume& volume, store::ComponentStore& store,
                                const ExtractSettings& settings, Logger& log, Progress& progress,
                                const CancelToken& cancel) {
@@ -138,15 +181,7 @@ ExtractResult extract_to_store(const volume::Volume& volume, store::ComponentSto
   options.cancel = &cancel;
   options.progress = &progress;
 
-  nlohmann::json parameters = settings.parameters;
-  parameters["iso"] = settings.iso;
-  parameters["max_error"] = settings.max_error;
-  parameters["isotropy"] = settings.isotropy;
-  parameters["axis"] = std::string(1, "ijk"[settings.axis]);
-  parameters["block_size"] = settings.block_size;
-  parameters["mode"] = to_string(settings.mode);
-  parameters["extended_time_lag"] = settings.extended_time_lag;
-  parameters["source"] = volume.source();
+  const nlohmann::json parameters = extract_run_parameters(volume, settings);
 
   ExtractResult result;
   result.run = store.begin_run(parameters.dump());
@@ -211,6 +246,7 @@ ExtractResult extract_to_store(const volume::Volume& volume, store::ComponentSto
                          {"simplify", simplify_s},
                          {"dump", dump_s}}},
                        {"peak_rss_kb", result.peak_rss_kb}};
+  warn_if_empty(result, settings, log);
   store.end_run(result.run, result.statistics.dump());
   return result;
 }

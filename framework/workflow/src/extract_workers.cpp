@@ -37,15 +37,9 @@ ExtractResult extract_with_workers(const volume::Volume& volume, store::Componen
   options.workers = settings.workers;
   options.worker_command = settings.worker_command;
 
-  nlohmann::json parameters = settings.parameters;
-  parameters["iso"] = settings.iso;
-  parameters["max_error"] = settings.max_error;
-  parameters["isotropy"] = settings.isotropy;
-  parameters["axis"] = std::string(1, "ijk"[settings.axis]);
-  parameters["block_size"] = r.block_size;
-  parameters["mode"] = to_string(settings.mode);
-  parameters["extended_time_lag"] = settings.extended_time_lag;
-  parameters["source"] = volume.source();
+  ExtractSettings effective = settings;
+  effective.block_size = r.block_size;
+  nlohmann::json parameters = extract_run_parameters(volume, effective);
   parameters["workers"] = settings.workers;
 
   ExtractResult result;
@@ -63,6 +57,7 @@ ExtractResult extract_with_workers(const volume::Volume& volume, store::Componen
   result.blocks = {{"block_size", r.block_size}, {"leaves", report.leaves}, {"merges", report.merge}};
   result.statistics = nlohmann::json::parse(report.to_json());
   result.statistics["peak_rss_kb"] = result.peak_rss_kb;
+  warn_if_empty(result, settings, log);
   store.end_run(result.run, result.statistics.dump());
   return result;
 }

@@ -7,6 +7,7 @@
 
 #include "geotandem/core/error.hpp"
 #include "geotandem/synth/options.hpp"
+#include "geotandem/volume/size_guard.hpp"
 #include "geotandem/workflow/suggest.hpp"
 #include "recipe_overrides.hpp"
 #include "yaml_reader.hpp"
@@ -31,6 +32,12 @@ void parse_input(MapReader& m, InputSpec& in) {
   if (in.nan != "error" && in.nan != "fill")
     throw error_at(m.file(), m.node("nan"), "'nan' is '" + in.nan + "'", "use 'error' or 'fill'");
   in.variable = m.text("variable", "");
+  if (m.has("segy")) {
+    MapReader s(m.file(), m.node("segy"), "input.segy");
+    in.segy_inline_byte = static_cast<int>(s.integer("inline_byte", 189, 1, 240));
+    in.segy_crossline_byte = static_cast<int>(s.integer("crossline_byte", 193, 1, 240));
+    s.finish({"inline_byte", "crossline_byte"});
+  }
   if (has_file) {
     in.file = m.required_text("file");
   } else {
@@ -55,12 +62,18 @@ void parse_input(MapReader& m, InputSpec& in) {
                          "the planted bodies of a synthetic cube need room");
         in.shape[a] = v;
       }
+      // reliab: a shape this machine cannot hold is refused here, with the numbers, not at run time.
+      try {
+        volume::check_shape_fits({in.shape[0], in.shape[1], in.shape[2]}, "input.synthetic.shape");
+      } catch (const InvalidArgument& e) {
+        throw error_at(m.file(), shape, e.message(), e.hint());
+      }
     }
     in.seed = static_cast<std::uint64_t>(s.integer("seed", 1, 0, big));
     in.snr = s.real("snr", 4.0, 1e-3, 1e6);
     s.finish({"kind", "shape", "seed", "snr"});
   }
-  m.finish({"file", "synthetic", "nan", "variable"});
+  m.finish({"file", "synthetic", "nan", "variable", "segy"});
 }
 
 ParamValues parse_params(MapReader& m, const std::vector<ParamSpec>& specs, const std::string& what) {
@@ -321,6 +334,8 @@ nlohmann::json to_json(const Recipe& r) {
     in["file"] = r.input.file;
   in["nan"] = r.input.nan;
   if (!r.input.variable.empty()) in["variable"] = r.input.variable;
+  if (r.input.segy_inline_byte != 189 || r.input.segy_crossline_byte != 193)
+    in["segy"] = {{"inline_byte", r.input.segy_inline_byte}, {"crossline_byte", r.input.segy_crossline_byte}};
   j["input"] = in;
   j["steps"] = json::array();
   for (const auto& s : r.steps) {
@@ -341,13 +356,8 @@ nlohmann::json to_json(const Recipe& r) {
 
 Recipe parse_recipe(const std::string& text, const std::string& name, const PluginRegistry& plugins,
                     const std::vector<std::string>& overrides) {
-  YAML::Node root;
-  try {
-    root = YAML::Load(text);
-  } catch (const YAML::ParserException& e) {
-    throw InvalidArgument("not valid YAML: " + e.msg, {name, e.mark.line + 1, e.mark.column + 1},
-                          "check indentation and the ':' after each key");
-  }
+  // reliab: one document, no duplicate keys, no control characters (yaml_reader.cpp).
+  YAML::Node root = detail::load_single_document(text, name);
   for (const auto& o : overrides)
     detail::apply_override(root, o);
 
@@ -383,9 +393,8 @@ Recipe parse_recipe(const std::string& text, const std::string& name, const Plug
 }
 
 Recipe load_recipe(const std::string& path, const PluginRegistry& plugins, const std::vector<std::string>& overrides) {
-  std::ifstream in(path);
-  if (!in) throw IoError("cannot read the recipe", {path}, "check the path");
-  std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  // reliab: regular files only (a FIFO or /dev/zero would block or never end), with a size limit.
+  std::string text = detail::read_recipe_text(path);
   return parse_recipe(text, path, plugins, overrides);
 }
 

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "geotandem/core/error.hpp"
+#include "yaml_reader.hpp"
 
 namespace geotandem::workflow::detail {
 
@@ -52,7 +53,13 @@ void apply_override(YAML::Node root, const std::string& text) {
       node.reset(node[part]);
     }
   }
-  node[parts.back()] = YAML::Load(value);
+  // reliab: a malformed value is the --set's fault, named as such (not "base.yaml:1:1").
+  try {
+    node[parts.back()] = load_single_document(value, "--set " + text);
+  } catch (const YAML::Exception& e) {
+    throw InvalidArgument("--set " + text + ": the value is not valid YAML: " + e.msg, {},
+                          "quote the value, e.g. --set 'key=\"text\"'");
+  }
 }
 
 } // namespace geotandem::workflow::detail

@@ -91,7 +91,8 @@ h1{font-size:22px;margin-bottom:4px}h2{font-size:17px;margin-top:28px;border-bot
 th{background:#f6f6f6}td.l,th.l{text-align:left}.plots{display:flex;flex-wrap:wrap;gap:24px;align-items:flex-start}
 figure{margin:0}figcaption{font-size:12px;color:#555;max-width:520px}pre{background:#f7f7f7;padding:10px;font-size:12px;overflow:auto;max-height:360px}
 .kept{color:#1d5680;font-weight:600}.removed{color:#999}dl.facts{display:grid;grid-template-columns:max-content auto;gap:4px 16px;font-size:14px;margin:8px 0}
-dl.facts dt{color:#555}dl.facts dd{margin:0}td.sep{border-top:2px solid #bbb})";
+dl.facts dt{color:#555}dl.facts dd{margin:0}td.sep{border-top:2px solid #bbb}
+canvas#gt-view{width:640px;height:480px;border:1px solid #ddd;display:block;cursor:grab}svg.map{border:1px solid #ddd})";
 
 } // namespace
 
@@ -144,6 +145,22 @@ std::string render_report(const ReportData& d) {
     << svg_series(d.triangles_per_layer, "layer", "triangles in memory")
     << "<figcaption>Triangles held in memory after each extracted layer (the seed's figure "
        "11).</figcaption></figure></div>\n";
+
+  if (d.survey.known) {
+    h << "<h2>Bodies</h2><div class=\"plots\"><figure>" << svg_body_map(d.survey, d.bodies)
+      << "<figcaption>Map view, north up: the survey outline and the footprint (convex hull of the surface seen "
+         "from above) of each of the "
+      << d.bodies.size()
+      << " kept bodies, coloured by the azimuth of its main axis. Hover a footprint for its key.</figcaption>"
+         "</figure><figure>"
+      << body_viewer_html(d.survey, d.bodies, unit)
+      << "<figcaption>3-D view: drag to orbit, wheel to zoom, right-drag to pan; click a body. The survey's box is "
+         "drawn in grey, north by the arrow; the vertical axis is exaggerated so that the cube is half as high as "
+         "it is wide (1 "
+      << escape(d.survey.z_unit) << " = " << fixed(display_z_scale(d.survey), 2)
+      << " m). Bodies with more than their share of " << kDisplayTriangleBudget
+      << " triangles are decimated for display.</figcaption></figure></div>\n";
+  }
 
   // Every kept component (a body cut by the border has no enclosed volume but is kept by its area,
   // so sorting all components by volume alone would hide it), then the largest removed ones.

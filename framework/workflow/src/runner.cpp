@@ -9,10 +9,12 @@
 
 #include "geotandem/core/error.hpp"
 #include "geotandem/synth/synthetic.hpp"
+#include "geotandem/volume/fingerprint.hpp"
 #include "geotandem/volume/io.hpp"
 #include "geotandem/workflow/chain.hpp"
 #include "geotandem/workflow/extract_step.hpp"
 #include "geotandem/workflow/report.hpp"
+#include "geotandem/workflow/report_views.hpp"
 
 namespace fs = std::filesystem;
 
@@ -79,6 +81,22 @@ std::unique_ptr<Progress> progress_of(const RunSettings& settings) {
   return settings.progress ? settings.progress() : std::make_unique<NullProgress>();
 }
 
+// reliab: the input file's content (size, mtime, sampled checksum) joins the chain's fingerprint,
+// so that a cube replaced at the same path is never taken for the one extracted before.
+std::string content_suffix(const nlohmann::json& content) {
+  if (!content.contains("sampled_checksum")) return "";
+  return "+" + content["sampled_checksum"].get<std::string>() + "-" + std::to_string(content.value("size", 0ULL)) +
+         "-" + std::to_string(content.value("mtime_ns", 0LL));
+}
+
+// reliab: the extraction's warnings (no component: an isovalue outside the data?), for the report.
+std::string warnings_of(const ExtractResult& r) {
+  std::string text;
+  for (const auto& w : r.statistics.value("warnings", nlohmann::json::array()))
+    text += "; WARNING: " + w.get<std::string>();
+  return text;
+}
+
 // One run of a validated recipe: walks its steps, then its output steps, calling each through the
 // registry by kind. Holds what passes between steps: the store, the newest selection, the report.
 class ChainRun {
@@ -87,7 +105,8 @@ public:
            const CancelToken& cancel, const ChainDescription& chain, const ChainVolumes& volumes)
       : recipe_(recipe), plugins_(plugins), settings_(settings), log_(log), cancel_(cancel), chain_(chain),
         volumes_(volumes), out_dir_(recipe.output.directory), store_dir_(out_dir_ / recipe.output.store),
-        state_(out_dir_ / "state.json"), print_(chain.fingerprint()) {
+        state_(out_dir_ / "state.json"), input_content_(volume::input_fingerprint(volumes.input->source())),
+        print_(chain.fingerprint() + content_suffix(input_content_)) {
     report_.title = "geotandem run: " + fs::path(recipe.path).stem().string();
     report_.recipe_path = recipe.path;
     report_.recipe = recipe.canonical;
@@ -122,7 +141,7 @@ private:
   void extract(const Plugin& plugin, const StepSpec& step) {
     if (settings_.fresh && fs::exists(store_dir_)) {
       log_.info("--fresh: removing the previous store " + store_dir_.string());
-      fs::remove_all(store_dir_);
+      store::ComponentStore::remove(store_dir_); // reliab: refuses while another process writes it
       state_.clear();
     }
     if (store::ComponentStore::exists(store_dir_) && state_.fingerprint_of("extract") != print_)
@@ -139,8 +158,10 @@ private:
       report_.steps.push_back({step.name, 0.0, 0, store_->size(), "reused from a previous run with the same inputs"});
     } else {
       state_.set("extract", {{"fingerprint", print_}, {"done", false}});
-      nlohmann::json description = {
-          {"recipe", recipe_.path}, {"chain", chain_.to_json()}, {"chain_fingerprint", print_}};
+      nlohmann::json description = {{"recipe", recipe_.path},
+                                    {"chain", chain_.to_json()},
+                                    {"chain_fingerprint", print_},
+                                    {"input_content", input_content_}};
       const ExecutionSpec& ex = recipe_.execution;
       if (ex.scheduler == "local" && ex.workers >= 2 && !settings_.worker_command.empty()) {
         description["workers"] = ex.workers; // the extract step hands the chain to that many workers
@@ -158,7 +179,7 @@ private:
       report_.steps.push_back({step.name, since(t), 0, store_->size(),
                                (step.params.count("mode") ? step.params.at("mode").text + ", " : std::string()) +
                                    std::to_string(r.input_triangles) + " marching-cubes triangles, " +
-                                   std::to_string(r.collapses) + " collapses"});
+                                   std::to_string(r.collapses) + " collapses" + warnings_of(r)});
     }
     outcome_.components = outcome_.kept = store_->size();
     report_.volume_unit = store_->geometry().z_unit == volume::SampleUnit::milliseconds ? "m^2*ms" : "m^3";
@@ -172,7 +193,12 @@ private:
     auto t = Clock::now();
     auto progress = progress_of(settings_);
     volume::WriteOptions w;
-    w.overwrite = true;
+    // reliab: replace only an attribute file this recipe's runs wrote (or with --fresh), never another
+    // file (the input cube, say) that happens to sit at that path.
+    std::error_code same;
+    const bool ours = state_.fingerprint_of("attribute_file") != "" &&
+                      state_.get("attribute_file").value("path", "") == path.string();
+    w.overwrite = ours || (settings_.fresh && !fs::equivalent(path, volumes_.input->source(), same));
     volume::write_volume(*volumes_.result, path.string(), w, progress.get(), cancel_);
     state_.set("attribute_file", {{"fingerprint", print_}, {"done", true}, {"path", path.string()}});
     report_.steps.push_back({"write attribute", since(t), 0, 0, path.filename().string()});
@@ -218,6 +244,9 @@ private:
       c.kept = selection_.empty() || std::binary_search(kept_keys.begin(), kept_keys.end(), row.key);
       report_.components.push_back(c);
     }
+    // The map and 3-D views of the kept bodies (report_views.cpp).
+    report_.survey = survey_outline(store_->geometry());
+    report_.bodies = display_bodies(*store_, report_.components, report_.survey);
     report_.outputs.push_back(recipe_.output.store + "/");
     if (recipe_.input.synthetic) report_.outputs.push_back("truth.json");
     report_.total_seconds = since(report_started_);
@@ -235,6 +264,7 @@ private:
   const ChainVolumes& volumes_;
   fs::path out_dir_, store_dir_;
   State state_;
+  nlohmann::json input_content_; // reliab
   std::string print_;
   std::optional<store::ComponentStore> store_;
   std::string selection_; // the newest selection: input of the next step and of exports

@@ -1,5 +1,14 @@
 #include "yaml_reader.hpp"
 
+#include <algorithm>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <sstream>
+
+#include <yaml-cpp/eventhandler.h>
+
 #include <cerrno>
 #include <cmath>
 #include <cstdlib>
@@ -7,6 +16,116 @@
 #include "geotandem/workflow/suggest.hpp"
 
 namespace geotandem::workflow::detail {
+
+std::string read_recipe_text(const std::string& path) {
+  std::error_code ec;
+  auto status = std::filesystem::status(path, ec);
+  if (ec || !std::filesystem::exists(status))
+    throw IoError("cannot read the recipe: no such file", {path}, "check the path");
+  if (!std::filesystem::is_regular_file(status))
+    throw InvalidArgument(std::filesystem::is_directory(status)
+                              ? "the recipe is a directory, not a file"
+                              : "the recipe is not a regular file (a FIFO or a device)",
+                          {path}, "give the path of a recipe file (.yaml)");
+  auto size = std::filesystem::file_size(path, ec);
+  if (!ec && size > max_recipe_bytes)
+    throw InvalidArgument("the recipe has " + std::to_string(size) + " bytes; recipes are limited to " +
+                              std::to_string(max_recipe_bytes) + " bytes",
+                          {path}, "is this the right file?");
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw IoError("cannot read the recipe", {path}, "check its permissions");
+  std::string text;
+  text.resize(max_recipe_bytes + 1);
+  in.read(text.data(), static_cast<std::streamsize>(text.size()));
+  text.resize(static_cast<std::size_t>(in.gcount()));
+  if (text.size() > max_recipe_bytes)
+    throw InvalidArgument("the recipe is longer than " + std::to_string(max_recipe_bytes) + " bytes", {path},
+                          "is this the right file?");
+  if (auto nul = text.find('\0'); nul != std::string::npos) {
+    long line = 1 + static_cast<long>(std::count(text.begin(), text.begin() + static_cast<long>(nul), '\n'));
+    throw InvalidArgument("the recipe holds a NUL byte", {path, line}, "a recipe is YAML text");
+  }
+  return text;
+}
+
+namespace {
+
+// Bounds on the walk: aliases can make a cycle (&a [*a]) or an exponential tree (nested lists of
+// aliases); a recipe is a few hundred nodes.
+constexpr int max_depth = 64;
+constexpr long max_nodes = 100000;
+
+void check_node(const std::string& file, const YAML::Node& node, int depth, long& visited) {
+  if (depth > max_depth || ++visited > max_nodes)
+    throw error_at(file, node,
+                   depth > max_depth ? "the recipe nests deeper than " + std::to_string(max_depth) + " levels"
+                                     : "the recipe expands to more than " + std::to_string(max_nodes) + " values",
+                   "is an alias (*name) referring to itself, or to lists of aliases?");
+  if (node.IsScalar()) {
+    for (unsigned char c : node.Scalar())
+      if ((c < 0x20 && c != '\t' && c != '\n' && c != '\r') || c == 0x7f) {
+        char code[8];
+        std::snprintf(code, sizeof code, "0x%02X", c);
+        throw error_at(file, node, std::string("control character ") + code + " in '" + node.Scalar() + "'",
+                       "paths and names may not hold control characters");
+      }
+  } else if (node.IsSequence()) {
+    for (const auto& item : node)
+      check_node(file, item, depth + 1, visited);
+  } else if (node.IsMap()) {
+    std::map<std::string, YAML::Node> seen;
+    for (const auto& entry : node) {
+      check_node(file, entry.first, depth + 1, visited);
+      check_node(file, entry.second, depth + 1, visited);
+      if (!entry.first.IsScalar()) continue;
+      auto [it, fresh] = seen.emplace(entry.first.Scalar(), entry.first);
+      if (!fresh)
+        throw error_at(file, entry.first,
+                       "key '" + entry.first.Scalar() + "' is given twice (lines " +
+                           std::to_string(it->second.Mark().line + 1) + " and " +
+                           std::to_string(entry.first.Mark().line + 1) + ")",
+                       "keep one of them");
+    }
+  }
+}
+
+} // namespace
+
+// Receives a document's parse events and keeps only where the document starts.
+class DocumentStart final : public YAML::EventHandler {
+public:
+  YAML::Mark mark;
+  void OnDocumentStart(const YAML::Mark& m) override { mark = m; }
+  void OnDocumentEnd() override {}
+  void OnNull(const YAML::Mark&, YAML::anchor_t) override {}
+  void OnAlias(const YAML::Mark&, YAML::anchor_t) override {}
+  void OnScalar(const YAML::Mark&, const std::string&, YAML::anchor_t, const std::string&) override {}
+  void OnSequenceStart(const YAML::Mark&, const std::string&, YAML::anchor_t, YAML::EmitterStyle::value) override {}
+  void OnSequenceEnd() override {}
+  void OnMapStart(const YAML::Mark&, const std::string&, YAML::anchor_t, YAML::EmitterStyle::value) override {}
+  void OnMapEnd() override {}
+};
+
+YAML::Node load_single_document(const std::string& text, const std::string& file) {
+  YAML::Node root;
+  try {
+    root = YAML::Load(text);
+    // A second document: the parser is asked for two documents at most (YAML::LoadAll can loop
+    // without end on some malformed input).
+    std::istringstream in(text);
+    YAML::Parser parser(in);
+    DocumentStart first, second;
+    if (parser.HandleNextDocument(first) && parser.HandleNextDocument(second))
+      throw InvalidArgument("the recipe holds a second YAML document", {file, second.mark.line + 1},
+                            "a recipe is one document: remove the '---' line and what follows, or split the file");
+  } catch (const YAML::ParserException& e) {
+    throw InvalidArgument("not valid YAML: " + e.msg, {file, e.mark.line + 1, e.mark.column + 1},
+                          "check indentation and the ':' after each key");
+  }
+  long visited = 0;
+  check_node(file, root, 0, visited);
+  return root;
+}
 
 Where where_of(const YAML::Node& node) {
   const YAML::Mark mark = node.Mark();

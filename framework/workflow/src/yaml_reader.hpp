@@ -20,6 +20,19 @@ InvalidArgument error_at(const std::string& file, const YAML::Node& node, const 
 // The node's scalar text; an error naming `what` when it is not a scalar.
 std::string scalar_of(const std::string& file, const YAML::Node& node, const std::string& what);
 
+// Recipes larger than this are refused (a recipe is a page of text; /dev/zero is not).
+inline constexpr std::uintmax_t max_recipe_bytes = 1 << 20;
+
+// The text of the recipe at `path`. Throws IoError for a missing or unreadable file, InvalidArgument
+// for a directory, FIFO or device (which would block or never end) or a file above
+// max_recipe_bytes, and for NUL bytes in the text.
+std::string read_recipe_text(const std::string& path);
+
+// Parses `text` (named `file` in messages) as exactly one YAML document. InvalidArgument, with line
+// and column, for invalid YAML, a second document, a key given twice in one mapping (naming both
+// lines) and a scalar holding a control character (other than tab and newline).
+YAML::Node load_single_document(const std::string& text, const std::string& file);
+
 class MapReader {
 public:
   // `what` names the mapping in messages ("input", "step 2 (extract)").

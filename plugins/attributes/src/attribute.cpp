@@ -43,19 +43,29 @@ Index3 Attribute::total_halo() const {
   return {halo_[0] + below[0], halo_[1] + below[1], halo_[2] + below[2]};
 }
 
+// Tiles per axis for `n` samples: as few as keep each tile within 5/4 of kTile, so that a box a
+// little larger than a tile (a block of 129 samples) is not cut into a full tile and a sliver that
+// would pay the whole halo for one sample.
+std::int64_t Attribute::tiles_along(std::int64_t n, int axis) {
+  const std::int64_t most = kTile[axis] + kTile[axis] / 4;
+  return std::max<std::int64_t>(1, (n + most - 1) / most);
+}
+
 void Attribute::read_box(const Box& box, std::span<float> out) const {
-  bool fits = true;
+  Index3 count{};
   for (int a = 0; a < 3; ++a)
-    fits = fits && box.size(a) <= kTile[a];
-  if (fits || tiling_ == Tiling::whole_box) {
+    count[a] = tiling_ == Tiling::whole_box ? 1 : tiles_along(box.size(a), a);
+  if (count[0] * count[1] * count[2] == 1) {
     compute(box, out);
     return;
   }
+  // Even split: tile t of m covers [lo + t n / m, lo + (t + 1) n / m) on each axis.
+  auto edge = [&](int a, std::int64_t t) { return box.lo[a] + t * box.size(a) / count[a]; };
   std::vector<float> tile_samples;
-  for (std::int64_t i = box.lo[0]; i < box.hi[0]; i += kTile[0])
-    for (std::int64_t j = box.lo[1]; j < box.hi[1]; j += kTile[1])
-      for (std::int64_t k = box.lo[2]; k < box.hi[2]; k += kTile[2]) {
-        const Box tile = Box{{i, j, k}, {i + kTile[0], j + kTile[1], k + kTile[2]}}.intersection(box);
+  for (std::int64_t ti = 0; ti < count[0]; ++ti)
+    for (std::int64_t tj = 0; tj < count[1]; ++tj)
+      for (std::int64_t tk = 0; tk < count[2]; ++tk) {
+        const Box tile{{edge(0, ti), edge(1, tj), edge(2, tk)}, {edge(0, ti + 1), edge(1, tj + 1), edge(2, tk + 1)}};
         tile_samples.resize(tile.count());
         compute(tile, tile_samples);
         volume::copy_region(tile_samples.data(), tile, out.data(), box, tile);

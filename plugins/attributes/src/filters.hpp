@@ -40,5 +40,15 @@ Kernel hilbert_kernel(int half_length);
 
 // `in` filtered along `axis` (0, 1 or 2). Precondition: in.shape[axis] > 2 * kernel.radius().
 Array3 correlate(const Array3& in, int axis, const Kernel& kernel);
+// The same into `out`, whose storage is reused when it already holds as many samples.
+void correlate(const Array3& in, int axis, const Kernel& kernel, Array3& out);
+// The same on raw C-order storage: `in` of shape `in_shape`, `out` room for the result, whose shape
+// is returned.
+volume::Index3 correlate(const float* in, const volume::Index3& in_shape, int axis, const Kernel& kernel, float* out);
+
+// One output plane of a filter across planes: planes[t] for t = 0 .. 2 radius are consecutive
+// planes of n samples each, the output's own plane being planes[radius]. Same sums in the same
+// order as correlate along axis 0, so streaming plane by plane gives the same bits.
+void correlate_planes(const float* const* planes, const Kernel& kernel, float* out, std::size_t n);
 
 } // namespace geotandem::attributes::detail

@@ -30,6 +30,12 @@ struct ExportOptions {
   // PLY only: vertex coordinates as float32 instead of float64 (half the size; about 1e-7
   // relative precision, a few centimetres at typical map coordinates).
   bool ply_float32 = false;
+  // Replace files that already exist (otherwise an existing file is an error, before anything is
+  // written).
+  bool overwrite = false;
+  // Verify every record first and leave the damaged ones out (listed in ExportSummary::skipped)
+  // instead of stopping at the first one.
+  bool skip_damaged = false;
 };
 
 struct ExportSummary {
@@ -37,12 +43,14 @@ struct ExportSummary {
   std::uint64_t components = 0;
   std::uint64_t vertices = 0;
   std::uint64_t triangles = 0;
+  std::vector<std::uint64_t> skipped; // keys of damaged components left out (skip_damaged)
 };
 
 // Writes `rows` (from ComponentStore::query) to `out`. Each file is written beside its final name
 // and renamed into place when complete. Streams component by component: memory holds one
-// component at a time. Throws InvalidArgument for an empty `rows`, IoError when a file cannot be
-// written, FormatError for a damaged record, Cancelled.
+// component at a time. Throws InvalidArgument for an empty `rows` or an output inside a store
+// directory (only the store writes there), IoError when a file exists (without `overwrite`) or
+// cannot be written, FormatError for a damaged record (without `skip_damaged`), Cancelled.
 ExportSummary export_components(const ComponentStore& store, const std::vector<ComponentRow>& rows,
                                 const std::filesystem::path& out, const ExportOptions& options, Progress& progress,
                                 const CancelToken& cancel);

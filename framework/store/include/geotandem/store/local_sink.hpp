@@ -22,6 +22,9 @@ struct LocalSinkOptions {
   // Components per durable commit (one fdatasync and one index transaction per batch). A kill
   // loses at most the open batch; it is never half-committed. 1 makes every commit() durable.
   std::size_t batch_size = 32;
+  // A key already stored is read back and verified; a damaged record is written again and its row
+  // replaced, so that rerunning an extraction repairs what `store check` found damaged.
+  bool redo_damaged = true;
 };
 
 class LocalSink final : public mesh::ComponentSink {
@@ -43,6 +46,8 @@ public:
 
   std::uint64_t committed() const;
   std::uint64_t duplicates() const;
+  // Components whose stored record was damaged and that were written again.
+  std::uint64_t redone() const;
 
 private:
   void flush_locked();
@@ -55,6 +60,7 @@ private:
   std::unordered_set<std::uint64_t> pending_keys_;
   std::uint64_t committed_ = 0;
   std::uint64_t duplicates_ = 0;
+  std::uint64_t redone_ = 0;
   bool closed_ = false;
 };
 

@@ -39,6 +39,9 @@ struct IndexEntry {
   RecordLocation location;
   mesh::ComponentStats stats; // its counts are replaced by the location's
   std::optional<std::int64_t> run;
+  // Replace the row of this key (its record was found damaged and was written again) instead of
+  // leaving an existing row as it is.
+  bool replace = false;
 };
 
 struct RunInfo {
@@ -89,6 +92,10 @@ public:
                                        const CreateOptions& options = {});
   // True when `dir` holds a store.json.
   static bool exists(const std::filesystem::path& dir);
+  // Deletes the store in `dir` (for --fresh). Takes the store's writer lock first: throws IoError
+  // when another process has the store open for writing (nothing is deleted then), or when `dir`
+  // holds files that are not a store's. A missing `dir` is not an error.
+  static void remove(const std::filesystem::path& dir);
 
   ~ComponentStore();
   ComponentStore(ComponentStore&&) noexcept;
@@ -101,14 +108,22 @@ public:
   bool writable() const;
 
   // Runs. `parameters_json` and `statistics_json` must be JSON (InvalidArgument otherwise).
+  // Parameters holding an "identity" object (what decides the components: isovalue, extraction
+  // settings, input fingerprint, attribute chain) are checked against the identity of the store's
+  // earlier runs: a different one throws InvalidArgument listing every difference, so that two
+  // extractions are never mixed in one store (see resume_differences).
   std::int64_t begin_run(const std::string& parameters_json);
+  // The differences between `identity` (a JSON object) and the identity the store's latest run
+  // recorded, one readable line each ("iso: 0.5 in the store, 0.6 now"); empty when they agree or
+  // when no run recorded an identity.
+  std::vector<std::string> resume_differences(const std::string& identity_json) const;
   void end_run(std::int64_t run, const std::string& statistics_json);
   std::vector<RunInfo> runs() const;
 
   // Commits index rows in one transaction. A key already in the index is left as it is (a
-  // component committed twice is stored once). Returns the number of rows added. The records must
-  // be durable already (ShardWriter::sync). Throws InvalidArgument for an invalid shard name,
-  // IoError when the index cannot be written (read-only store, disk full).
+  // component committed twice is stored once), unless the entry says `replace`. Returns the number of rows added. The
+  // records must be durable already (ShardWriter::sync). Throws InvalidArgument for an invalid shard name, IoError when
+  // the index cannot be written (read-only store, disk full).
   std::size_t commit(const std::vector<IndexEntry>& entries);
   std::size_t commit(const IndexEntry& entry) { return commit(std::vector<IndexEntry>{entry}); }
 

@@ -26,9 +26,16 @@ namespace geotandem::tandem {
 // coincident vertices and zero-area triangles. The shift is at most 1/256 of a voxel.
 inline constexpr double kMcVertexMargin = 1.0 / 256.0;
 
+// The default budget of one slab of cross-sections read at once (samples; 32 MiB of floats).
+inline constexpr std::int64_t kMcSlabSamples = std::int64_t{1} << 23;
+
 struct McOptions {
   float iso = 0.0f; // threshold; must not be NaN
   int axis = 0;     // extraction axis (0 = i, 1 = j, 2 = k): the layers are stacked along it
+  // Cross-sections are read from the volume in slabs of as many consecutive sections as fit in
+  // this many samples (at least one): a computed volume then pays its halo once per slab, not
+  // once per section. Values and surfaces do not depend on it.
+  std::int64_t slab_samples = kMcSlabSamples;
 };
 
 // The cells of a whole cube of `shape` samples: [0, n - 1) per axis. A cell (i, j, k) spans the
@@ -38,15 +45,15 @@ volume::Box cube_cells(const volume::Index3& shape);
 // Extracts the layers of one block of cells, in increasing rank.
 // A block of cells [lo, hi) reads samples [lo, hi + 1); layer k (rank k) holds its cells whose
 // index along the axis is k - 1, between cross-sections k - 1 and k, for k = lo + 1 .. hi.
-// Each cross-section is read once, with Volume::read of a box one sample thick along the axis;
-// never more than two are held. Vertices carry the global lattice-edge ids of the whole cube
+// Each cross-section is read once, in slabs of consecutive cross-sections (McOptions::slab_samples);
+// besides the slab, never more than two are held. Vertices carry the global lattice-edge ids of the whole cube
 // (LatticeIds of the volume's shape) and positions computed from the edge's lower-index end:
 //   t = (iso - v0) / (v1 - v0), clamped to [kMcVertexMargin, 1 - kMcVertexMargin],
 // so every block and every axis computes bit-identical vertices.
 // Throws InvalidArgument when the options are invalid or `cells` is empty or not inside the
 // cube's cells; read errors of the volume (IoError, FormatError, ...) pass through.
 // Memory: about 30 bytes per sample of one cross-section of the block (two cross-sections of
-// values, their sign bits, vertex numbers per lattice edge), plus the layer's output.
+// values, their sign bits, vertex numbers per lattice edge), plus one slab and the layer's output.
 // The volume must outlive the extractor; one extractor per thread.
 class LayerExtractor {
 public:

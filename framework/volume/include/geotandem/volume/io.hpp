@@ -3,8 +3,10 @@
 // directory layout), never from a flag.
 //
 // Readers: netCDF-4 / HDF5 / Zarr through GDAL's multidimensional API; GeoTIFF and ENVI through
-// GDAL's classic raster API (one band = one inline slice); SEG-Y through segyio; raw float32 with
-// a JSON sidecar (FILE.raw + FILE.raw.json).
+// GDAL's classic raster API (time-slice stacks: one band per sample, raster x/y = inline/crossline;
+// files geotandem wrote itself say so in their metadata and keep their inline-slice layout); SEG-Y
+// through segyio (sample formats 1, 2, 3, 5, 8, either byte order); raw float32 with a JSON
+// sidecar (FILE.raw + FILE.raw.json).
 // Writers (format from the extension): .nc (netCDF-4), .zarr (Zarr v2), .tif (GeoTIFF, one band
 // per inline), .segy/.sgy (SEG-Y rev 1, IEEE floats), .raw (+ .raw.json).
 
@@ -28,11 +30,20 @@ enum class NanPolicy {
 };
 NanPolicy parse_nan_policy(const std::string& text);
 
+// Where SEG-Y trace headers keep the line numbers: 1-based byte positions of 4-byte integers.
+// The defaults are SEG-Y rev 1's; many files use 9/21, 5/21 or 17/13 instead.
+struct SegyOptions {
+  int inline_byte = 189;
+  int crossline_byte = 193;
+  bool operator==(const SegyOptions&) const = default;
+};
+
 struct OpenOptions {
   NanPolicy nan_policy = NanPolicy::error;
   float fill_value = std::numeric_limits<float>::lowest();
   // For multidimensional files with several 3D arrays: the array's name (empty: the only 3D one).
   std::string variable;
+  SegyOptions segy;
 };
 
 // Opens a cube; throws IoError (missing, unreadable) or FormatError (unknown or broken format),

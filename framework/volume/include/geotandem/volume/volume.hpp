@@ -13,6 +13,14 @@
 
 namespace geotandem::volume {
 
+// A fact about how a file encodes its cube, worth showing a user: key "sample_format", value
+// "16-bit integer (code 3)". Keys are snake_case (JSON); values are text for people.
+struct FormatDetail {
+  std::string key;
+  std::string value;
+  bool operator==(const FormatDetail&) const = default;
+};
+
 class Volume {
 public:
   virtual ~Volume() = default;
@@ -31,6 +39,9 @@ public:
   virtual std::string format() const = 0;
   // Where the samples come from, for messages: a path, or the parameters of a computed volume.
   virtual std::string source() const = 0;
+  // Format-specific facts in display order (SEG-Y: sample format, byte order, header bytes);
+  // empty for formats with nothing to add.
+  virtual std::vector<FormatDetail> format_details() const { return {}; }
 
 protected:
   // Called by read() after the box was checked.

@@ -85,6 +85,12 @@ ExtractResult extract_to_store(const volume::Volume& volume, store::ComponentSto
                                const ExtractSettings& settings, Logger& log, Progress& progress,
                                const CancelToken& cancel);
 
+// The parameters a run records in the store, with its identity (what decides the components: the
+// store refuses to mix runs of different identities). Shared by both routes.
+nlohmann::json extract_run_parameters(const volume::Volume& volume, const ExtractSettings& settings);
+// Logs and records a warning when a run extracted nothing.
+void warn_if_empty(ExtractResult& result, const ExtractSettings& settings, Logger& log);
+
 // The same through the manager/worker runtime (settings.workers local workers; block_size 0 means
 // 64). Called by extract_to_store when settings.workers > 0. Throws InvalidArgument when the
 // volume description or the worker command is missing.

@@ -25,6 +25,9 @@ struct InputSpec {
   std::string file;     // relative paths are relative to the recipe's directory
   std::string variable; // for multidimensional files with several arrays
   std::string nan = "error";
+  // SEG-Y trace header bytes (1-based) of the line numbers: input.segy.{inline,crossline}_byte.
+  int segy_inline_byte = 189;
+  int segy_crossline_byte = 193;
   bool synthetic = false;
   std::string synthetic_kind = "seismic"; // analytic | seismic
   std::int64_t shape[3] = {160, 160, 128};

@@ -1,9 +1,12 @@
 #pragma once
-// The run report: one self-contained HTML file (inline CSS and SVG, no scripts, no network) with
+// The run report: one self-contained HTML file (inline CSS, SVG and scripts, no network) with
 // the recipe, timings, counts before and after each step, the largest components, a bidirectional
-// rose diagram of azimuths, a log-scale volume histogram with the bubble threshold, and the
-// triangles held in memory per layer.
+// rose diagram of azimuths, a log-scale volume histogram with the bubble threshold, the
+// triangles held in memory per layer, and the kept bodies themselves: a map view (inline SVG) and
+// an interactive 3-D view (WebGL through three.js from Debian's libjs-three, inlined; see
+// report_views.hpp for where the bodies come from).
 
+#include <array>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -20,6 +23,33 @@ struct ReportComponent {
   std::uint64_t triangles = 0;
   bool closed = false;
   bool kept = false; // survives the component steps
+};
+
+// Triangles the 3-D view holds for all bodies together (about 2 MB of page); bodies above their
+// share are decimated for display.
+inline constexpr std::size_t kDisplayTriangleBudget = 40000;
+
+// The survey's outline on the map and its sample range, for the body views.
+struct ReportSurvey {
+  bool known = false;                           // false: no views are drawn
+  std::array<std::array<double, 2>, 4> corners; // world x (east), y (north) in metres, in order around
+  double z_min = 0.0, z_max = 0.0;              // first and last sample, in z_unit (down)
+  std::string z_unit = "ms";
+};
+
+// A kept body as the views draw it.
+struct ReportBody {
+  std::uint64_t key = 0;
+  double volume = 0.0;
+  double azimuth = 0.0; // degrees, axial [0, 180)
+  bool closed = false;
+  std::uint64_t full_triangles = 0; // before decimation for display
+  // Surface decimated for display: points relative to the survey's first corner (x, y in metres,
+  // z in z_unit), triangles as point indices.
+  std::vector<std::array<float, 3>> points;
+  std::vector<std::array<std::uint32_t, 3>> triangles;
+  // Convex hull of the full-resolution surface projected on the map (world x, y), in order.
+  std::vector<std::array<double, 2>> footprint;
 };
 
 struct ReportStep {
@@ -44,6 +74,8 @@ struct ReportData {
   std::vector<std::uint64_t> triangles_per_layer; // in memory after each layer
   int azimuth_bins = 18;
   std::vector<std::string> outputs; // files written, relative to the report
+  ReportSurvey survey;              // for the map and 3-D views
+  std::vector<ReportBody> bodies;   // the kept bodies, decimated (report_views.hpp)
 };
 
 // The HTML text. Pure function: tests parse it.
@@ -56,5 +88,17 @@ std::string svg_rose(const std::vector<double>& azimuths, const std::vector<doub
 std::string svg_volume_histogram(const std::vector<double>& volumes, double threshold, const std::string& unit);
 std::string svg_series(const std::vector<std::uint64_t>& values, const std::string& x_label,
                        const std::string& y_label);
+// Map view: the survey outline and every body's footprint coloured by azimuth, north arrow, scale
+// bar, azimuth colour key.
+std::string svg_body_map(const ReportSurvey& survey, const std::vector<ReportBody>& bodies);
+// The 3-D view's HTML: a canvas, the bodies as JSON (script id "geotandem-bodies"), three.js and
+// the viewer script, all inline; or a note saying why it is missing (no three.js installed).
+std::string body_viewer_html(const ReportSurvey& survey, const std::vector<ReportBody>& bodies,
+                             const std::string& volume_unit);
+// How many metres one z unit is drawn as in the 3-D view: the cube's height is half its width.
+double display_z_scale(const ReportSurvey& survey);
+// The colour of an azimuth in both views: hue = 2 x azimuth, so that 0 and 180 degrees (the same
+// axis) share a colour. "#rrggbb".
+std::string azimuth_colour(double azimuth);
 
 } // namespace geotandem::workflow

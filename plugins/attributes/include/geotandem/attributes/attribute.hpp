@@ -15,9 +15,9 @@
 // Index space: filters work in samples along (inline, crossline, sample); the geometry's spacing is
 // not used. Axis 2 (the sample axis, contiguous in memory) is "along the trace".
 //
-// Memory: a large box is computed in tiles (at most kTile samples per axis, each with its own
-// halo) and assembled, so reading a whole cube needs a few tiles' worth of working memory, not a few
-// cubes' worth. Tiles are box-independent like any other box, so the result is unchanged.
+// Memory: a large box is computed in tiles (about kTile samples per axis, at most 5/4 of it, split
+// evenly; each with its own halo) and assembled, so reading a whole cube needs a few tiles' worth of working memory,
+// not a few cubes' worth. Tiles are box-independent like any other box, so the result is unchanged.
 //
 // Thread safety: read() keeps no state between calls, so an attribute may be read from several
 // threads at once if its inputs may.
@@ -39,8 +39,10 @@ using VolumePtr = std::shared_ptr<const Volume>;
 
 class Attribute : public Volume {
 public:
-  // The largest tile computed at once (inline, crossline, sample) by attributes that use tiling.
+  // The nominal tile computed at once (inline, crossline, sample) by attributes that use tiling.
   static constexpr Index3 kTile{64, 64, 256};
+  // How many tiles a box of `n` samples along `axis` is cut into (each at most 5/4 kTile[axis]).
+  static std::int64_t tiles_along(std::int64_t n, int axis);
 
   // The geometry of the (first) input: an attribute has the shape of what it is computed from.
   const Geometry& geometry() const override { return inputs_.front()->geometry(); }
@@ -64,7 +66,7 @@ protected:
   Attribute(std::string name, std::string parameters, std::vector<VolumePtr> inputs, Index3 halo,
             Tiling tiling = Tiling::tiles);
 
-  // Computes the samples of `box` (inside the cube, at most kTile per axis unless whole_box) into
+  // Computes the samples of `box` (inside the cube, at most 5/4 kTile per axis unless whole_box) into
   // `out`, in the box's C order.
   virtual void compute(const Box& box, std::span<float> out) const = 0;
 

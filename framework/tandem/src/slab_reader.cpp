@@ -1,0 +1,40 @@
+#include "slab_reader.hpp"
+
+#include <algorithm>
+#include <cstring>
+
+namespace geotandem::tandem::detail {
+
+SlabReader::SlabReader(const volume::Volume& volume, const volume::Box& samples, int axis, std::int64_t slab_samples)
+    : volume_(volume), samples_(samples), axis_(axis) {
+  const std::int64_t section = samples.count() / std::max<std::int64_t>(1, samples.size(axis));
+  per_slab_ = std::clamp<std::int64_t>(slab_samples / std::max<std::int64_t>(1, section), 1, samples.size(axis));
+}
+
+void SlabReader::read(std::int64_t section, std::span<float> out) {
+  const int a = axis_;
+  if (slab_.empty() || section < slab_.lo[a] || section >= slab_.hi[a]) {
+    slab_ = samples_;
+    slab_.lo[a] = section;
+    slab_.hi[a] = std::min(section + per_slab_, samples_.hi[a]);
+    values_.resize(static_cast<std::size_t>(slab_.count()));
+    volume_.read(slab_, values_);
+  }
+  // The section in the slab's C order: the two other axes keep their order (u slower than v).
+  const int u = a == 0 ? 1 : 0, v = a == 2 ? 1 : 2;
+  const volume::Index3 shape = slab_.shape();
+  const std::int64_t stride[3] = {shape[1] * shape[2], shape[2], 1};
+  const std::int64_t nu = shape[u], nv = shape[v];
+  const float* base = values_.data() + (section - slab_.lo[a]) * stride[a];
+  float* o = out.data();
+  if (stride[v] == 1) {
+    for (std::int64_t iu = 0; iu < nu; ++iu, o += nv)
+      std::memcpy(o, base + iu * stride[u], static_cast<std::size_t>(nv) * sizeof(float));
+    return;
+  }
+  for (std::int64_t iu = 0; iu < nu; ++iu)
+    for (std::int64_t iv = 0; iv < nv; ++iv)
+      *o++ = base[iu * stride[u] + iv * stride[v]];
+}
+
+} // namespace geotandem::tandem::detail

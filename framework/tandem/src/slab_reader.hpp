@@ -1,0 +1,43 @@
+#pragma once
+// Cross-sections of a block served from slabs: one Volume::read fetches several consecutive
+// cross-sections along the extraction axis at once, and the extractor takes them one by one.
+//
+// Why: a computed volume (an attribute chain) pays its halo on every read. Read one cross-section
+// at a time, a chaos attribute with a halo of 12 recomputes every sample about 25 times; read in
+// slabs of T sections, the halo costs (T + 2 halo) / T instead. Sections are asked for in increasing
+// order, so every section is read exactly once and the slab is never read again.
+//
+// Memory: one slab of at most max(slab_samples, one cross-section) samples, plus the copy of the
+// section handed out.
+
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "geotandem/volume/volume.hpp"
+
+namespace geotandem::tandem::detail {
+
+class SlabReader {
+public:
+  // `samples`: the block's samples; `axis`: the axis the sections are stacked along;
+  // `slab_samples`: the budget of one slab (at least one section is always read).
+  SlabReader(const volume::Volume& volume, const volume::Box& samples, int axis, std::int64_t slab_samples);
+
+  // Writes cross-section `section` (a global index along the axis, inside the block) into `out`, in
+  // the C order of the one-sample-thick box. Sections are expected in increasing order; asking
+  // for one before the current slab rereads (correct, only slower).
+  void read(std::int64_t section, std::span<float> out);
+
+  std::int64_t sections_per_slab() const { return per_slab_; }
+
+private:
+  const volume::Volume& volume_;
+  volume::Box samples_;
+  int axis_;
+  std::int64_t per_slab_;
+  volume::Box slab_{};
+  std::vector<float> values_;
+};
+
+} // namespace geotandem::tandem::detail

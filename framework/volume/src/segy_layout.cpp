@@ -1,0 +1,157 @@
+// The binary header of a SEG-Y file: byte order, sample format, trace sizes and count.
+
+#include "segy_layout.hpp"
+
+#include <array>
+#include <filesystem>
+
+#include "geotandem/core/error.hpp"
+
+namespace geotandem::volume::detail::segy {
+namespace {
+
+using TraceHeader = std::array<char, SEGY_TRACE_HEADER_SIZE>;
+using BinaryHeader = std::array<char, SEGY_BINARY_HEADER_SIZE>;
+
+constexpr int kFormatByte = 3225;
+
+bool supported(int format) {
+  return format == SEGY_IBM_FLOAT_4_BYTE || format == SEGY_SIGNED_INTEGER_4_BYTE ||
+         format == SEGY_SIGNED_SHORT_2_BYTE || format == SEGY_IEEE_FLOAT_4_BYTE || format == SEGY_SIGNED_CHAR_1_BYTE;
+}
+
+// SEG-Y rev 2 defines codes 1 to 16; any of them is a plausible value of the field.
+bool plausible_code(int code) {
+  return code >= 1 && code <= 16;
+}
+
+// The sample format code as stored, read in both byte orders; decides the file's byte order.
+// segyio reads headers big-endian until told otherwise.
+bool detect_little_endian(const BinaryHeader& raw, const std::string& path) {
+  const auto hi = static_cast<unsigned char>(raw[kFormatByte - 3201]);
+  const auto lo = static_cast<unsigned char>(raw[kFormatByte - 3200]);
+  const int big = hi << 8 | lo, little = lo << 8 | hi;
+  if (plausible_code(big)) return false;
+  if (plausible_code(little)) return true;
+  throw FormatError("the sample format code at binary header byte 3225 reads " + std::to_string(big) +
+                        " big-endian and " + std::to_string(little) +
+                        " little-endian; neither is a SEG-Y format code (1 to 16)",
+                    {path}, "the binary header is damaged, or the file is not SEG-Y");
+}
+
+int field(const TraceHeader& header, int position) {
+  std::int32_t value = 0;
+  segy_get_field(header.data(), position, &value);
+  return value;
+}
+
+} // namespace
+
+int Layout::sample_size() const {
+  return format == SEGY_SIGNED_SHORT_2_BYTE ? 2 : format == SEGY_SIGNED_CHAR_1_BYTE ? 1 : 4;
+}
+
+int Layout::segyio_format() const {
+  return format | static_cast<int>(little_endian ? SEGY_LSB : SEGY_MSB);
+}
+
+const char* sample_format_name(int format) {
+  switch (format) {
+  case 1: return "IBM float";
+  case 2: return "32-bit integer";
+  case 3: return "16-bit integer";
+  case 4: return "fixed point with gain";
+  case 5: return "IEEE float";
+  case 6: return "64-bit IEEE float";
+  case 7: return "24-bit integer";
+  case 8: return "8-bit integer";
+  case 9: return "64-bit integer";
+  case 10: return "unsigned 32-bit integer";
+  case 11: return "unsigned 16-bit integer";
+  case 12: return "unsigned 64-bit integer";
+  case 15: return "unsigned 24-bit integer";
+  case 16: return "unsigned 8-bit integer";
+  default: return "unknown";
+  }
+}
+
+Layout read_layout(segy_file* file, const std::string& path) {
+  BinaryHeader bin{};
+  if (int status = segy_binheader(file, bin.data()); status != SEGY_OK)
+    throw FormatError(
+        "cannot read the 400-byte binary header after the 3200-byte textual header: " + status_text(status), {path});
+  Layout layout;
+  layout.little_endian = detect_little_endian(bin, path);
+  if (layout.little_endian) {
+    // From here on segyio swaps every header field and sample it hands back to big-endian.
+    segy_set_format(file, static_cast<int>(SEGY_IEEE_FLOAT_4_BYTE) | static_cast<int>(SEGY_LSB));
+    if (int status = segy_binheader(file, bin.data()); status != SEGY_OK)
+      throw FormatError("cannot read the binary header again: " + status_text(status), {path});
+  }
+  layout.format = segy_format(bin.data());
+  if (!supported(layout.format))
+    throw FormatError("sample format code " + std::to_string(layout.format) + " (" + sample_format_name(layout.format) +
+                          ", binary header byte 3225) is not supported",
+                      {path},
+                      "geotandem reads IBM float (1), 32-bit integer (2), 16-bit integer (3), IEEE float (5) and "
+                      "8-bit integer (8) samples in either byte order; convert the file to one of them");
+  // Tells segyio the sample size for sub-trace reads, and the byte order.
+  segy_set_format(file, layout.segyio_format());
+  std::int32_t extended = 0;
+  segy_get_bfield(bin.data(), SEGY_BIN_EXT_HEADERS, &extended);
+  if (extended < 0)
+    throw FormatError("a variable number of extended textual headers (binary header byte 3505 = " +
+                          std::to_string(extended) + ") is not supported",
+                      {path}, "rewrite the file with a fixed number of extended headers");
+  layout.trace0 = segy_trace0(bin.data());
+
+  // Samples per trace and the interval are unsigned 16-bit in SEG-Y rev 1; segyio 1.8 reads them
+  // signed, hence the masks. A zero in the binary header falls back to the first trace header.
+  int& samples = layout.samples;
+  int& interval = layout.interval;
+  samples = segy_samples(bin.data()) & 0xFFFF;
+  std::int32_t value = 0;
+  segy_get_bfield(bin.data(), SEGY_BIN_INTERVAL, &value);
+  interval = value & 0xFFFF;
+  if (samples == 0 || interval == 0) {
+    TraceHeader first{};
+    if (segy_traceheader(file, 0, first.data(), layout.trace0, 0) != SEGY_OK)
+      throw FormatError("the file ends before its first trace header (byte " + std::to_string(layout.trace0) + ")",
+                        {path});
+    if (samples == 0) samples = field(first, SEGY_TR_SAMPLE_COUNT) & 0xFFFF;
+    if (interval == 0) interval = field(first, SEGY_TR_SAMPLE_INTER) & 0xFFFF;
+  }
+  // reliab: intervals above 32767 are a negative number written as signed 16 bits (no survey
+  // samples that slowly): refused, never read as 61.536 ms for -4000.
+  if (interval >= 0x8000)
+    throw FormatError("the sample interval is negative (" + std::to_string(interval - 0x10000) +
+                          "; binary header bytes 3217-3218, or trace header bytes 117-118)",
+                      {path}, "set a positive sample interval in microseconds");
+  if (samples == 0)
+    throw FormatError("no samples per trace: binary header byte 3221 and trace header byte 115 are both 0", {path});
+  layout.trace_bytes = segy_trsize(layout.format, samples);
+
+  std::error_code ec;
+  const auto size = static_cast<long long>(std::filesystem::file_size(path, ec));
+  const long long per_trace = layout.trace_bytes + SEGY_TRACE_HEADER_SIZE;
+  if (size < layout.trace0 + per_trace)
+    throw FormatError("the file has " + std::to_string(size) + " bytes, less than its headers (" +
+                          std::to_string(layout.trace0) + " bytes) and one trace (" + std::to_string(per_trace) +
+                          " bytes)",
+                      {path}, "the file is truncated or not SEG-Y");
+  int status = segy_traces(file, &layout.traces, layout.trace0, layout.trace_bytes);
+  if (status == SEGY_TRACE_SIZE_MISMATCH || (size - layout.trace0) % per_trace != 0) {
+    long long whole = (size - layout.trace0) / per_trace;
+    throw FormatError(
+        "truncated or inconsistent SEG-Y: the file has " + std::to_string(size) + " bytes, but headers of " +
+            std::to_string(layout.trace0) + " bytes plus whole traces of " + std::to_string(per_trace) + " bytes (" +
+            std::to_string(samples) + " samples of " + sample_format_name(layout.format) + ") make " +
+            std::to_string(layout.trace0 + whole * per_trace) + " bytes for " + std::to_string(whole) + " traces or " +
+            std::to_string(layout.trace0 + (whole + 1) * per_trace) + " bytes for " + std::to_string(whole + 1),
+        {path}, "the last trace is incomplete: copy the file again, or check the sample count at byte 3221");
+  }
+  if (status != SEGY_OK) throw FormatError("cannot count the traces: " + status_text(status), {path});
+  return layout;
+}
+
+} // namespace geotandem::volume::detail::segy

@@ -1,0 +1,72 @@
+// `geotandem info` and `extract` on SEG-Y as delivered (little-endian 16-bit integers, line
+// numbers at bytes 9/21), written through segyio, as real child processes.
+
+#include <gtest/gtest.h>
+
+#include <nlohmann/json.hpp>
+
+#include "scratch.hpp"
+#include "segy_fixtures.hpp"
+
+namespace geotandem {
+namespace {
+
+using testing::run_geotandem;
+using testing::ScratchDir;
+
+volume::testing::SegySpec delivered() {
+  volume::testing::SegySpec s;
+  s.format = SEGY_SIGNED_SHORT_2_BYTE;
+  s.little_endian = true;
+  s.inline_byte = 9;
+  s.crossline_byte = 21;
+  return s;
+}
+
+TEST(SegyCli, InfoSuggestsTheHeaderBytesThenShowsThemWithTheEncoding) {
+  ScratchDir dir;
+  const std::string cube = dir.file("f3.sgy");
+  volume::testing::write_with_segyio(cube, delivered());
+
+  auto refused = run_geotandem("-q info '" + cube + "'");
+  EXPECT_EQ(refused.exit_code, 4) << refused.err; // a format error, not an internal one
+  EXPECT_NE(refused.err.find("f3.sgy"), std::string::npos) << refused.err;
+  EXPECT_NE(refused.err.find("--inline-byte 9 --crossline-byte 21"), std::string::npos) << refused.err;
+
+  auto r = run_geotandem("-q info --json --inline-byte 9 --crossline-byte 21 '" + cube + "'");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto j = nlohmann::json::parse(r.out);
+  EXPECT_EQ(j["format"], "SEG-Y");
+  EXPECT_EQ(j["shape"]["inline"], 7);
+  EXPECT_EQ(j["shape"]["crossline"], 9);
+  EXPECT_EQ(j["inline"]["first"], 100);
+  EXPECT_EQ(j["details"]["sample_format"], "16-bit integer (code 3)");
+  EXPECT_EQ(j["details"]["byte_order"], "little-endian");
+  EXPECT_EQ(j["details"]["inline_byte"], "9");
+  EXPECT_EQ(j["details"]["crossline_byte"], "21");
+  EXPECT_EQ(j["values"]["min"].get<double>(), -32768.0); // sample (0, 0, 0) holds the int16 minimum
+
+  auto text = run_geotandem("-q info --no-stats --inline-byte 9 --crossline-byte 21 '" + cube + "'");
+  ASSERT_EQ(text.exit_code, 0) << text.err;
+  EXPECT_NE(text.out.find("sample format:  16-bit integer (code 3)"), std::string::npos) << text.out;
+  EXPECT_NE(text.out.find("byte order:     little-endian"), std::string::npos) << text.out;
+  EXPECT_NE(text.out.find("inline byte:    9"), std::string::npos) << text.out;
+}
+
+TEST(SegyCli, ExtractTakesTheHeaderBytes) {
+  ScratchDir dir;
+  const std::string cube = dir.file("f3.sgy");
+  volume::testing::write_with_segyio(cube, delivered());
+  auto refused = run_geotandem("-q extract '" + cube + "' --iso 20000 --out '" + dir.file("a") + "'");
+  EXPECT_EQ(refused.exit_code, 4) << refused.err;
+  EXPECT_NE(refused.err.find("--inline-byte 9"), std::string::npos) << refused.err;
+  auto r = run_geotandem("-q extract '" + cube + "' --iso 20000 --inline-byte 9 --crossline-byte 21 --out '" +
+                         dir.file("b") + "'");
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  auto bad = run_geotandem("-q extract '" + cube + "' --iso 20000 --inline-byte 221 --out '" + dir.file("c") + "'");
+  EXPECT_EQ(bad.exit_code, 2) << bad.err;
+  EXPECT_NE(bad.err.find("221"), std::string::npos) << bad.err;
+}
+
+} // namespace
+} // namespace geotandem

@@ -1,0 +1,352 @@
+// Stores that refuse mixed runs, damaged records found and repaired, exports that never clobber:
+// `geotandem` as a real child process on real cubes written by `geotandem synth`.
+
+#include <gtest/gtest.h>
+#include <signal.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <filesystem>
+#include <fstream>
+#include <set>
+
+#include <nlohmann/json.hpp>
+
+#include "child_process.hpp"
+#include "geotandem/store/store.hpp"
+#include "scratch.hpp"
+
+namespace geotandem {
+namespace {
+
+using testing::run_geotandem;
+using testing::ScratchDir;
+
+std::string q(const std::string& path) {
+  return "'" + path + "'";
+}
+
+nlohmann::json rows_of(const std::string& store) {
+  auto r = run_geotandem("store ls --json " + q(store));
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  return r.exit_code == 0 ? nlohmann::json::parse(r.out) : nlohmann::json::array();
+}
+
+std::string file_text(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+}
+
+void synth(const std::string& out, int seed) {
+  auto r =
+      run_geotandem("-q synth --kind analytic --shape 64 56 48 --seed " + std::to_string(seed) + " --out " + q(out));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+}
+
+TEST(StoreSafetyCli, ResumingWithOtherParametersIsRefusedAndListsTheDifferences) {
+  ScratchDir dir;
+  const auto cube = dir.file("cube.raw"), store = dir.file("store");
+  synth(cube, 3);
+  auto first = run_geotandem("-q extract " + q(cube) + " --iso 0.5 --out " + q(store));
+  ASSERT_EQ(first.exit_code, 0) << first.err;
+  const auto before = rows_of(store);
+  ASSERT_GT(before.size(), 3u);
+
+  // Another isovalue, another max-error, another axis, another mode: each refused, nothing added.
+  for (const std::string& change :
+       {std::string("--iso 0.6"), std::string("--iso 0.5 --max-error 0.9"), std::string("--iso 0.5 --axis j"),
+        std::string("--iso 0.5 --mode brute"), std::string("--iso 0.5 --block-size 16")}) {
+    auto r = run_geotandem("-q extract " + q(cube) + " " + change + " --out " + q(store));
+    EXPECT_EQ(r.exit_code, 2) << change << "\n" << r.err;
+    EXPECT_NE(r.err.find("another extraction"), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("--out"), std::string::npos) << "says how to proceed: " << r.err;
+    EXPECT_EQ(rows_of(store).size(), before.size()) << change << " mixed components into the store";
+  }
+  auto r = run_geotandem("-q extract " + q(cube) + " --iso 0.6 --max-error 0.9 --out " + q(store));
+  EXPECT_NE(r.err.find("iso: 0.5 in the store, 0.6 now"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("max_error: 0.5 in the store, 0.9 now"), std::string::npos) << r.err;
+
+  EXPECT_NE(r.err.find("--fresh"), std::string::npos) << r.err;
+
+  // The same extraction resumes: everything is already there.
+  auto again = run_geotandem("-q extract " + q(cube) + " --iso 0.5 --out " + q(store));
+  ASSERT_EQ(again.exit_code, 0) << again.err;
+  EXPECT_NE(again.out.find("(" + std::to_string(before.size()) + " already in the store)"), std::string::npos)
+      << again.out;
+  EXPECT_EQ(rows_of(store), before);
+
+  // --fresh replaces the store: it then holds what a clean iso-0.6 extraction holds.
+  auto fresh = run_geotandem("-q extract " + q(cube) + " --iso 0.6 --fresh --out " + q(store));
+  ASSERT_EQ(fresh.exit_code, 0) << fresh.err;
+  ASSERT_EQ(run_geotandem("-q extract " + q(cube) + " --iso 0.6 --out " + q(dir.file("clean"))).exit_code, 0);
+  EXPECT_EQ(rows_of(store), rows_of(dir.file("clean")));
+}
+
+TEST(StoreSafetyCli, ResumingOnAReplacedCubeOfTheSameShapeIsRefused) {
+  ScratchDir dir;
+  const auto cube = dir.file("cube.raw"), store = dir.file("store");
+  synth(cube, 3);
+  ASSERT_EQ(run_geotandem("-q extract " + q(cube) + " --iso 0.5 --out " + q(store)).exit_code, 0);
+  const auto before = rows_of(store);
+  synth(dir.file("other.raw"), 4);
+  std::filesystem::copy_file(dir.file("other.raw"), cube, std::filesystem::copy_options::overwrite_existing);
+  std::filesystem::copy_file(dir.file("other.raw.json"), cube + ".json",
+                             std::filesystem::copy_options::overwrite_existing);
+  auto r = run_geotandem("-q extract " + q(cube) + " --iso 0.5 --out " + q(store));
+  EXPECT_EQ(r.exit_code, 2) << r.err;
+  EXPECT_NE(r.err.find("input."), std::string::npos) << "names the input as what differs: " << r.err;
+  EXPECT_EQ(rows_of(store), before);
+}
+
+TEST(StoreSafetyCli, WorkflowDoesNotReuseAnExtractionOfAReplacedCube) {
+  ScratchDir dir;
+  const auto cube = dir.file("cube.raw");
+  synth(cube, 3);
+  synth(dir.file("other.raw"), 4);
+  {
+    std::ofstream recipe(dir.file("w.yaml"));
+    recipe << "version: 1\ninput:\n  file: cube.raw\nsteps:\n  - step: extract\n    input: input\n    iso: 0.5\n"
+           << "output:\n  directory: " << dir.file("w-out") << "\n";
+  }
+  auto first = run_geotandem("-q run-workflow " + q(dir.file("w.yaml")));
+  ASSERT_EQ(first.exit_code, 0) << first.err;
+  std::filesystem::copy_file(dir.file("other.raw"), cube, std::filesystem::copy_options::overwrite_existing);
+  std::filesystem::copy_file(dir.file("other.raw.json"), cube + ".json",
+                             std::filesystem::copy_options::overwrite_existing);
+  auto second = run_geotandem("run-workflow " + q(dir.file("w.yaml")));
+  EXPECT_EQ(second.exit_code, 2) << second.err;
+  EXPECT_EQ(second.err.find("reusing the finished extraction"), std::string::npos) << second.err;
+  EXPECT_NE(second.err.find("--fresh"), std::string::npos) << second.err;
+
+  // With --fresh the store holds what a clean extraction of the new cube holds.
+  auto fresh = run_geotandem("-q run-workflow " + q(dir.file("w.yaml")) + " --fresh");
+  ASSERT_EQ(fresh.exit_code, 0) << fresh.err;
+  ASSERT_EQ(run_geotandem("-q extract " + q(dir.file("other.raw")) + " --iso 0.5 --block-size 128 --out " +
+                          q(dir.file("clean")))
+                .exit_code,
+            0);
+  std::set<std::uint64_t> got, want;
+  for (const auto& row : rows_of(dir.file("w-out/store")))
+    got.insert(row["key"].get<std::uint64_t>());
+  for (const auto& row : rows_of(dir.file("clean")))
+    want.insert(row["key"].get<std::uint64_t>());
+  EXPECT_FALSE(want.empty());
+  EXPECT_EQ(got, want);
+}
+
+TEST(StoreSafetyCli, FreshRefusesWhileAnotherProcessWritesTheStore) {
+  ScratchDir dir;
+  synth(dir.file("cube.raw"), 3);
+  {
+    std::ofstream recipe(dir.file("w.yaml"));
+    recipe << "version: 1\ninput:\n  file: cube.raw\nsteps:\n  - step: extract\n    input: input\n    iso: 0.5\n"
+           << "output:\n  directory: " << dir.file("w-out") << "\n";
+  }
+  ASSERT_EQ(run_geotandem("-q run-workflow " + q(dir.file("w.yaml"))).exit_code, 0);
+  const auto before = rows_of(dir.file("w-out/store"));
+  {
+    // This test process is the other writer: it holds the store open for writing.
+    auto writer = store::ComponentStore::open(dir.file("w-out/store"), store::OpenMode::read_write);
+    auto r = run_geotandem("-q run-workflow " + q(dir.file("w.yaml")) + " --set steps.extract.iso=0.6 --fresh");
+    EXPECT_EQ(r.exit_code, 3) << r.err;
+    EXPECT_NE(r.err.find("another process is writing this store"), std::string::npos) << r.err;
+    EXPECT_TRUE(store::ComponentStore::exists(dir.file("w-out/store")));
+    EXPECT_EQ(writer.size(), before.size());
+  }
+  auto r = run_geotandem("-q run-workflow " + q(dir.file("w.yaml")) + " --set steps.extract.iso=0.6 --fresh");
+  EXPECT_EQ(r.exit_code, 0) << "once the writer is gone --fresh proceeds: " << r.err;
+}
+
+TEST(StoreSafetyCli, CheckFindsADamagedRecordExportSkipsItAndARerunRepairsIt) {
+  ScratchDir dir;
+  const auto cube = dir.file("cube.raw"), store = dir.file("store");
+  synth(cube, 3);
+  ASSERT_EQ(run_geotandem("-q extract " + q(cube) + " --iso 0.5 --out " + q(store)).exit_code, 0);
+  auto rows = rows_of(store);
+  ASSERT_GT(rows.size(), 3u);
+  auto clean = run_geotandem("-q store check " + q(store));
+  EXPECT_EQ(clean.exit_code, 0) << clean.err;
+  EXPECT_NE(clean.out.find("checked " + std::to_string(rows.size()) + " components"), std::string::npos) << clean.out;
+
+  // Flip one byte in the middle of the second record.
+  const auto& victim = rows[1];
+  const auto shard = dir.file("store/shards/" + victim["shard"].get<std::string>() + ".gts");
+  {
+    std::fstream f(shard, std::ios::in | std::ios::out | std::ios::binary);
+    const auto at =
+        static_cast<std::streamoff>(victim["offset"].get<std::uint64_t>() + victim["length"].get<std::uint64_t>() / 2);
+    f.seekg(at);
+    char c = 0;
+    f.read(&c, 1);
+    c = static_cast<char>(c ^ 0x5a);
+    f.seekp(at);
+    f.write(&c, 1);
+  }
+  const auto key = std::to_string(victim["key"].get<std::uint64_t>());
+  auto check = run_geotandem("-q store check --json " + q(store));
+  EXPECT_EQ(check.exit_code, 4) << check.err;
+  auto report = nlohmann::json::parse(check.out);
+  ASSERT_EQ(report["damaged"].size(), 1u) << check.out;
+  EXPECT_EQ(report["damaged"][0]["key"], victim["key"]);
+  EXPECT_EQ(report["checked"], rows.size());
+
+  auto stops = run_geotandem("-q store export " + q(store) + " --format ply --out " + q(dir.file("all.ply")));
+  EXPECT_EQ(stops.exit_code, 4) << stops.err;
+  EXPECT_FALSE(std::filesystem::exists(dir.file("all.ply")));
+  auto skips = run_geotandem("-q store export " + q(store) + " --format ply --out " + q(dir.file("all.ply")) +
+                             " --skip-damaged");
+  ASSERT_EQ(skips.exit_code, 0) << skips.err;
+  EXPECT_NE(skips.out.find("skipped 1 damaged component: " + key), std::string::npos) << skips.out;
+  EXPECT_NE(skips.out.find("exported " + std::to_string(rows.size() - 1) + " components"), std::string::npos)
+      << skips.out;
+
+  // A rerun of the same extraction writes the damaged one again.
+  auto rerun = run_geotandem("-q extract " + q(cube) + " --iso 0.5 --out " + q(store));
+  ASSERT_EQ(rerun.exit_code, 0) << rerun.err;
+  EXPECT_EQ(run_geotandem("-q store check " + q(store)).exit_code, 0);
+  auto after = rows_of(store);
+  ASSERT_EQ(after.size(), rows.size());
+  for (std::size_t i = 0; i < rows.size(); ++i) {
+    EXPECT_EQ(after[i]["key"], rows[i]["key"]);
+    EXPECT_EQ(after[i]["checksum"], rows[i]["checksum"]) << "the same surface, written again";
+    EXPECT_EQ(after[i]["volume"], rows[i]["volume"]);
+  }
+  EXPECT_EQ(run_geotandem("-q store export " + q(store) + " --format ply --out " + q(dir.file("again.ply"))).exit_code,
+            0);
+}
+
+TEST(StoreSafetyCli, ExportsNeverClobberAFileNorWriteInsideAStore) {
+  ScratchDir dir;
+  const auto cube = dir.file("cube.raw"), store = dir.file("store");
+  synth(cube, 3);
+  ASSERT_EQ(run_geotandem("-q extract " + q(cube) + " --iso 0.5 --out " + q(store)).exit_code, 0);
+  const auto cube_bytes = file_text(cube), index_bytes = file_text(dir.file("store/index.sqlite"));
+
+  auto into_index = run_geotandem("-q store export " + q(store) + " --format obj --out " +
+                                  q(dir.file("store/index.sqlite")) + " --overwrite");
+  EXPECT_EQ(into_index.exit_code, 2) << into_index.err;
+  EXPECT_NE(into_index.err.find("inside a store"), std::string::npos) << into_index.err;
+  auto per_component = run_geotandem("-q store export " + q(store) + " --format obj --per-component --out " +
+                                     q(dir.file("store/shards")));
+  EXPECT_EQ(per_component.exit_code, 2) << per_component.err;
+  EXPECT_EQ(file_text(dir.file("store/index.sqlite")), index_bytes);
+  EXPECT_EQ(run_geotandem("-q store check " + q(store)).exit_code, 0);
+
+  auto onto_cube = run_geotandem("-q store export " + q(store) + " --format obj --out " + q(cube));
+  EXPECT_EQ(onto_cube.exit_code, 3) << onto_cube.err;
+  EXPECT_NE(onto_cube.err.find("--overwrite"), std::string::npos) << onto_cube.err;
+  EXPECT_EQ(file_text(cube), cube_bytes) << "the input cube was overwritten";
+
+  ASSERT_EQ(run_geotandem("-q store export " + q(store) + " --format obj --out " + q(dir.file("b.obj"))).exit_code, 0);
+  EXPECT_EQ(run_geotandem("-q store export " + q(store) + " --format obj --out " + q(dir.file("b.obj"))).exit_code, 3);
+  EXPECT_EQ(
+      run_geotandem("-q store export " + q(store) + " --format obj --out " + q(dir.file("b.obj")) + " --overwrite")
+          .exit_code,
+      0);
+  ASSERT_EQ(run_geotandem("-q store export " + q(store) + " --format ply --per-component --out " + q(dir.file("each")))
+                .exit_code,
+            0);
+  EXPECT_EQ(run_geotandem("-q store export " + q(store) + " --format ply --per-component --out " + q(dir.file("each")))
+                .exit_code,
+            3);
+}
+
+TEST(StoreSafetyCli, CubesAreNeverWrittenOverTheInputNorInsideAStore) {
+  ScratchDir dir;
+  const auto cube = dir.file("cube.raw"), store = dir.file("store");
+  synth(cube, 3);
+  const auto cube_bytes = file_text(cube);
+  {
+    // The attribute cube named after the input, one directory up from the output directory.
+    std::ofstream recipe(dir.file("w.yaml"));
+    recipe << "version: 1\ninput:\n  file: cube.raw\nsteps:\n  - step: extract\n    input: input\n    iso: 0.5\n"
+           << "output:\n  directory: " << dir.file("w-out") << "\n  attribute: ../cube.raw\n";
+  }
+  auto r = run_geotandem("-q run-workflow " + q(dir.file("w.yaml")));
+  EXPECT_EQ(r.exit_code, 3) << r.err;
+  EXPECT_NE(r.err.find("already exists"), std::string::npos) << r.err;
+  EXPECT_EQ(file_text(cube), cube_bytes) << "the input cube was overwritten";
+  auto fresh = run_geotandem("-q run-workflow " + q(dir.file("w.yaml")) + " --fresh");
+  EXPECT_EQ(fresh.exit_code, 3) << fresh.err;
+  EXPECT_EQ(file_text(cube), cube_bytes) << "--fresh overwrote the input cube";
+
+  ASSERT_EQ(run_geotandem("-q extract " + q(cube) + " --iso 0.5 --out " + q(store)).exit_code, 0);
+  auto inside = run_geotandem("-q synth --kind analytic --shape 40 40 40 --out " + q(store + "/shards/x.raw"));
+  EXPECT_EQ(inside.exit_code, 2) << inside.err;
+  EXPECT_NE(inside.err.find("inside a component store"), std::string::npos) << inside.err;
+  EXPECT_FALSE(std::filesystem::exists(store + "/shards/x.raw"));
+}
+
+TEST(StoreSafetyCli, ARunWithoutComponentsWarns) {
+  ScratchDir dir;
+  const auto cube = dir.file("cube.raw"), store = dir.file("store");
+  synth(cube, 3);
+  auto r = run_geotandem("extract " + q(cube) + " --iso 1e9 --out " + q(store));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.err.find("warning: no component was extracted"), std::string::npos) << r.err;
+  auto runs = run_geotandem("store runs --json " + q(store));
+  ASSERT_EQ(runs.exit_code, 0);
+  auto list = nlohmann::json::parse(runs.out);
+  ASSERT_EQ(list.size(), 1u);
+  EXPECT_EQ(list[0]["statistics"]["warnings"].size(), 1u) << runs.out;
+
+  // run-workflow: the report says so too.
+  {
+    std::ofstream recipe(dir.file("w.yaml"));
+    recipe << "version: 1\ninput:\n  file: cube.raw\nsteps:\n  - step: extract\n    input: input\n    iso: 1e9\n"
+           << "output:\n  directory: " << dir.file("w-out") << "\n";
+  }
+  auto w = run_geotandem("-q run-workflow " + q(dir.file("w.yaml")));
+  ASSERT_EQ(w.exit_code, 0) << w.err;
+  EXPECT_NE(w.err.find("no component was extracted"), std::string::npos) << w.err;
+  EXPECT_NE(file_text(dir.file("w-out/report.html")).find("WARNING: no component was extracted"), std::string::npos);
+}
+
+TEST(StoreSafetyCli, AStoreThisUserCannotWriteIsListedCheckedAndExported) {
+  ScratchDir dir;
+  const auto cube = dir.file("cube.raw"), store = dir.file("store");
+  ASSERT_EQ(run_geotandem("-q synth --kind analytic --shape 160 160 120 --out " + q(cube)).exit_code, 0);
+  {
+    // A writer killed mid-run leaves the index's WAL files behind, as on a copied or archived store.
+    testing::Child writer(dir.path().string(), {"-q", "extract", cube, "--iso", "0.5", "--out", store});
+    for (int n = 0; n < 600 && !std::filesystem::exists(store + "/store.json"); ++n)
+      ASSERT_FALSE(writer.wait_for(0.05)) << writer.err();
+    writer.wait_for(0.5);
+    writer.signal(SIGKILL);
+    writer.wait_for(30);
+  }
+  // Another user (root runs the commands as nobody through a user namespace) may read, not write.
+  std::string as_other;
+  if (::geteuid() == 0) {
+    if (std::system("unshare --user true >/dev/null 2>&1") != 0) GTEST_SKIP() << "no user namespaces here";
+    as_other = "unshare --user ";
+  }
+  namespace fs = std::filesystem;
+  for (const auto& entry : fs::recursive_directory_iterator(store))
+    fs::permissions(entry.path(), fs::perms::owner_write | fs::perms::group_write | fs::perms::others_write,
+                    fs::perm_options::remove);
+  fs::permissions(store, fs::perms::owner_write | fs::perms::group_write | fs::perms::others_write,
+                  fs::perm_options::remove);
+  fs::create_directories(dir.file("exports"));
+  fs::permissions(dir.file("exports"), fs::perms::all, fs::perm_options::add);
+  auto run = [&](const std::string& args) {
+    const std::string base = dir.file("ro");
+    int status = std::system(
+        (as_other + "'" + GEOTANDEM_BINARY + "' " + args + " >" + base + ".out 2>" + base + ".err </dev/null").c_str());
+    return std::make_pair(WIFEXITED(status) ? WEXITSTATUS(status) : -1, file_text(base + ".err"));
+  };
+  auto ls = run("-q store ls --json " + q(store));
+  EXPECT_EQ(ls.first, 0) << ls.second;
+  auto check = run("-q store check " + q(store));
+  EXPECT_EQ(check.first, 0) << check.second;
+  auto exported = run("-q store export " + q(store) + " --format ply --out " + q(dir.file("exports/all.ply")));
+  EXPECT_EQ(exported.first, 0) << exported.second;
+  auto resumed = run("-q extract " + q(cube) + " --iso 0.5 --out " + q(store));
+  EXPECT_EQ(resumed.first, 3) << "writing is refused as an I/O error: " << resumed.second;
+  for (const auto& entry : fs::recursive_directory_iterator(store))
+    fs::permissions(entry.path(), fs::perms::owner_write, fs::perm_options::add);
+  fs::permissions(store, fs::perms::owner_write, fs::perm_options::add);
+}
+
+} // namespace
+} // namespace geotandem

@@ -1,0 +1,33 @@
+// libFuzzer target: the SEG-Y reader's headers (textual, binary, trace headers, line geometry). The
+// input is written as a .segy file and opened; when it opens, a small box is read.
+
+#include <unistd.h>
+
+#include <algorithm>
+#include <cstddef>
+#include <cstdint>
+#include <fstream>
+#include <string>
+#include <vector>
+
+#include "geotandem/core/error.hpp"
+#include "geotandem/volume/io.hpp"
+
+using namespace geotandem;
+
+extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
+  static const std::string path = "/tmp/geotandem-fuzz-" + std::to_string(::getpid()) + ".segy";
+  std::ofstream(path, std::ios::binary | std::ios::trunc)
+      .write(reinterpret_cast<const char*>(data), static_cast<std::streamsize>(size));
+  try {
+    auto volume = volume::open_volume(path);
+    const auto& shape = volume->geometry().shape;
+    volume::Box box{{0, 0, 0},
+                    {std::min<std::int64_t>(shape[0], 2), std::min<std::int64_t>(shape[1], 2),
+                     std::min<std::int64_t>(shape[2], 8)}};
+    std::vector<float> samples(box.count());
+    volume->read(box, samples);
+  } catch (const Error&) {
+  }
+  return 0;
+}

@@ -29,7 +29,7 @@ void print_params(const std::vector<workflow::ParamSpec>& specs) {
       for (const auto& c : p.choices)
         std::cout << ' ' << c;
     }
-    std::cout << "\n      " << p.help << "\n";
+    std::cout << "\n      " << p.help << (p.unit.empty() ? "" : " (" + p.unit + ")") << "\n";
   }
 }
 

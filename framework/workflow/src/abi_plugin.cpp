@@ -181,6 +181,9 @@ public:
   }
 
 private:
+  // gt_param_spec is the C form of the one parameter model (geotandem/core/params.hpp): each field
+  // maps to the ParamSpec field of the same name. The C form's bounds are closed and it has no odd
+  // flag or unit (the help carries the unit); values go back to C in CParams above.
   ParamSpec convert(const gt_param_spec& c) {
     ParamSpec s;
     s.name = c.name;

@@ -17,8 +17,9 @@ const std::vector<AttributeSpec>& builtin_attributes() {
   return specs;
 }
 
-std::shared_ptr<Attribute> make_attribute(std::string_view name, std::vector<VolumePtr> inputs,
-                                          const ParamValues& params) {
+namespace {
+
+const AttributeSpec& spec_of(std::string_view name) {
   const AttributeSpec* spec = nullptr;
   for (const AttributeSpec& s : builtin_attributes())
     if (s.name == name) spec = &s;
@@ -28,6 +29,24 @@ std::shared_ptr<Attribute> make_attribute(std::string_view name, std::vector<Vol
       known += (known.empty() ? "" : ", ") + s.name;
     throw InvalidArgument("unknown attribute '" + std::string(name) + "'", {}, "known attributes: " + known);
   }
+  return *spec;
+}
+
+} // namespace
+
+void check_params(std::string_view name, const ParamValues& params) {
+  spec_of(name);
+  if (name == "envelope") return EnvelopeOptions::from_params(params).validate();
+  if (name == "rms") return RmsOptions::from_params(params).validate();
+  if (name == "semblance") return SemblanceOptions::from_params(params).validate();
+  if (name == "chaos") return ChaosOptions::from_params(params).validate();
+  if (name == "normalise") return NormaliseOptions::from_params(params).validate();
+  ProductOptions::from_params(params);
+}
+
+std::shared_ptr<Attribute> make_attribute(std::string_view name, std::vector<VolumePtr> inputs,
+                                          const ParamValues& params) {
+  const AttributeSpec* spec = &spec_of(name);
   if (inputs.size() != static_cast<std::size_t>(spec->inputs))
     throw InvalidArgument("attribute '" + spec->name + "' takes " + std::to_string(spec->inputs) + " input" +
                           (spec->inputs == 1 ? "" : "s") + ", got " + std::to_string(inputs.size()));

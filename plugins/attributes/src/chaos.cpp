@@ -15,56 +15,49 @@ const char* to_string(ChaosFormula formula) {
 
 const AttributeSpec& ChaosOptions::spec() {
   static const AttributeSpec spec{
-      "chaos",
-      "chaos from the eigenvalues l1 >= l2 >= l3 of the gradient structure tensor",
-      1,
-      {{"formula",
-        ParamType::choice,
-        std::string("planarity"),
-        {},
-        false,
-        {"planarity", "marfurt"},
-        "",
-        "planarity: 2 l2/(l1+l2) in [0, 1]; marfurt: 2 l2/(l1+l3) in [0, 2]"},
-       {"sigma_g",
-        ParamType::real,
-        1.0,
-        {0, 20, true},
-        false,
-        {},
-        "samples",
-        "Gaussian width of the gradient (derivative-of-Gaussian filters, truncated at 3 sigma)"},
-       {"sigma_t_across",
-        ParamType::real,
-        2.0,
-        {0, 20, true},
-        false,
-        {},
-        "samples",
-        "Gaussian width of the tensor smoothing on the inline and crossline axes (truncated at 3 sigma)"},
-       {"sigma_t_along",
-        ParamType::real,
-        3.0,
-        {0, 20, true},
-        false,
-        {},
-        "samples",
-        "Gaussian width of the tensor smoothing along the trace (truncated at 3 sigma)"}}};
+      "chaos", "chaos from the eigenvalues l1 >= l2 >= l3 of the gradient structure tensor", 1,
+      with_defaults({{.name = "formula",
+                      .type = ParamType::choice,
+                      .help = "planarity: 2 l2/(l1+l2) in [0, 1]; marfurt: 2 l2/(l1+l3) in [0, 2]",
+                      .choices = {"planarity", "marfurt"}},
+                     {.name = "sigma_g",
+                      .type = ParamType::real,
+                      .help = "Gaussian width of the gradient (derivative-of-Gaussian filters, truncated at 3 sigma)",
+                      .min_value = 0,
+                      .max_value = 20,
+                      .min_open = true,
+                      .unit = "samples"},
+                     {.name = "sigma_t_across",
+                      .type = ParamType::real,
+                      .help = "Gaussian width of the tensor smoothing on the inline and crossline axes (truncated "
+                              "at 3 sigma)",
+                      .min_value = 0,
+                      .max_value = 20,
+                      .min_open = true,
+                      .unit = "samples"},
+                     {.name = "sigma_t_along",
+                      .type = ParamType::real,
+                      .help = "Gaussian width of the tensor smoothing along the trace (truncated at 3 sigma)",
+                      .min_value = 0,
+                      .max_value = 20,
+                      .min_open = true,
+                      .unit = "samples"}},
+                    ChaosOptions{}.to_params())};
   return spec;
 }
 
 ChaosOptions ChaosOptions::from_params(const ParamValues& params) {
-  ParamValues p = resolve(spec(), params);
+  const ParamValues p = resolve(spec(), params);
   ChaosOptions options;
-  options.formula = get_choice(p, "formula") == "marfurt" ? ChaosFormula::marfurt : ChaosFormula::planarity;
-  options.sigma_g = get_real(p, "sigma_g");
-  options.sigma_t_across = get_real(p, "sigma_t_across");
-  options.sigma_t_along = get_real(p, "sigma_t_along");
+  options.formula = p.at("formula").text == "marfurt" ? ChaosFormula::marfurt : ChaosFormula::planarity;
+  options.sigma_g = p.at("sigma_g").real;
+  options.sigma_t_across = p.at("sigma_t_across").real;
+  options.sigma_t_along = p.at("sigma_t_along").real;
   return options;
 }
 
 ParamValues ChaosOptions::to_params() const {
-  return {{"formula", std::string(to_string(formula))},
+  return {{"formula", to_string(formula)},
           {"sigma_g", sigma_g},
           {"sigma_t_across", sigma_t_across},
           {"sigma_t_along", sigma_t_along}};
@@ -73,9 +66,7 @@ ParamValues ChaosOptions::to_params() const {
 void ChaosOptions::validate() const {
   if (formula != ChaosFormula::planarity && formula != ChaosFormula::marfurt)
     throw InvalidArgument("attribute 'chaos': unknown formula value " + std::to_string(static_cast<int>(formula)));
-  check_real(spec(), "sigma_g", sigma_g);
-  check_real(spec(), "sigma_t_across", sigma_t_across);
-  check_real(spec(), "sigma_t_along", sigma_t_along);
+  resolve(spec(), to_params());
 }
 
 namespace {

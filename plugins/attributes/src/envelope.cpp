@@ -9,34 +9,32 @@ namespace geotandem::attributes {
 
 const AttributeSpec& EnvelopeOptions::spec() {
   static const AttributeSpec spec{
-      "envelope",
-      "instantaneous amplitude |u + i H[u]|, Hilbert transform along the trace",
-      1,
-      {{"half_length",
-        ParamType::integer,
-        std::int64_t{32},
-        {2, 512},
-        false,
-        {},
-        "samples",
-        "half-length of the Blackman-windowed FIR Hilbert transformer (2*half_length+1 taps, and the halo "
-        "along the trace); 32 keeps the gain within 4e-4 of 1 from 0.05 to 0.45 cycles per sample"}}};
+      "envelope", "instantaneous amplitude |u + i H[u]|, Hilbert transform along the trace", 1,
+      with_defaults({{.name = "half_length",
+                      .type = ParamType::integer,
+                      .help = "half-length of the Blackman-windowed FIR Hilbert transformer (2*half_length+1 taps, "
+                              "and the halo along the trace); 32 keeps the gain within 4e-4 of 1 from 0.05 to 0.45 "
+                              "cycles per sample",
+                      .min_value = 2,
+                      .max_value = 512,
+                      .unit = "samples"}},
+                    EnvelopeOptions{}.to_params())};
   return spec;
 }
 
 EnvelopeOptions EnvelopeOptions::from_params(const ParamValues& params) {
-  ParamValues p = resolve(spec(), params);
+  const ParamValues p = resolve(spec(), params);
   EnvelopeOptions options;
-  options.half_length = static_cast<int>(get_integer(p, "half_length"));
+  options.half_length = static_cast<int>(p.at("half_length").integer);
   return options;
 }
 
 ParamValues EnvelopeOptions::to_params() const {
-  return {{"half_length", std::int64_t{half_length}}};
+  return {{"half_length", half_length}};
 }
 
 void EnvelopeOptions::validate() const {
-  check_integer(spec(), "half_length", half_length);
+  resolve(spec(), to_params());
 }
 
 namespace {

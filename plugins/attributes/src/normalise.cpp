@@ -14,78 +14,62 @@ const char* to_string(ScaleMethod method) {
 const AttributeSpec& NormaliseOptions::spec() {
   static const AttributeSpec spec{
       "normalise",
-      "the input divided by a robust scale (a percentile of |input| on a sample of the cube) or a fixed value",
-      1,
-      {{"method",
-        ParamType::choice,
-        std::string("percentile"),
-        {},
-        false,
-        {"percentile", "fixed"},
-        "",
-        "percentile: divide by a percentile of |input| estimated on a deterministic sample; fixed: divide by "
-        "'scale'"},
-       {"percentile",
-        ParamType::real,
-        99.0,
-        {0, 100, true},
-        false,
-        {},
-        "percent",
-        "percentile (nearest rank) of |input| used as the scale by method percentile"},
-       {"scale",
-        ParamType::real,
-        1.0,
-        {0, std::numeric_limits<double>::infinity(), true, true},
-        false,
-        {},
-        "",
-        "the divisor used by method fixed, in the input's units"},
-       {"sample_boxes",
-        ParamType::integer,
-        std::int64_t{4},
-        {1, 16},
-        false,
-        {},
-        "",
-        "boxes per axis in the regular grid sampled by method percentile"},
-       {"sample_edge",
-        ParamType::integer,
-        std::int64_t{16},
-        {1, 256},
-        false,
-        {},
-        "samples",
-        "edge of one sampling box (clipped to the cube)"}}};
+      "the input divided by a robust scale (a percentile of |input| on a sample of the cube) or a fixed value", 1,
+      with_defaults({{.name = "method",
+                      .type = ParamType::choice,
+                      .help = "percentile: divide by a percentile of |input| estimated on a deterministic sample; "
+                              "fixed: divide by 'scale'",
+                      .choices = {"percentile", "fixed"}},
+                     {.name = "percentile",
+                      .type = ParamType::real,
+                      .help = "percentile (nearest rank) of |input| used as the scale by method percentile",
+                      .min_value = 0,
+                      .max_value = 100,
+                      .min_open = true,
+                      .unit = "percent"},
+                     {.name = "scale",
+                      .type = ParamType::real,
+                      .help = "the divisor used by method fixed, in the input's units",
+                      .min_value = 0,
+                      .min_open = true},
+                     {.name = "sample_boxes",
+                      .type = ParamType::integer,
+                      .help = "boxes per axis in the regular grid sampled by method percentile",
+                      .min_value = 1,
+                      .max_value = 16},
+                     {.name = "sample_edge",
+                      .type = ParamType::integer,
+                      .help = "edge of one sampling box (clipped to the cube)",
+                      .min_value = 1,
+                      .max_value = 256,
+                      .unit = "samples"}},
+                    NormaliseOptions{}.to_params())};
   return spec;
 }
 
 NormaliseOptions NormaliseOptions::from_params(const ParamValues& params) {
-  ParamValues p = resolve(spec(), params);
+  const ParamValues p = resolve(spec(), params);
   NormaliseOptions options;
-  options.method = get_choice(p, "method") == "fixed" ? ScaleMethod::fixed : ScaleMethod::percentile;
-  options.percentile = get_real(p, "percentile");
-  options.scale = get_real(p, "scale");
-  options.sample_boxes = static_cast<int>(get_integer(p, "sample_boxes"));
-  options.sample_edge = static_cast<int>(get_integer(p, "sample_edge"));
+  options.method = p.at("method").text == "fixed" ? ScaleMethod::fixed : ScaleMethod::percentile;
+  options.percentile = p.at("percentile").real;
+  options.scale = p.at("scale").real;
+  options.sample_boxes = static_cast<int>(p.at("sample_boxes").integer);
+  options.sample_edge = static_cast<int>(p.at("sample_edge").integer);
   return options;
 }
 
 ParamValues NormaliseOptions::to_params() const {
-  return {{"method", std::string(to_string(method))},
+  return {{"method", to_string(method)},
           {"percentile", percentile},
           {"scale", scale},
-          {"sample_boxes", std::int64_t{sample_boxes}},
-          {"sample_edge", std::int64_t{sample_edge}}};
+          {"sample_boxes", sample_boxes},
+          {"sample_edge", sample_edge}};
 }
 
 void NormaliseOptions::validate() const {
   if (method != ScaleMethod::percentile && method != ScaleMethod::fixed)
     throw InvalidArgument("attribute 'normalise': unknown method value " + std::to_string(static_cast<int>(method)));
-  check_real(spec(), "percentile", percentile);
-  check_real(spec(), "scale", scale);
-  check_integer(spec(), "sample_boxes", sample_boxes);
-  check_integer(spec(), "sample_edge", sample_edge);
+  resolve(spec(), to_params());
 }
 
 namespace {
@@ -97,7 +81,7 @@ NormaliseOptions validated(const NormaliseOptions& options) {
 // The parameters that matter for the chosen method, for source().
 std::string describe(const NormaliseOptions& o) {
   ParamValues p = o.to_params();
-  if (o.method == ScaleMethod::fixed) return "method=fixed, scale=" + to_string(p.at("scale"));
+  if (o.method == ScaleMethod::fixed) return "method=fixed, scale=" + p.at("scale").text;
   p.erase("scale");
   return to_string(p);
 }
@@ -145,7 +129,7 @@ double Normalise::estimate_scale() const {
   std::nth_element(magnitudes.begin(), magnitudes.begin() + static_cast<std::ptrdiff_t>(rank), magnitudes.end());
   const double scale = magnitudes[rank];
   if (!(scale > 0.0))
-    throw DataError("the " + to_string(ParamValue{options_.percentile}) + "th percentile of |input| over " +
+    throw DataError("the " + number_text(options_.percentile) + "th percentile of |input| over " +
                         std::to_string(magnitudes.size()) + " sampled values is 0, so it cannot be a scale",
                     {inputs().front()->source()}, "use method fixed with a scale, or a higher percentile");
   return scale;

@@ -8,33 +8,32 @@
 namespace geotandem::attributes {
 
 const AttributeSpec& RmsOptions::spec() {
-  static const AttributeSpec spec{"rms",
-                                  "root mean square amplitude in a sliding window along the trace",
-                                  1,
-                                  {{"window",
-                                    ParamType::integer,
-                                    std::int64_t{9},
-                                    {1, 1001},
-                                    true,
-                                    {},
-                                    "samples",
-                                    "length of the centred window along the trace, about one dominant period"}}};
+  static const AttributeSpec spec{
+      "rms", "root mean square amplitude in a sliding window along the trace", 1,
+      with_defaults({{.name = "window",
+                      .type = ParamType::integer,
+                      .help = "length of the centred window along the trace, about one dominant period",
+                      .min_value = 1,
+                      .max_value = 1001,
+                      .odd = true,
+                      .unit = "samples"}},
+                    RmsOptions{}.to_params())};
   return spec;
 }
 
 RmsOptions RmsOptions::from_params(const ParamValues& params) {
-  ParamValues p = resolve(spec(), params);
+  const ParamValues p = resolve(spec(), params);
   RmsOptions options;
-  options.window = static_cast<int>(get_integer(p, "window"));
+  options.window = static_cast<int>(p.at("window").integer);
   return options;
 }
 
 ParamValues RmsOptions::to_params() const {
-  return {{"window", std::int64_t{window}}};
+  return {{"window", window}};
 }
 
 void RmsOptions::validate() const {
-  check_integer(spec(), "window", window);
+  resolve(spec(), to_params());
 }
 
 namespace {

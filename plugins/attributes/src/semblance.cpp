@@ -9,43 +9,39 @@ namespace geotandem::attributes {
 
 const AttributeSpec& SemblanceOptions::spec() {
   static const AttributeSpec spec{
-      "semblance",
-      "Marfurt semblance of a square of traces in a window along the trace (1 = identical traces)",
-      1,
-      {{"traces",
-        ParamType::integer,
-        std::int64_t{3},
-        {3, 21},
-        true,
-        {},
-        "traces",
-        "width of the square of traces centred on the output trace (3 gives 3 x 3 traces)"},
-       {"window",
-        ParamType::integer,
-        std::int64_t{9},
-        {1, 1001},
-        true,
-        {},
-        "samples",
-        "length of the centred window along the trace"}}};
+      "semblance", "Marfurt semblance of a square of traces in a window along the trace (1 = identical traces)", 1,
+      with_defaults({{.name = "traces",
+                      .type = ParamType::integer,
+                      .help = "width of the square of traces centred on the output trace (3 gives 3 x 3 traces)",
+                      .min_value = 3,
+                      .max_value = 21,
+                      .odd = true,
+                      .unit = "traces"},
+                     {.name = "window",
+                      .type = ParamType::integer,
+                      .help = "length of the centred window along the trace",
+                      .min_value = 1,
+                      .max_value = 1001,
+                      .odd = true,
+                      .unit = "samples"}},
+                    SemblanceOptions{}.to_params())};
   return spec;
 }
 
 SemblanceOptions SemblanceOptions::from_params(const ParamValues& params) {
-  ParamValues p = resolve(spec(), params);
+  const ParamValues p = resolve(spec(), params);
   SemblanceOptions options;
-  options.traces = static_cast<int>(get_integer(p, "traces"));
-  options.window = static_cast<int>(get_integer(p, "window"));
+  options.traces = static_cast<int>(p.at("traces").integer);
+  options.window = static_cast<int>(p.at("window").integer);
   return options;
 }
 
 ParamValues SemblanceOptions::to_params() const {
-  return {{"traces", std::int64_t{traces}}, {"window", std::int64_t{window}}};
+  return {{"traces", traces}, {"window", window}};
 }
 
 void SemblanceOptions::validate() const {
-  check_integer(spec(), "traces", traces);
-  check_integer(spec(), "window", window);
+  resolve(spec(), to_params());
 }
 
 namespace {

@@ -20,6 +20,7 @@
 
 #include "geotandem/core/cancel.hpp"
 #include "geotandem/core/log.hpp"
+#include "geotandem/core/params.hpp"
 #include "geotandem/core/progress.hpp"
 #include "geotandem/volume/volume.hpp"
 #include "geotandem/workflow/plugin_abi.h"
@@ -33,41 +34,15 @@ namespace geotandem::workflow {
 struct ExtractResult;
 struct ReportData;
 
-enum class ParamType { integer, real, boolean, text, choice };
-const char* to_string(ParamType type);
-
-// One parameter model for the C ABI (gt_param_spec is its C form), the registry, recipes, the
-// command line and the built-in attributes (whose declarations convert to it without loss): a
-// declared parameter, and its value after validation.
-struct ParamSpec {
-  std::string name;
-  ParamType type = ParamType::real;
-  std::optional<std::string> default_value; // empty: required
-  std::string help;
-  std::optional<double> min_value;  // for integer and real; inclusive unless min_open
-  std::optional<double> max_value;  // inclusive unless max_open
-  std::vector<std::string> choices; // for choice
-  bool min_open = false;
-  bool max_open = false;
-  bool odd = false; // integers that must be odd (window lengths)
-  std::string unit; // "samples", "degrees", ...; empty when the help says it
-};
-
-// A parameter value after validation against its spec.
-struct ParamValue {
-  ParamType type = ParamType::real;
-  std::int64_t integer = 0;
-  double real = 0.0;
-  bool boolean = false;
-  std::string text;
-};
-using ParamValues = std::map<std::string, ParamValue>;
-
-// Parses `text` for `spec` (a recipe value or a default), checks type and range; throws
-// InvalidArgument with a message naming the parameter, the value and what is allowed.
-ParamValue parse_param(const ParamSpec& spec, const std::string& text);
-// Every parameter of `specs` at its default (throws InvalidArgument naming a required one).
-ParamValues default_values(const std::vector<ParamSpec>& specs);
+// The one parameter model (geotandem/core/params.hpp), shared with the built-in attributes; the C
+// ABI's gt_param_spec is its C form (mapped in abi_plugin.cpp).
+using geotandem::default_values;
+using geotandem::ParamSpec;
+using geotandem::ParamType;
+using geotandem::ParamValue;
+using geotandem::ParamValues;
+using geotandem::parse_param;
+using geotandem::to_string;
 
 // The kinds of steps, in the order a chain runs them: volume steps (attributes, including
 // combinators such as a product), one extraction, component steps, exports, the report.

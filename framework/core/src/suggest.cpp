@@ -1,9 +1,9 @@
-#include "geotandem/workflow/suggest.hpp"
+#include "geotandem/core/suggest.hpp"
 
 #include <algorithm>
 #include <limits>
 
-namespace geotandem::workflow {
+namespace geotandem {
 
 std::size_t edit_distance(const std::string& a, const std::string& b) {
   // Optimal string alignment distance over three rows.
@@ -45,4 +45,4 @@ std::string suggestion_hint(const std::string& word, const std::vector<std::stri
   return "expected one of: " + list;
 }
 
-} // namespace geotandem::workflow
+} // namespace geotandem

@@ -1,0 +1,99 @@
+#pragma once
+// The one parameter model. Every step declares its parameters as ParamSpecs: the built-in
+// attributes (plugins/attributes), the workflow's own steps (framework/workflow), and plugins
+// through the C ABI (gt_param_spec in plugin_abi.h is this struct's C form, mapped in
+// abi_plugin.cpp). Recipes, the command line and C++ callers give values; the functions below
+// check them against the declaration with the same messages wherever they come from.
+
+#include <concepts>
+#include <cstdint>
+#include <map>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace geotandem {
+
+enum class ParamType { integer, real, boolean, text, choice };
+// "integer", "real", "boolean", "text", "choice".
+const char* to_string(ParamType type);
+
+// A declared parameter.
+struct ParamSpec {
+  std::string name;
+  ParamType type = ParamType::real;
+  std::optional<std::string> default_value; // as a recipe writes it; empty: required
+  std::string help;                         // one sentence
+  std::optional<double> min_value;          // integer and real; inclusive unless min_open
+  std::optional<double> max_value;          // inclusive unless max_open
+  std::vector<std::string> choices;         // choice: the accepted words
+  bool min_open = false;
+  bool max_open = false;
+  bool odd = false; // integers that must be odd (centred window lengths)
+  std::string unit; // "samples", "traces", "percent", ...; empty when there is none
+
+  // Whether `value` lies in the declared interval (NaN never does).
+  bool in_range(double value) const;
+  // The interval with its open and closed ends: "[1, 1001]", "(0, 20]", "(0, inf)".
+  std::string range_text() const;
+  // What the parameter accepts, for messages: "an odd integer in [1, 1001]", "a real in (0, 20]",
+  // "one of planarity, marfurt", "true or false", "an integer", "text".
+  std::string valid_values() const;
+};
+
+// A parameter value: as given (a recipe's text parsed, or a typed C++ value), and after checking
+// against its spec, of the spec's type. `text` is the value as written: the recipe's own text, or
+// the shortest text that reads back to a C++ value ("9", "2.5", "planarity").
+struct ParamValue {
+  ParamType type = ParamType::text;
+  std::int64_t integer = 0; // integer (and the integer's value as `real`)
+  double real = 0.0;        // real
+  bool boolean = false;     // boolean
+  std::string text;         // every type; the word of text and choice
+
+  ParamValue() = default;
+  template <std::integral T>
+  requires(!std::same_as<T, bool>) ParamValue(T value) : ParamValue(integer_value(static_cast<std::int64_t>(value))) {}
+  ParamValue(double value);
+  ParamValue(bool value);
+  ParamValue(std::string word);
+  ParamValue(const char* word) : ParamValue(std::string(word)) {}
+
+  // Same type and same value of that type (a real's text "1.0" equals "1"; a choice equals the same
+  // word as text).
+  friend bool operator==(const ParamValue& a, const ParamValue& b);
+
+private:
+  static ParamValue integer_value(std::int64_t value);
+};
+
+// Parameters by name: as given (possibly partial) or resolved (every declared one).
+using ParamValues = std::map<std::string, ParamValue, std::less<>>;
+
+// The shortest text that reads back to `value` ("2", "0.5", "1e+30", "inf").
+std::string number_text(double value);
+// "name=value, name=value" in the map's order, for messages and descriptions.
+std::string to_string(const ParamValues& values);
+
+// Every error below is an InvalidArgument whose message names the parameter, the value and what is
+// allowed, prefixed by `owner` when given ("attribute 'chaos': parameter 'sigma_g' is 0, out of
+// range: it must be a real in (0, 20]"), with a hint (the range in words, the nearest choice, the
+// odd neighbours, or the parameter's help).
+
+// Parses `text` (a recipe value or a default) for `spec` and checks it.
+ParamValue parse_param(const ParamSpec& spec, const std::string& text, std::string_view owner = {});
+// Checks a typed value against `spec` and returns it as the spec's type: an integer is accepted for
+// a real, and a word for a choice.
+ParamValue check_param(const ParamSpec& spec, const ParamValue& value, std::string_view owner = {});
+
+// The declaration called `name`; throws InvalidArgument listing the known names (with the nearest).
+const ParamSpec& find_param(const std::vector<ParamSpec>& specs, std::string_view name, std::string_view owner = {});
+
+// Every parameter of `specs`: the given value checked, or the default. Throws InvalidArgument for
+// an unknown name, a required parameter not given, or a value check_param refuses.
+ParamValues resolve_params(const std::vector<ParamSpec>& specs, const ParamValues& given, std::string_view owner = {});
+// Every parameter of `specs` at its default (throws InvalidArgument naming a required one).
+ParamValues default_values(const std::vector<ParamSpec>& specs);
+
+} // namespace geotandem

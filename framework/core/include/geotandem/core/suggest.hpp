@@ -1,0 +1,19 @@
+#pragma once
+// "Did you mean ...?" for unknown keys, names and choices.
+
+#include <string>
+#include <vector>
+
+namespace geotandem {
+
+// Edit distance (insertions, deletions, substitutions, adjacent swaps).
+std::size_t edit_distance(const std::string& a, const std::string& b);
+
+// The candidate closest to `word` when it is close enough to be a plausible typo (distance at most
+// max(2, |word| / 3)); empty otherwise.
+std::string nearest(const std::string& word, const std::vector<std::string>& candidates);
+
+// "did you mean 'x'?" or, when nothing is close, "expected one of: a, b, c".
+std::string suggestion_hint(const std::string& word, const std::vector<std::string>& candidates);
+
+} // namespace geotandem

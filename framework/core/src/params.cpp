@@ -1,0 +1,258 @@
+#include "geotandem/core/params.hpp"
+
+#include <cerrno>
+#include <charconv>
+#include <cmath>
+#include <cstdlib>
+
+#include "geotandem/core/error.hpp"
+#include "geotandem/core/suggest.hpp"
+
+namespace geotandem {
+namespace {
+
+std::string list_of(const std::vector<std::string>& words) {
+  std::string text;
+  for (const auto& w : words)
+    text += (text.empty() ? "" : ", ") + w;
+  return text;
+}
+
+// "attribute 'chaos': parameter 'sigma_g'" or "parameter 'sigma_g'".
+std::string named(const ParamSpec& spec, std::string_view owner) {
+  return (owner.empty() ? std::string() : std::string(owner) + ": ") + "parameter '" + spec.name + "'";
+}
+
+std::string help_hint(const ParamSpec& spec) {
+  return spec.help.empty() ? std::string() : spec.name + ": " + spec.help;
+}
+
+// The interval in words, for hints: "between 0.1 and 10", "above 0 and at most 20", "at least 8".
+std::string range_words(const ParamSpec& spec) {
+  const auto& lo = spec.min_value;
+  const auto& hi = spec.max_value;
+  if (lo && hi && !spec.min_open && !spec.max_open) return "between " + number_text(*lo) + " and " + number_text(*hi);
+  std::string text;
+  if (lo) text += (spec.min_open ? "above " : "at least ") + number_text(*lo);
+  if (lo && hi) text += " and ";
+  if (hi) text += (spec.max_open ? "below " : "at most ") + number_text(*hi);
+  return text;
+}
+
+[[noreturn]] void wrong_type(const ParamSpec& spec, const std::string& text, std::string_view owner) {
+  throw InvalidArgument(named(spec, owner) + " is '" + text + "', not " + spec.valid_values(), {}, help_hint(spec));
+}
+
+void check_number(const ParamSpec& spec, double value, const std::string& text, std::string_view owner) {
+  if (!spec.in_range(value))
+    throw InvalidArgument(named(spec, owner) + " is " + text + ", out of range: it must be " + spec.valid_values(), {},
+                          "use a value " + range_words(spec));
+}
+
+void check_odd(const ParamSpec& spec, std::int64_t n, std::string_view owner) {
+  if (!spec.odd || n % 2 != 0) return;
+  std::string neighbours;
+  for (std::int64_t m : {n - 1, n + 1})
+    if (spec.in_range(static_cast<double>(m))) neighbours += (neighbours.empty() ? "" : " or ") + std::to_string(m);
+  throw InvalidArgument(named(spec, owner) + " is " + std::to_string(n) + ", not odd: it must be " +
+                            spec.valid_values(),
+                        {}, "a centred window has an odd length: use " + neighbours);
+}
+
+void check_choice(const ParamSpec& spec, const std::string& word, std::string_view owner) {
+  for (const auto& c : spec.choices)
+    if (c == word) return;
+  throw InvalidArgument(named(spec, owner) + " is '" + word + "', not a known choice: it must be " +
+                            spec.valid_values(),
+                        {}, suggestion_hint(word, spec.choices));
+}
+
+} // namespace
+
+const char* to_string(ParamType type) {
+  switch (type) {
+  case ParamType::integer: return "integer";
+  case ParamType::real: return "real";
+  case ParamType::boolean: return "boolean";
+  case ParamType::text: return "text";
+  case ParamType::choice: return "choice";
+  }
+  return "?";
+}
+
+std::string number_text(double value) {
+  if (std::isinf(value)) return value > 0 ? "inf" : "-inf";
+  char buffer[64];
+  auto result = std::to_chars(buffer, buffer + sizeof buffer, value);
+  return std::string(buffer, result.ptr);
+}
+
+bool ParamSpec::in_range(double value) const {
+  if (std::isnan(value)) return false;
+  bool above = !min_value || (min_open ? value > *min_value : value >= *min_value);
+  bool below = !max_value || (max_open ? value < *max_value : value <= *max_value);
+  return above && below;
+}
+
+std::string ParamSpec::range_text() const {
+  const bool closed_lo = min_value && !min_open && std::isfinite(*min_value);
+  const bool closed_hi = max_value && !max_open && std::isfinite(*max_value);
+  return std::string(closed_lo ? "[" : "(") + (min_value ? number_text(*min_value) : "-inf") + ", " +
+         (max_value ? number_text(*max_value) : "inf") + (closed_hi ? "]" : ")");
+}
+
+std::string ParamSpec::valid_values() const {
+  const bool bounded = min_value || max_value;
+  switch (type) {
+  case ParamType::integer:
+    return std::string(odd ? "an odd integer" : "an integer") + (bounded ? " in " + range_text() : "");
+  case ParamType::real: return bounded ? "a real in " + range_text() : "a real";
+  case ParamType::boolean: return "true or false";
+  case ParamType::text: return "text";
+  case ParamType::choice: return "one of " + list_of(choices);
+  }
+  return "?";
+}
+
+ParamValue ParamValue::integer_value(std::int64_t value) {
+  ParamValue v;
+  v.type = ParamType::integer;
+  v.integer = value;
+  v.real = static_cast<double>(value);
+  v.text = std::to_string(value);
+  return v;
+}
+
+ParamValue::ParamValue(double value) : type(ParamType::real), real(value), text(number_text(value)) {}
+
+ParamValue::ParamValue(bool value) : type(ParamType::boolean), boolean(value), text(value ? "true" : "false") {}
+
+ParamValue::ParamValue(std::string word) : type(ParamType::text), text(std::move(word)) {}
+
+bool operator==(const ParamValue& a, const ParamValue& b) {
+  auto family = [](ParamType t) { return t == ParamType::choice ? ParamType::text : t; }; // a word either way
+  if (family(a.type) != family(b.type)) return false;
+  switch (a.type) {
+  case ParamType::integer: return a.integer == b.integer;
+  case ParamType::real: return a.real == b.real;
+  case ParamType::boolean: return a.boolean == b.boolean;
+  case ParamType::text:
+  case ParamType::choice: return a.text == b.text;
+  }
+  return false;
+}
+
+std::string to_string(const ParamValues& values) {
+  std::string text;
+  for (const auto& [name, value] : values)
+    text += (text.empty() ? "" : ", ") + name + "=" + value.text;
+  return text;
+}
+
+ParamValue parse_param(const ParamSpec& spec, const std::string& text, std::string_view owner) {
+  ParamValue v;
+  v.type = spec.type;
+  v.text = text;
+  switch (spec.type) {
+  case ParamType::integer: {
+    char* end = nullptr;
+    errno = 0;
+    long long n = std::strtoll(text.c_str(), &end, 10);
+    if (text.empty() || *end != '\0' || errno) wrong_type(spec, text, owner);
+    v.integer = n;
+    v.real = static_cast<double>(n);
+    check_number(spec, v.real, text, owner);
+    check_odd(spec, n, owner);
+    break;
+  }
+  case ParamType::real: {
+    char* end = nullptr;
+    errno = 0;
+    double x = std::strtod(text.c_str(), &end);
+    if (text.empty() || *end != '\0' || errno || !std::isfinite(x)) wrong_type(spec, text, owner);
+    v.real = x;
+    check_number(spec, x, text, owner);
+    break;
+  }
+  case ParamType::boolean:
+    if (text == "true" || text == "yes" || text == "on")
+      v.boolean = true;
+    else if (text == "false" || text == "no" || text == "off")
+      v.boolean = false;
+    else
+      wrong_type(spec, text, owner);
+    break;
+  case ParamType::text: break;
+  case ParamType::choice: check_choice(spec, text, owner); break;
+  }
+  return v;
+}
+
+ParamValue check_param(const ParamSpec& spec, const ParamValue& value, std::string_view owner) {
+  ParamValue v = value;
+  switch (spec.type) {
+  case ParamType::integer:
+    if (value.type != ParamType::integer) wrong_type(spec, value.text, owner);
+    check_number(spec, v.real, v.text, owner);
+    check_odd(spec, v.integer, owner);
+    break;
+  case ParamType::real:
+    if (value.type == ParamType::integer) v = ParamValue(static_cast<double>(value.integer));
+    if (v.type != ParamType::real || !std::isfinite(v.real)) wrong_type(spec, v.text, owner);
+    check_number(spec, v.real, v.text, owner);
+    break;
+  case ParamType::boolean:
+    if (value.type != ParamType::boolean) wrong_type(spec, value.text, owner);
+    break;
+  case ParamType::text:
+  case ParamType::choice:
+    if (value.type != ParamType::text && value.type != ParamType::choice) wrong_type(spec, value.text, owner);
+    if (spec.type == ParamType::choice) check_choice(spec, v.text, owner);
+    v.type = spec.type;
+    break;
+  }
+  return v;
+}
+
+const ParamSpec& find_param(const std::vector<ParamSpec>& specs, std::string_view name, std::string_view owner) {
+  std::vector<std::string> names;
+  for (const auto& p : specs) {
+    if (p.name == name) return p;
+    names.push_back(p.name);
+  }
+  const std::string close = nearest(std::string(name), names);
+  throw InvalidArgument(
+      (owner.empty() ? std::string("unknown parameter '") : std::string(owner) + " has no parameter '") +
+          std::string(name) + "'",
+      {},
+      names.empty()
+          ? "it takes no parameters"
+          : (close.empty() ? std::string() : "did you mean '" + close + "'? ") + "known parameters: " + list_of(names));
+}
+
+ParamValues resolve_params(const std::vector<ParamSpec>& specs, const ParamValues& given, std::string_view owner) {
+  for (const auto& entry : given)
+    find_param(specs, entry.first, owner); // unknown names throw
+  ParamValues out;
+  for (const auto& spec : specs) {
+    auto found = given.find(spec.name);
+    if (found != given.end())
+      out.emplace(spec.name, check_param(spec, found->second, owner));
+    else if (spec.default_value)
+      out.emplace(spec.name, parse_param(spec, *spec.default_value, owner));
+    else
+      throw InvalidArgument(named(spec, owner) + " is required", {}, help_hint(spec));
+  }
+  return out;
+}
+
+ParamValues default_values(const std::vector<ParamSpec>& specs) {
+  ParamValues values;
+  for (const auto& spec : specs) {
+    if (!spec.default_value) throw InvalidArgument("parameter '" + spec.name + "' has no default", {}, help_hint(spec));
+    values[spec.name] = parse_param(spec, *spec.default_value);
+  }
+  return values;
+}
+
+} // namespace geotandem

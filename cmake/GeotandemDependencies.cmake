@@ -7,6 +7,7 @@ find_package(nlohmann_json 3.10 REQUIRED)
 find_package(CLI11 CONFIG REQUIRED)
 find_package(SQLite3 REQUIRED)
 find_package(ZLIB REQUIRED)
+find_package(cppzmq REQUIRED) # libzmq3-dev, cppzmq-dev: private to geotandem::runtime
 
 # Debian's segyio package config names a library file for no build configuration; wrap the header
 # and library ourselves.

@@ -3,6 +3,8 @@
 // in recipes (workflow::extract_params()).
 
 #include <iostream>
+#include <optional>
+#include <thread>
 
 #include "command.hpp"
 #include "geotandem/core/error.hpp"
@@ -41,6 +43,7 @@ void add_extract_command(CLI::App& app, Context& context, Runner& run) {
     std::string iso, max_error = default_of("max_error"), isotropy = default_of("isotropy"), axis = default_of("axis"),
                      block_size = default_of("block_size"), mode = default_of("mode");
     bool no_extended_time_lag = false;
+    std::optional<std::size_t> workers;
     bool fresh = false; // reliab
     volume::SegyOptions segy;
   };
@@ -76,6 +79,9 @@ void add_extract_command(CLI::App& app, Context& context, Runner& run) {
   cmd->add_option("--nan", a->nan, "NaN or infinite samples: error, or fill (treated as outside)")
       ->capture_default_str();
   cmd->add_option("--variable", a->variable, "the array to read from a multidimensional file with several");
+  cmd->add_option("--workers", a->workers,
+                  "local worker processes extracting and merging the blocks (manager/worker runtime); 0: in this "
+                  "process (the default). Use with --block-size; --workers $(nproc) uses every core");
   // reliab: start afresh instead of resuming (refused while another process writes the store).
   cmd->add_flag("--fresh", a->fresh, "replace the store in --out instead of resuming it");
   cmd->add_option("--inline-byte", a->segy.inline_byte, "SEG-Y: trace header byte (1-based) of the inline numbers")
@@ -104,6 +110,14 @@ void add_extract_command(CLI::App& app, Context& context, Runner& run) {
       } catch (const Error& e) {
         throw InvalidArgument("--block-size: " + e.message(), {}, e.hint());
       }
+      // --workers 0 (in this process) stays the default until the store-safety checks of the
+      // in-process route (exit codes of input errors, shard names in resumed stores) hold for
+      // workers too; --workers N opts in.
+      s.workers = a->workers.value_or(0u);
+      if (s.workers > 0) {
+        s.volume_description = describe_cube_file(a->cube, a->nan, a->variable, a->segy);
+        s.worker_command = {self_executable(), "worker"};
+      }
       auto cube = volume::open_volume(a->cube, open);
       if (a->fresh) store::ComponentStore::remove(a->out); // reliab
       s.parameters = {{"command", "geotandem extract"}, {"cube", a->cube}};
@@ -112,6 +126,14 @@ void add_extract_command(CLI::App& app, Context& context, Runner& run) {
       auto r = workflow::extract_to_store(*cube, store, s, context.log, *progress, context.cancel);
       std::cout << "extracted " << r.components << " components";
       if (r.duplicates) std::cout << " (" << r.duplicates << " already in the store)";
+      if (s.workers > 0) {
+        const auto& st = r.statistics;
+        std::cout << " in " << r.seconds << " s with " << st["workers"] << " worker(s) (" << st["deaths"]
+                  << " lost); tasks " << st["tasks"].dump() << "; "
+                  << st["bytes"]["surfaces"].get<std::uint64_t>() / 1024 << " KiB of partial surfaces moved\n";
+        std::cout << "store: " << a->out << " (run " << r.run << ")\n";
+        return 0;
+      }
       std::cout << " from " << r.input_triangles << " marching-cubes triangles in " << r.seconds << " s; "
                 << r.collapses << " collapses; at most " << r.peak_triangles << " triangles in memory; peak memory "
                 << r.peak_rss_kb / 1024 << " MiB\n";

@@ -36,14 +36,16 @@ void add_workflow_command(CLI::App& app, Context& context, Runner& run) {
       auto sets = args->sets;
       if (!args->scheduler.empty()) sets.push_back("execution.scheduler=" + args->scheduler);
       auto recipe = workflow::load_recipe(args->recipe, registry, sets);
-      if (recipe.execution.scheduler != "local" || recipe.execution.workers > 1)
+      if (recipe.execution.scheduler != "local")
         context.log.warning("execution: scheduler '" + recipe.execution.scheduler + "' with " +
                             std::to_string(recipe.execution.workers) +
-                            " worker(s) is validated, but this build runs the extraction in this process");
+                            " worker(s) is validated, but this build starts workers locally only: the "
+                            "extraction runs in this process");
       workflow::RunSettings settings;
       settings.dry_run = args->dry_run;
       settings.fresh = args->fresh;
       settings.progress = [&context] { return context.progress(); };
+      settings.worker_command = {self_executable(), "worker"};
       auto outcome = workflow::run_workflow(recipe, registry, settings, context.log, context.cancel);
       if (args->dry_run) {
         std::cout << args->recipe << ": valid; nothing computed (dry run)\n";

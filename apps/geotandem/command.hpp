@@ -10,6 +10,8 @@
 #include "geotandem/core/cancel.hpp"
 #include "geotandem/core/log.hpp"
 #include "geotandem/core/progress.hpp"
+#include "geotandem/volume/io.hpp"
+#include "geotandem/volume/volume.hpp"
 
 namespace geotandem::app {
 
@@ -32,5 +34,14 @@ void add_store_command(CLI::App& app, Context& context, Runner& run);
 void add_plugins_command(CLI::App& app, Context& context, Runner& run);
 void add_validate_command(CLI::App& app, Context& context, Runner& run);
 void add_workflow_command(CLI::App& app, Context& context, Runner& run);
+void add_worker_command(CLI::App& app, Context& context, Runner& run);
+
+// cmd_worker.cpp: how workers rebuild the input volume. The description of a cube file (JSON
+// text), and the volume a description names (the runtime's VolumeFactory).
+std::string describe_cube_file(const std::string& path, const std::string& nan, const std::string& variable,
+                               const volume::SegyOptions& segy);
+std::shared_ptr<const volume::Volume> open_described_volume(const std::string& description, Logger& log);
+// This executable's path, for the command line of local workers.
+std::string self_executable();
 
 } // namespace geotandem::app

@@ -77,6 +77,7 @@ int main(int argc, char** argv) {
   app::add_plugins_command(cli, context, run);
   app::add_validate_command(cli, context, run);
   app::add_workflow_command(cli, context, run);
+  app::add_worker_command(cli, context, run);
 
   try {
     cli.parse(argc, argv);

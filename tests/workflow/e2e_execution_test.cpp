@@ -17,8 +17,8 @@ TEST(WorkflowExecution, SlurmRecipeRunsInProcessAndSaysSo) {
   fs::path out = dir.path() / "out";
   auto run = run_workflow(workflow_recipe("slurm.yaml"), out, {"input.synthetic.shape=[64, 64, 48]"});
   ASSERT_EQ(run.command.exit_code, 0) << run.command.err;
-  EXPECT_NE(run.command.err.find("scheduler 'slurm' with 8 worker(s) is validated, but this build runs the "
-                                 "extraction in this process"),
+  EXPECT_NE(run.command.err.find("scheduler 'slurm' with 8 worker(s) is validated, but this build starts workers "
+                                 "locally only: the extraction runs in this process"),
             std::string::npos)
       << run.command.err;
   EXPECT_GT(store::ComponentStore::open(out / "store").size(), 0u);

@@ -60,8 +60,13 @@ public:
   // DataError when two vertices with the same lattice id differ in position; the engine is then
   // in an unspecified state.
   void absorb(const Engine& other);
+  // The same from the other side's state, as decoded from its wire form (no engine is built for
+  // the sender).
+  void absorb_state(const detail::SurfaceState& other);
   // The union of both regions; throws InvalidArgument as absorb() does when the two do not fit.
   Region merge_region(const Engine& other) const;
+  Region merge_region_state(const detail::SurfaceState& other) const;
+  Region merge_region_of(const Region& region, int axis, const SimplifyOptions& options, double front) const;
   mesh::ComponentSink* sink_of() const { return sink_; }
   CollapseObserver* observer_of() const { return observer_; }
   void set_outputs(mesh::ComponentSink* sink, CollapseObserver* observer) {

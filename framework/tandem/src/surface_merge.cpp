@@ -31,22 +31,37 @@ std::string where(const Region& a, const Region& b) {
 Region WorkingSurface::Engine::merge_region(const Engine& b) const {
   if (!(cube_ == b.cube_))
     throw InvalidArgument("merge: the two surfaces belong to different cubes", {.block = b.region_.to_string()});
-  if (axis_ != b.axis_)
+  return merge_region_of(b.region_, b.axis_, b.options_, b.front_);
+}
+
+Region WorkingSurface::Engine::merge_region_state(const detail::SurfaceState& b) const {
+  if (!(cube_ == b.cube))
+    throw InvalidArgument("merge: the two surfaces belong to different cubes", {.block = b.region.to_string()});
+  return merge_region_of(b.region, b.axis, b.options, b.front);
+}
+
+Region WorkingSurface::Engine::merge_region_of(const Region& region, int axis, const SimplifyOptions& options,
+                                               double front) const {
+  if (axis_ != axis)
     throw InvalidArgument("merge: the surfaces were extracted along axes " + std::to_string(axis_) + " and " +
-                          std::to_string(b.axis_));
-  if (!same_options(options_, b.options_))
+                          std::to_string(axis));
+  if (!same_options(options_, options))
     throw InvalidArgument("merge: the surfaces were simplified with different options (E0, alpha, time lags)", {},
                           "extract every block with the same SimplifyOptions");
-  if (!std::isinf(front_) || !std::isinf(b.front_) || front_ < 0.0 || b.front_ < 0.0)
-    throw InvalidArgument("merge: both surfaces must be past their sweep", {.block = b.region_.to_string()},
+  if (!std::isinf(front_) || !std::isinf(front) || front_ < 0.0 || front < 0.0)
+    throw InvalidArgument("merge: both surfaces must be past their sweep", {.block = region.to_string()},
                           "run the last layer and activate(+inf) (run_tandem does) before merging");
-  return region_.merged_with(b.region_); // throws when the blocks overlap
+  return region_.merged_with(region); // throws when the blocks overlap
 }
 
 void WorkingSurface::Engine::absorb(const Engine& b) {
-  const Region region = merge_region(b);
-  const std::string where_ = where(region_, b.region_);
-  const detail::SurfaceState t = b.export_state();
+  merge_region(b); // refuses surfaces that do not fit before the state is exported
+  absorb_state(b.export_state());
+}
+
+void WorkingSurface::Engine::absorb_state(const detail::SurfaceState& t) {
+  const Region region = merge_region_state(t);
+  const std::string where_ = where(region_, t.region);
   const std::size_t nb = t.points.size(), nt = t.triangles.size();
 
   // Lattice id -> live original vertex of this surface (those on open faces are the ones the other
@@ -101,7 +116,7 @@ void WorkingSurface::Engine::absorb(const Engine& b) {
       if (std::memcmp(p.data(), t.points[i].data(), sizeof(detail::Vec3)) != 0)
         throw DataError(where_ + ": lattice edge " + std::to_string(r.lattice_id) +
                             " has different positions on the two sides",
-                        {.block = b.region_.to_string()}, "both blocks must come from the same volume and isovalue");
+                        {.block = t.region.to_string()}, "both blocks must come from the same volume and isovalue");
       w.shape += r.shape;
       w.weight += r.weight;
       w.border |= r.border;
@@ -122,7 +137,7 @@ void WorkingSurface::Engine::absorb(const Engine& b) {
     if (!f.is_valid())
       throw DataError(where_ + ": triangle " + std::to_string(k) +
                           " of the other side would make the surface non-manifold",
-                      {.block = b.region_.to_string()},
+                      {.block = t.region.to_string()},
                       "the two surfaces must be the partial surfaces of adjacent blocks of one extraction");
     faces.push_back(f);
   }

@@ -21,6 +21,13 @@ namespace detail {
 // Friend of WorkingSurface: reaches the engine to export and import its state.
 struct SurfaceAccess {
   static SurfaceState state(const WorkingSurface& s) { return s.engine_->export_state(); }
+  static std::size_t merge(WorkingSurface& into, const SurfaceState& state, const CancelToken* cancel) {
+    WorkingSurface::Engine& e = *into.engine_;
+    e.absorb_state(state);
+    e.set_region(e.region()); // the region grew: edges parked by faces now inside it are placed again
+    e.simplify(cancel);
+    return e.dump();
+  }
   static WorkingSurface make(SurfaceState&& state, mesh::ComponentSink* sink, CollapseObserver* observer) {
     auto engine =
         std::make_unique<WorkingSurface::Engine>(state.cube, state.region, state.axis, state.options, sink, observer);
@@ -304,7 +311,10 @@ std::vector<std::byte> serialize(const WorkingSurface& surface) {
   return std::move(out);
 }
 
-WorkingSurface deserialize(std::span<const std::byte> record, mesh::ComponentSink* sink, CollapseObserver* observer) {
+namespace {
+
+// The record's header checked and its payload decoded (deserialize, merge_record).
+detail::SurfaceState decode_record(std::span<const std::byte> record) {
   if (record.size() < kSurfaceWireHeaderSize)
     throw DataError("working-surface record: " + std::to_string(record.size()) + " bytes, shorter than its " +
                         std::to_string(kSurfaceWireHeaderSize) + "-byte header (truncated)",
@@ -334,9 +344,24 @@ WorkingSurface deserialize(std::span<const std::byte> record, mesh::ComponentSin
                         "): the record is corrupt",
                     {}, "the record was damaged in transit or in storage: ship it again");
   Reader r(payload);
-  detail::SurfaceState state = decode(r);
+  return decode(r);
+}
+
+} // namespace
+
+WorkingSurface deserialize(std::span<const std::byte> record, mesh::ComponentSink* sink, CollapseObserver* observer) {
+  detail::SurfaceState state = decode_record(record);
   try {
     return detail::SurfaceAccess::make(std::move(state), sink, observer);
+  } catch (const InvalidArgument& e) {
+    throw DataError("working-surface record: " + e.message());
+  }
+}
+
+std::size_t merge_record(WorkingSurface& into, std::span<const std::byte> record, const CancelToken* cancel) {
+  const detail::SurfaceState state = decode_record(record);
+  try {
+    return detail::SurfaceAccess::merge(into, state, cancel);
   } catch (const InvalidArgument& e) {
     throw DataError("working-surface record: " + e.message());
   }

@@ -58,6 +58,12 @@ public:
                         const nlohmann::json& description, StepContext& context) const override {
     ExtractSettings settings = extract_settings(values);
     settings.parameters = description;
+    if (description.contains("workers") && description.contains("chain")) { // manager/worker runtime
+      settings.parameters.erase("worker_command");
+      settings.workers = description.at("workers").get<std::size_t>();
+      settings.volume_description = nlohmann::json{{"kind", "chain"}, {"chain", description.at("chain")}}.dump();
+      settings.worker_command = description.at("worker_command").get<std::vector<std::string>>();
+    }
     return extract_to_store(input, store, settings, context.log, context.progress, context.cancel);
   }
 };

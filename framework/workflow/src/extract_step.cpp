@@ -117,28 +117,7 @@ std::int64_t peak_rss_kb() {
   return 0;
 }
 
-ExtractResult extract_to_store(const volume::Volume& volume, store::ComponentStore& store,
-                               const ExtractSettings& settings, Logger& log, Progress& progress,
-                               const CancelToken& cancel) {
-  if (!(store.geometry() == volume.geometry()))
-    throw InvalidArgument("the store was made for another cube geometry", {store.directory().string()},
-                          "extract into a new store directory");
-  if (settings.block_size != 0 && settings.block_size < min_block_size)
-    throw InvalidArgument("block size must be 0 (one block) or at least " + std::to_string(min_block_size) +
-                              " cells, got " + std::to_string(settings.block_size),
-                          {}, "blocks of 64 to 256 cells are typical");
-  auto start = std::chrono::steady_clock::now();
-  tandem::TandemOptions options;
-  options.iso = settings.iso;
-  options.axis = settings.axis;
-  options.simplify.max_error = settings.max_error;
-  options.simplify.isotropy = settings.isotropy;
-  options.simplify.extended_time_lag = settings.extended_time_lag;
-  options.simplify.validate();
-  options.dump = settings.mode != ExtractMode::tandem;
-  options.cancel = &cancel;
-  options.progress = &progress;
-
+nlohmann::json extract_run_parameters(const volume::Volume& volume, const ExtractSettings& settings) {
   nlohmann::json parameters = settings.parameters;
   parameters["iso"] = settings.iso;
   parameters["max_error"] = settings.max_error;
@@ -166,12 +145,50 @@ ExtractResult extract_to_store(const volume::Volume& volume, store::ComponentSto
       {"chain", settings.parameters.is_object() && settings.parameters.contains("chain") ? settings.parameters["chain"]
                                                                                          : nlohmann::json::object()}};
 
+  return parameters;
+}
+
+void warn_if_empty(ExtractResult& result, const ExtractSettings& settings, Logger& log) {
+  // reliab: an empty result is almost always an isovalue outside the data: say so.
+  if (result.components == 0 && result.duplicates == 0) {
+    const std::string warning = "no component was extracted: is the isovalue " + std::to_string(settings.iso) +
+                                " inside the cube's value range? ('geotandem info --stats' shows it)";
+    log.warning(warning);
+    result.statistics["warnings"] = {warning};
+  }
+}
+
+ExtractResult extract_to_store(const volume::Volume& volume, store::ComponentStore& store,
+                               const ExtractSettings& settings, Logger& log, Progress& progress,
+                               const CancelToken& cancel) {
+  if (!(store.geometry() == volume.geometry()))
+    throw InvalidArgument("the store was made for another cube geometry", {store.directory().string()},
+                          "extract into a new store directory");
+  if (settings.block_size != 0 && settings.block_size < min_block_size)
+    throw InvalidArgument("block size must be 0 (one block) or at least " + std::to_string(min_block_size) +
+                              " cells, got " + std::to_string(settings.block_size),
+                          {}, "blocks of 64 to 256 cells are typical");
+  if (settings.workers > 0) return extract_with_workers(volume, store, settings, log, progress, cancel);
+  auto start = std::chrono::steady_clock::now();
+  tandem::TandemOptions options;
+  options.iso = settings.iso;
+  options.axis = settings.axis;
+  options.simplify.max_error = settings.max_error;
+  options.simplify.isotropy = settings.isotropy;
+  options.simplify.extended_time_lag = settings.extended_time_lag;
+  options.simplify.validate();
+  options.dump = settings.mode != ExtractMode::tandem;
+  options.cancel = &cancel;
+  options.progress = &progress;
+
+  const nlohmann::json parameters = extract_run_parameters(volume, settings);
+
   ExtractResult result;
   result.run = store.begin_run(parameters.dump());
   store::LocalSinkOptions sink_options;
   sink_options.run = result.run;
   store::LocalSink sink(store, sink_options);
-  log.info("extracting in this process (the manager/worker runtime is not part of this build)");
+  log.info("extracting in this process (--workers 0)");
 
   // One block (block_size 0), or the block tree: leaves one after the other, brothers merged
   // bottom-up, each partial surface through its wire form as the runtime will ship it.
@@ -229,13 +246,7 @@ ExtractResult extract_to_store(const volume::Volume& volume, store::ComponentSto
                          {"simplify", simplify_s},
                          {"dump", dump_s}}},
                        {"peak_rss_kb", result.peak_rss_kb}};
-  // reliab: an empty result is almost always an isovalue outside the data: say so.
-  if (result.components == 0 && result.duplicates == 0) {
-    const std::string warning = "no component was extracted: is the isovalue " + std::to_string(settings.iso) +
-                                " inside the cube's value range? ('geotandem info --stats' shows it)";
-    log.warning(warning);
-    result.statistics["warnings"] = {warning};
-  }
+  warn_if_empty(result, settings, log);
   store.end_run(result.run, result.statistics.dump());
   return result;
 }

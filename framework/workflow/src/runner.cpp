@@ -162,6 +162,11 @@ private:
                                     {"chain", chain_.to_json()},
                                     {"chain_fingerprint", print_},
                                     {"input_content", input_content_}};
+      const ExecutionSpec& ex = recipe_.execution;
+      if (ex.scheduler == "local" && ex.workers >= 2 && !settings_.worker_command.empty()) {
+        description["workers"] = ex.workers; // the extract step hands the chain to that many workers
+        description["worker_command"] = settings_.worker_command;
+      }
       auto progress = progress_of(settings_);
       StepContext c = context(*progress);
       ExtractResult r = plugin.extract(*volumes_.result, *store_, step.params, description, c);

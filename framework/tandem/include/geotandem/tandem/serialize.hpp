@@ -34,4 +34,12 @@ std::vector<std::byte> serialize(const WorkingSurface& surface);
 WorkingSurface deserialize(std::span<const std::byte> record, mesh::ComponentSink* sink,
                            CollapseObserver* observer = nullptr);
 
+// WorkingSurface::merge with the other side given as its record: the record is decoded straight
+// into `into` (no surface engine is built for the sender), welded, the seam simplified, finished
+// components dumped to `into`'s sink. Returns the number dumped. `into` always takes in the
+// record, whatever their sizes. Throws DataError for a bad record (as deserialize) or surfaces that
+// do not fit together (nothing changed then), DataError from the weld (then `into` is in an
+// unspecified state: drop it), and Cancelled.
+std::size_t merge_record(WorkingSurface& into, std::span<const std::byte> record, const CancelToken* cancel = nullptr);
+
 } // namespace geotandem::tandem

@@ -42,6 +42,12 @@ struct ExtractSettings {
   ExtractMode mode = ExtractMode::tandem_dump;
   bool extended_time_lag = tandem::SimplifyOptions{}.extended_time_lag;
   nlohmann::json parameters; // extra description recorded with the run (the recipe, the command)
+  // The manager/worker runtime (extract_workers.cpp): with workers > 0 the blocks are extracted by
+  // that many local worker processes running `worker_command` (e.g. {"/usr/bin/geotandem",
+  // "worker"}), which rebuild the volume from `volume_description`. 0: in this process.
+  std::size_t workers = 0;
+  std::string volume_description;
+  std::vector<std::string> worker_command;
 };
 
 struct ExtractResult {
@@ -78,6 +84,19 @@ ExtractSettings extract_settings(const ParamValues& values);
 ExtractResult extract_to_store(const volume::Volume& volume, store::ComponentStore& store,
                                const ExtractSettings& settings, Logger& log, Progress& progress,
                                const CancelToken& cancel);
+
+// The parameters a run records in the store, with its identity (what decides the components: the
+// store refuses to mix runs of different identities). Shared by both routes.
+nlohmann::json extract_run_parameters(const volume::Volume& volume, const ExtractSettings& settings);
+// Logs and records a warning when a run extracted nothing.
+void warn_if_empty(ExtractResult& result, const ExtractSettings& settings, Logger& log);
+
+// The same through the manager/worker runtime (settings.workers local workers; block_size 0 means
+// 64). Called by extract_to_store when settings.workers > 0. Throws InvalidArgument when the
+// volume description or the worker command is missing.
+ExtractResult extract_with_workers(const volume::Volume& volume, store::ComponentStore& store,
+                                   const ExtractSettings& settings, Logger& log, Progress& progress,
+                                   const CancelToken& cancel);
 
 // Peak resident set size of this process so far, in KiB (VmHWM).
 std::int64_t peak_rss_kb();

@@ -7,6 +7,7 @@
 #include <functional>
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "geotandem/core/cancel.hpp"
 #include "geotandem/core/log.hpp"
@@ -20,6 +21,10 @@ struct RunSettings {
   bool dry_run = false; // build and check the whole chain, print the plan, compute nothing
   bool fresh = false;   // discard a previous run's store in the output directory
   std::function<std::unique_ptr<Progress>()> progress; // a new reporter per step; null: none
+  // The command line of a worker process without --connect and --token (e.g. {"/usr/bin/geotandem",
+  // "worker"}). With it, a recipe's `execution: {scheduler: local, workers: N}` (N >= 2) extracts
+  // with N local workers; empty: in this process.
+  std::vector<std::string> worker_command;
 };
 
 struct RunOutcome {

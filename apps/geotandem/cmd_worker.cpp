@@ -1,0 +1,99 @@
+// geotandem worker --connect ENDPOINT --token T: one worker of the manager/worker runtime. The
+// manager starts it (locally with --workers N, or through a cluster scheduler); it rebuilds the
+// input volume from the description the manager sends and obeys until told to finish.
+
+#include <nlohmann/json.hpp>
+
+#include <filesystem>
+
+#include "command.hpp"
+#include "geotandem/core/error.hpp"
+#include "geotandem/runtime/worker.hpp"
+#include "geotandem/synth/synthetic.hpp"
+#include "geotandem/volume/io.hpp"
+#include "geotandem/workflow/chain.hpp"
+#include "plugins_setup.hpp"
+
+namespace geotandem::app {
+
+std::string self_executable() {
+  std::error_code ec;
+  const auto path = std::filesystem::read_symlink("/proc/self/exe", ec);
+  if (ec) throw IoError("cannot find this executable (/proc/self/exe): " + ec.message());
+  return path.string();
+}
+
+std::string describe_cube_file(const std::string& path, const std::string& nan, const std::string& variable,
+                               const volume::SegyOptions& segy) {
+  return nlohmann::json{{"kind", "file"},
+                        {"path", std::filesystem::absolute(path).string()},
+                        {"nan", nan},
+                        {"variable", variable},
+                        {"segy", {{"inline_byte", segy.inline_byte}, {"crossline_byte", segy.crossline_byte}}}}
+      .dump();
+}
+
+std::shared_ptr<const volume::Volume> open_described_volume(const std::string& description, Logger& log) {
+  nlohmann::json d;
+  try {
+    d = nlohmann::json::parse(description);
+    const std::string kind = d.at("kind").get<std::string>();
+    if (kind == "file") {
+      volume::OpenOptions open;
+      open.nan_policy = volume::parse_nan_policy(d.at("nan").get<std::string>());
+      open.variable = d.at("variable").get<std::string>();
+      if (d.contains("segy")) {
+        open.segy.inline_byte = d["segy"].at("inline_byte").get<int>();
+        open.segy.crossline_byte = d["segy"].at("crossline_byte").get<int>();
+      }
+      return volume::open_volume(d.at("path").get<std::string>(), open);
+    }
+    if (kind == "analytic") {
+      synth::AnalyticOptions options;
+      const auto shape = d.at("shape").get<std::vector<std::int64_t>>();
+      if (shape.size() != 3) throw InvalidArgument("volume description: shape needs three sizes");
+      options.shape = {shape[0], shape[1], shape[2]};
+      options.seed = d.at("seed").get<std::uint64_t>();
+      return synth::make_analytic(options);
+    }
+    if (kind == "chain") { // a recipe's input and attribute chain, fused block by block in the worker
+      // The registry (and the plugin libraries it loaded) lives as long as the volume.
+      struct Held {
+        workflow::PluginRegistry registry;
+        std::shared_ptr<const volume::Volume> volume;
+      };
+      auto held = std::make_shared<Held>(Held{make_plugin_registry(log), nullptr});
+      held->volume = workflow::open_chain_volume(workflow::ChainDescription::from_json(d.at("chain")), held->registry);
+      return std::shared_ptr<const volume::Volume>(held, held->volume.get());
+    }
+    throw InvalidArgument("volume description of unknown kind '" + kind + "'", {},
+                          "run the same geotandem version on the manager and every worker");
+  } catch (const nlohmann::json::exception& e) {
+    throw InvalidArgument(std::string("volume description is not valid: ") + e.what(), {},
+                          "run the same geotandem version on the manager and every worker");
+  }
+}
+
+void add_worker_command(CLI::App& app, Context& context, Runner& run) {
+  auto options = std::make_shared<runtime::WorkerOptions>();
+  auto* cmd = app.add_subcommand(
+      "worker", "Run one worker of the manager/worker runtime: connect to the manager, extract, send and merge "
+                "blocks as told, write finished components to this worker's shard. Started by 'geotandem extract "
+                "--workers N' or by a cluster scheduler; not usually run by hand.");
+  cmd->add_option("--connect", options->endpoint, "the manager's endpoint, e.g. tcp://10.0.0.5:5555")->required();
+  cmd->add_option("--token", options->token, "the launch token the manager issued (names this worker and its shard)")
+      ->required();
+  auto timeout = std::make_shared<double>(10.0);
+  cmd->add_option("--manager-timeout", *timeout, "seconds of silence after which the manager is taken for gone")
+      ->capture_default_str();
+  cmd->callback([options, timeout, &context, &run] {
+    run = [options, timeout, &context] {
+      options->manager_timeout = std::chrono::milliseconds(static_cast<std::int64_t>(*timeout * 1000));
+      Logger& log = context.log;
+      return runtime::run_worker(
+          *options, [&log](const std::string& d) { return open_described_volume(d, log); }, log, context.cancel);
+    };
+  });
+}
+
+} // namespace geotandem::app

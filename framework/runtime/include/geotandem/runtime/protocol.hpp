@@ -1,0 +1,78 @@
+#pragma once
+// The messages between the manager and its workers, and their wire form, testable without
+// sockets. One message is one ZeroMQ frame (the manager's ROUTER adds the worker's routing id in
+// front):
+//   header, 16 bytes: magic "GTRT", protocol version (u16), kind (u8), flags (u8, none defined),
+//                     payload length (u32), XXH32 of the payload seeded with the kind
+//                     (u32, so a damaged kind is caught too); little-endian
+//   payload: the kind's fields in a fixed order (strings and byte blocks with a u64 length).
+// decode() refuses a message of another version, an unknown kind, a length that disagrees with the
+// frame, a failed checksum, a field that runs past the payload, trailing bytes, and anything over
+// the size cap: it throws ProtocolError, which the transport logs before dropping the message.
+//
+// Leases: every task carries (task, attempt); a worker's result repeats it, and the manager
+// ignores a result whose lease is not the one it gave that worker last (a late or replayed result
+// of an old attempt).
+#include <array>
+#include <cstddef>
+#include <cstdint>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "geotandem/core/error.hpp"
+#include "geotandem/store/store.hpp"
+
+namespace geotandem::runtime {
+
+inline constexpr std::uint16_t kProtocolVersion = 1;
+inline constexpr std::size_t kHeaderSize = 16;
+// Largest message either side accepts (a partial surface travels in one MERGE). Also set as
+// ZMQ_MAXMSGSIZE on both sockets.
+inline constexpr std::size_t kDefaultMaxMessage = std::size_t{1} << 30;
+
+enum class MessageKind : std::uint8_t {
+  // worker -> manager
+  hello = 1,     // token, pid: the worker is up
+  ask = 2,       // the seed's get_task()
+  done = 3,      // lease, number = milliseconds, box[0] = peak RSS (KiB): EXTRACT, MERGE or final over
+  surface = 4,   // lease, bytes: the worker's surface for its SEND (relayed by the manager)
+  commit = 5,    // lease, entries: components written (and synced) to the worker's shard
+  failed = 6,    // lease, text: the task failed; the worker goes on
+  heartbeat = 7, // both ways
+  // manager -> worker
+  setup = 16,    // text: the run's description (JSON: volume, options, store, shard)
+  extract = 17,  // lease, leaf
+  send = 18,     // lease, target: hand your surface over (to the manager, for that worker)
+  merge = 19,    // lease, bytes: merge this surface into yours
+  wait = 20,     // number: milliseconds before asking again
+  finished = 21, // lease, number: 1 = finish and dump the whole surface, then stop; 0 = stop
+};
+const char* to_string(MessageKind kind);
+
+struct Lease {
+  std::uint64_t task = 0;
+  std::uint32_t attempt = 0;
+  bool operator==(const Lease&) const = default;
+};
+
+struct Message {
+  MessageKind kind = MessageKind::heartbeat;
+  Lease lease;
+  std::uint64_t number = 0;               // pid, leaf node id, target, wait ms, final flag, seconds (ms)
+  std::string text;                       // token, setup JSON, failure message
+  std::vector<std::byte> bytes;           // a working-surface record
+  std::array<std::int64_t, 6> box{};      // extract: the leaf's cells (lo, hi)
+  std::vector<store::IndexEntry> entries; // commit
+};
+
+class ProtocolError : public DataError {
+public:
+  using DataError::DataError;
+};
+
+std::vector<std::byte> encode(const Message& message);
+// Throws ProtocolError (see above). `max_bytes` caps the whole frame.
+Message decode(std::span<const std::byte> frame, std::size_t max_bytes = kDefaultMaxMessage);
+
+} // namespace geotandem::runtime

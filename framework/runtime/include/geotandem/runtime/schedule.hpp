@@ -1,0 +1,114 @@
+#pragma once
+// The manager's decisions (the seed's algorithm 6) as a pure state machine over the block tree: no
+// sockets, no clocks, no files. The transport feeds it events (a worker joined, asked, finished a
+// task, died) and sends the decisions it returns.
+//
+// A worker that asks gets, in this order:
+//   1. MERGE when a surface sent to it has arrived (has_waiting_surface); WAIT while one is still
+//      on its way (it must not give its aggregate away meanwhile);
+//   2. SEND to a neighbour worker when its aggregate is restricted-adjacent to that worker's and
+//      not larger (has_neighbor_worker; the neighbour's aggregate counts the surfaces on their way
+//      to it; the smaller side travels, so a large aggregate stays put and its worker extracts);
+//   3. EXTRACT of an unprocessed leaf, one restricted-adjacent to its aggregate if there is one
+//      (has_unprocessed_block);
+//   4. FINISHED: the final one when it holds every leaf and nothing is on its way (it finishes the
+//      whole surface and dumps it); then to everyone. Until the run is complete an idle worker gets
+//      WAIT instead of the seed's FINISHED, so that it can redo the blocks of a worker that dies.
+// A dead or departed worker's leaves, and those of every surface addressed to it or not yet
+// received from it, become unprocessed again: they are re-done from the volume.
+#include <cstdint>
+#include <map>
+#include <optional>
+#include <vector>
+
+#include "geotandem/runtime/aggregate.hpp"
+#include "geotandem/tandem/block_tree.hpp"
+
+namespace geotandem::runtime {
+
+using WorkerId = std::uint32_t;
+using TransferId = std::uint64_t;
+
+enum class TaskKind : std::uint8_t { extract, send, merge, wait, finished };
+const char* to_string(TaskKind kind);
+
+struct Decision {
+  TaskKind kind = TaskKind::wait;
+  tandem::NodeId leaf = tandem::kNoNode; // extract
+  WorkerId target = 0;                   // send
+  TransferId transfer = 0;               // send, merge
+  bool final = false;                    // finished: this worker holds the whole surface
+};
+
+struct ScheduleCounts {
+  std::uint64_t extract = 0, send = 0, merge = 0, wait = 0, finished = 0;
+  std::uint64_t redone_leaves = 0; // leaves made unprocessed again by a worker's death
+};
+
+class Schedule {
+public:
+  // `tree` must outlive the schedule. Every leaf starts unprocessed.
+  explicit Schedule(const tandem::BlockTree& tree);
+
+  // A leaf whose components are already committed in full by an earlier run (resume): never
+  // extracted. Only before the first decision. Throws InvalidArgument for a non-leaf.
+  void skip(tandem::NodeId leaf);
+
+  // Events. A worker id is joined once; events for unknown or departed workers throw std::logic_error
+  // (the transport filters stale messages before they get here).
+  void join(WorkerId worker);
+  // The worker asks for its next task; it must have no task in progress.
+  Decision next(WorkerId worker);
+  // The worker finished its task: EXTRACT (its leaf is now in its surface), MERGE, the final
+  // FINISHED. For SEND use arrived().
+  void done(WorkerId worker);
+  // The surface of the sender's SEND reached the manager; the sender is idle again. Returns false
+  // when the transfer's target died meanwhile (the bytes are dropped: its leaves are re-done).
+  bool arrived(WorkerId sender, TransferId transfer);
+  // The worker died or left; returns the leaves that became unprocessed again.
+  std::vector<tandem::NodeId> leave(WorkerId worker);
+
+  bool complete() const { return complete_; }
+  bool knows(WorkerId worker) const { return workers_.count(worker) != 0; }
+  bool busy(WorkerId worker) const;
+  // The worker a transfer goes to and comes from; nullopt when it is no longer pending.
+  std::optional<WorkerId> transfer_target(TransferId transfer) const;
+  std::optional<WorkerId> transfer_source(TransferId transfer) const;
+  std::size_t unprocessed() const;
+  std::size_t leaves_held(WorkerId worker) const;
+  const ScheduleCounts& counts() const { return counts_; }
+  std::size_t live_workers() const { return workers_.size(); }
+
+private:
+  struct Worker {
+    explicit Worker(const tandem::BlockTree& tree) : held(tree) {}
+    Aggregate held; // leaves in its surface (and the leaf it extracts)
+    std::vector<TransferId> incoming;
+    std::optional<Decision> task; // in progress
+  };
+  struct Transfer {
+    WorkerId from = 0, to = 0;
+    Aggregate leaves;
+    bool arrived = false;
+    bool merging = false;
+  };
+
+  Worker& worker(WorkerId id);
+  Aggregate claimed(const Worker& w) const; // held plus what is on its way to it
+  std::optional<WorkerId> neighbor(WorkerId id);
+  tandem::NodeId unprocessed_leaf(const Worker& w) const;
+  void release(const Aggregate& leaves, std::vector<tandem::NodeId>& out);
+  Decision assign(Worker& w, Decision d);
+
+  const tandem::BlockTree& tree_;
+  std::map<WorkerId, Worker> workers_;
+  std::map<TransferId, Transfer> transfers_;
+  std::vector<char> unprocessed_; // per node id
+  TransferId next_transfer_ = 1;
+  bool started_ = false;
+  bool complete_ = false;
+  std::size_t skipped_ = 0;
+  ScheduleCounts counts_;
+};
+
+} // namespace geotandem::runtime

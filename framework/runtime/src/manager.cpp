@@ -1,0 +1,440 @@
+// The manager's event loop (manager.hpp). Decisions come from Schedule; this file moves messages.
+#include "geotandem/runtime/manager.hpp"
+
+#include <sys/resource.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <map>
+#include <random>
+#include <set>
+#include <thread>
+#include <zmq.hpp>
+
+#include "geotandem/core/error.hpp"
+#include "geotandem/runtime/schedule.hpp"
+#include "geotandem/tandem/marching_cubes.hpp"
+#include "zmq_poll.hpp"
+
+namespace geotandem::runtime {
+
+namespace {
+using Clock = std::chrono::steady_clock;
+
+double since(Clock::time_point t) {
+  return std::chrono::duration<double>(Clock::now() - t).count();
+}
+
+std::int64_t peak_rss_kb() {
+  rusage u{};
+  getrusage(RUSAGE_SELF, &u);
+  return u.ru_maxrss;
+}
+
+double cpu_seconds() {
+  rusage u{};
+  getrusage(RUSAGE_SELF, &u);
+  return static_cast<double>(u.ru_utime.tv_sec + u.ru_stime.tv_sec) +
+         static_cast<double>(u.ru_utime.tv_usec + u.ru_stime.tv_usec) / 1e6;
+}
+
+std::string random_hex(std::size_t n) {
+  static constexpr char kDigits[] = "0123456789abcdef";
+  std::random_device rd;
+  std::string s;
+  for (std::size_t i = 0; i < n; ++i)
+    s += kDigits[rd() % 16];
+  return s;
+}
+} // namespace
+
+struct Manager::Impl {
+  struct Peer {
+    WorkerId id = 0;
+    std::string token;
+    std::uint64_t pid = 0;
+    Clock::time_point heard;
+    Lease lease; // of the task in progress
+    std::optional<Decision> task;
+    Clock::time_point task_start;
+    std::uint64_t tasks = 0;
+  };
+
+  ManagerOptions options;
+  store::ComponentStore& store;
+  Launcher* launcher;
+  Logger& log;
+  Progress& progress;
+  const CancelToken& cancel;
+  zmq::context_t context{1};
+  zmq::socket_t router{context, zmq::socket_type::router};
+  std::string endpoint;
+  std::string run_prefix = random_hex(6);
+  std::size_t token_count = 0;
+  std::set<std::string> allowed, dead;
+  std::map<std::string, Peer> peers; // by token
+  tandem::BlockTree tree;
+  Schedule schedule{tree};
+  std::map<TransferId, std::vector<std::byte>> parcels;
+  std::map<tandem::NodeId, std::uint32_t> attempts;
+  std::uint64_t next_task = 1;
+  WorkerId next_worker = 1;
+  ManagerReport report;
+  Clock::time_point start = Clock::now(), last_beat = Clock::now();
+  double cpu_at_start = cpu_seconds();
+  std::uint64_t progress_done = 0;
+
+  Impl(ManagerOptions o, store::ComponentStore& s, Launcher* l, Logger& lg, Progress& p, const CancelToken& c)
+      : options(std::move(o)), store(s), launcher(l), log(lg), progress(p), cancel(c),
+        tree(tandem::cube_cells(s.geometry().shape), std::max<std::int64_t>(options.settings.block_size, 8)) {
+    router.set(zmq::sockopt::linger, 0);
+    router.set(zmq::sockopt::router_mandatory, 1);
+    router.set(zmq::sockopt::router_handover, 1);
+    router.set(zmq::sockopt::maxmsgsize, static_cast<std::int64_t>(options.max_message));
+    try {
+      router.bind(options.bind);
+    } catch (const zmq::error_t& e) {
+      throw IoError("cannot listen on " + options.bind + ": " + e.what(), {}, "choose another address or port");
+    }
+    endpoint = router.get(zmq::sockopt::last_endpoint);
+    report.leaves = tree.leaves().size();
+  }
+
+  std::string new_token() {
+    std::string t = "w" + run_prefix + "-" + std::to_string(++token_count);
+    allowed.insert(t);
+    return t;
+  }
+
+  void launch_one() {
+    std::vector<std::string> argv = options.worker_command;
+    const std::string token = new_token();
+    argv.insert(argv.end(), {"--connect", endpoint, "--token", token});
+    launcher->launch(argv, token);
+  }
+
+  bool send(const std::string& token, const Message& m) {
+    const std::vector<std::byte> bytes = encode(m);
+    try {
+      router.send(zmq::buffer(token), zmq::send_flags::sndmore);
+      router.send(zmq::buffer(bytes.data(), bytes.size()), zmq::send_flags::none);
+      report.bytes_out += bytes.size();
+      return true;
+    } catch (const zmq::error_t& e) {
+      log.debug("cannot reach worker " + token + ": " + e.what());
+      return false;
+    }
+  }
+
+  void drop(const std::string& why) {
+    ++report.dropped_messages;
+    if (report.dropped_messages <= 20) log.warning("dropped a message: " + why);
+    if (report.dropped_messages == 20) log.warning("further dropped messages are not logged");
+  }
+
+  std::string task_text(const Peer& p) const {
+    if (!p.task) return "no task";
+    std::string t = to_string(p.task->kind);
+    if (p.task->kind == TaskKind::extract) t += " of " + tree.describe(p.task->leaf);
+    return t;
+  }
+
+  void kill_peer(const std::string& token, const std::string& why) {
+    auto it = peers.find(token);
+    if (it == peers.end()) return;
+    Peer& p = it->second;
+    const std::vector<tandem::NodeId> redo = schedule.leave(p.id);
+    std::erase_if(parcels, [&](const auto& kv) { return !schedule.transfer_target(kv.first); });
+    log.warning("worker " + token + " (pid " + std::to_string(p.pid) + ") " + why + " during " + task_text(p) + ": " +
+                std::to_string(redo.size()) + " block(s) will be re-done from the volume");
+    Message f;
+    f.kind = MessageKind::finished;
+    send(token, f); // a frozen worker that wakes up stops
+    dead.insert(token);
+    peers.erase(it);
+    ++report.deaths;
+    report.redone_leaves += redo.size();
+    if (launcher && !schedule.complete() && report.restarts < options.max_restarts &&
+        peers.size() < std::max<std::size_t>(options.workers, 1)) {
+      ++report.restarts;
+      launch_one();
+    }
+  }
+
+  void decide(Peer& p) {
+    const Decision d = schedule.next(p.id);
+    Message m;
+    switch (d.kind) {
+    case TaskKind::extract: {
+      m.kind = MessageKind::extract;
+      const volume::Box& b = tree.node(d.leaf).cells;
+      m.box = {b.lo[0], b.lo[1], b.lo[2], b.hi[0], b.hi[1], b.hi[2]};
+      m.number = static_cast<std::uint64_t>(d.leaf);
+      m.lease.attempt = ++attempts[d.leaf];
+      break;
+    }
+    case TaskKind::send:
+      m.kind = MessageKind::send;
+      m.number = d.target;
+      break;
+    case TaskKind::merge:
+      m.kind = MessageKind::merge;
+      m.bytes = std::move(parcels.at(d.transfer));
+      parcels.erase(d.transfer);
+      break;
+    case TaskKind::wait:
+      m.kind = MessageKind::wait;
+      m.number = 100;
+      break;
+    case TaskKind::finished:
+      m.kind = MessageKind::finished;
+      m.number = d.final ? 1 : 0;
+      break;
+    }
+    const bool busy = d.kind != TaskKind::wait && (d.kind != TaskKind::finished || d.final);
+    if (busy) {
+      m.lease.task = next_task++;
+      p.lease = m.lease;
+      p.task = d;
+      p.task_start = Clock::now();
+      log.debug("worker " + p.token + ": " + task_text(p));
+    }
+    if (!send(p.token, m)) return kill_peer(p.token, "cannot be reached");
+    if (d.kind == TaskKind::finished && !d.final) depart(p.token);
+  }
+
+  // A worker told to stop leaves the run without a warning.
+  void depart(const std::string& token) {
+    auto it = peers.find(token);
+    if (it == peers.end()) return;
+    log.info("worker " + token + " done after " + std::to_string(it->second.tasks) + " task(s)");
+    schedule.leave(it->second.id);
+    dead.insert(token);
+    peers.erase(it);
+  }
+
+  // The bar counts blocks extracted and the final pass; a re-done block does not move it twice.
+  void advance() {
+    if (progress_done < report.leaves + 1) progress.advance();
+    ++progress_done;
+  }
+
+  void task_done(Peer& p, const Message& m) {
+    const double s = static_cast<double>(m.number) / 1000.0;
+    report.worker_peak_rss_kb = std::max(report.worker_peak_rss_kb, m.box[0]);
+    switch (p.task->kind) {
+    case TaskKind::extract: ++report.extract, report.seconds_extract += s, advance(); break;
+    case TaskKind::merge: ++report.merge, report.seconds_merge += s; break;
+    case TaskKind::finished: ++report.finish, report.seconds_finish += s, advance(); break;
+    default: break;
+    }
+    ++p.tasks;
+    const bool final = p.task->kind == TaskKind::finished;
+    p.task.reset();
+    schedule.done(p.id);
+    if (final) depart(p.token);
+  }
+
+  void handle(const std::string& token, std::span<const std::byte> frame) {
+    report.bytes_in += frame.size();
+    if (dead.count(token)) { // a frozen worker woke up, or a late message of one that left
+      Message f;
+      f.kind = MessageKind::finished;
+      send(token, f);
+      ++report.dropped_messages;
+      return;
+    }
+    if (!allowed.count(token)) return drop("from an unknown sender (not a token this manager issued)");
+    Message m;
+    try {
+      m = decode(frame, options.max_message);
+    } catch (const ProtocolError& e) {
+      return drop(std::string("from worker ") + token + ": " + e.what());
+    }
+    auto it = peers.find(token);
+    if (m.kind == MessageKind::hello) {
+      if (it != peers.end()) return drop("a second HELLO from worker " + token);
+      Peer p{.id = next_worker++, .token = token, .pid = m.number, .heard = Clock::now()};
+      schedule.join(p.id);
+      ++report.workers;
+      log.info("worker " + token + " (pid " + std::to_string(p.pid) + ") joined; " + std::to_string(peers.size() + 1) +
+               " connected");
+      Message s;
+      s.kind = MessageKind::setup;
+      s.text = options.settings.to_json();
+      peers.emplace(token, p);
+      if (!send(token, s)) kill_peer(token, "cannot be reached");
+      return;
+    }
+    if (it == peers.end()) return drop(std::string(to_string(m.kind)) + " from worker " + token + " before its HELLO");
+    Peer& p = it->second;
+    p.heard = Clock::now();
+    switch (m.kind) {
+    case MessageKind::heartbeat: return;
+    case MessageKind::ask:
+      if (p.task) { // it lost its task (a message dropped on the way): its work is re-done elsewhere
+        drop("ASK from worker " + token + " while it has a task (" + task_text(p) + ")");
+        return kill_peer(token, "asked again without finishing its task");
+      }
+      return decide(p);
+    case MessageKind::failed:
+      if (!p.task && m.lease == Lease{}) // SETUP failed: every worker would fail the same way
+        throw Error("worker " + token + " could not start: " + m.text, {.worker = token},
+                    "check that every worker can read the input and write to the store directory");
+      if (!p.task || !(m.lease == p.lease)) return drop("a stale FAILED from worker " + token);
+      throw Error("worker " + token + " failed during " + task_text(p) + ": " + m.text, {.worker = token},
+                  "fix the cause and rerun the same command: committed components are kept");
+    default: break;
+    }
+    if (!p.task || !(m.lease == p.lease))
+      return drop(std::string(to_string(m.kind)) + " from worker " + token + " with a stale lease (task " +
+                  std::to_string(m.lease.task) + ", attempt " + std::to_string(m.lease.attempt) + ")");
+    switch (m.kind) {
+    case MessageKind::commit: {
+      const std::size_t added = store.commit(m.entries);
+      report.components += added;
+      report.duplicates += m.entries.size() - added;
+      return;
+    }
+    case MessageKind::surface: {
+      if (p.task->kind != TaskKind::send) return drop("SURFACE from worker " + token + " outside a SEND");
+      const TransferId t = p.task->transfer;
+      report.surface_bytes += m.bytes.size();
+      report.largest_surface = std::max<std::uint64_t>(report.largest_surface, m.bytes.size());
+      ++report.send;
+      ++p.tasks;
+      p.task.reset();
+      if (schedule.arrived(p.id, t)) parcels[t] = std::move(m.bytes);
+      return;
+    }
+    case MessageKind::done:
+      if (p.task->kind == TaskKind::send) return drop("DONE from worker " + token + " for a SEND");
+      return task_done(p, m);
+    default: return drop(std::string("unexpected ") + to_string(m.kind) + " from worker " + token);
+    }
+  }
+
+  void heartbeats() {
+    if (launcher)
+      for (const std::string& token : launcher->ended()) {
+        if (peers.count(token)) {
+          kill_peer(token, "ended");
+        } else if (!dead.count(token)) { // never said HELLO
+          dead.insert(token);
+          if (report.restarts >= options.max_restarts)
+            throw Error("worker " + token + " exited before connecting, and " + std::to_string(report.restarts) +
+                            " replacements were already started",
+                        {.worker = token},
+                        "run 'geotandem worker --help' to check the installation; see the log above");
+          log.warning("worker " + token + " exited before connecting; starting another");
+          ++report.restarts;
+          launch_one();
+        }
+      }
+    const auto now = Clock::now();
+    std::vector<std::string> silent;
+    for (auto& [token, p] : peers)
+      if (now - p.heard > options.lease) silent.push_back(token);
+    for (const std::string& token : silent)
+      kill_peer(token, "has been silent for " + std::to_string(options.lease.count() / 1000.0).substr(0, 4) + " s");
+    if (now - last_beat >= options.heartbeat) {
+      Message h;
+      h.kind = MessageKind::heartbeat;
+      for (auto& [token, p] : peers)
+        send(token, h);
+      last_beat = now;
+    }
+  }
+
+  void stop_workers() {
+    Message f;
+    f.kind = MessageKind::finished;
+    for (auto& [token, p] : peers)
+      send(token, f);
+    if (launcher) launcher->stop_all(5.0);
+  }
+
+  ManagerReport run() {
+    start = Clock::now();
+    cpu_at_start = cpu_seconds();
+    progress.begin("extraction, " + std::to_string(report.leaves) + " blocks", report.leaves + 1, "blocks+final");
+    if (launcher)
+      for (std::size_t i = 0; i < options.workers; ++i)
+        launch_one();
+    log.info("manager listening on " + endpoint + "; " + std::to_string(report.leaves) + " blocks of at most " +
+             std::to_string(tree.leaf_size()) + " cells");
+    Clock::time_point alone = Clock::now(); // since when no worker is connected
+    std::optional<Clock::time_point> completed;
+    try {
+      for (;;) {
+        cancel.throw_if_cancelled();
+        zmq::pollitem_t item{router.handle(), 0, ZMQ_POLLIN, 0};
+        detail::poll_items(&item, 1, std::chrono::milliseconds(100));
+        zmq::message_t id, body;
+        while (router.recv(id, zmq::recv_flags::dontwait)) {
+          if (!id.more()) {
+            drop("a frame without a routing id");
+            continue;
+          }
+          (void)router.recv(body, zmq::recv_flags::none);
+          // Extra frames from a foreign peer: read and drop them.
+          bool extra = false;
+          while (body.more()) {
+            zmq::message_t rest;
+            (void)router.recv(rest, zmq::recv_flags::none);
+            extra = true;
+            body.swap(rest);
+          }
+          if (extra) {
+            drop("a message of more than one frame");
+            continue;
+          }
+          handle(id.to_string(), std::span(static_cast<const std::byte*>(body.data()), body.size()));
+        }
+        heartbeats();
+        if (schedule.complete()) {
+          if (!completed) completed = Clock::now();
+          if (peers.empty() || since(*completed) > 3.0) break; // each is told FINISHED when it asks
+        }
+        if (!peers.empty()) alone = Clock::now();
+        if (peers.empty() && Clock::now() - alone > options.connect_timeout)
+          throw Error("no worker connected to " + endpoint + " within " +
+                          std::to_string(options.connect_timeout.count() / 1000) + " s",
+                      {},
+                      report.workers ? "every worker died: see the log above"
+                                     : "check that workers can start and reach this address (firewall, --bind)");
+      }
+    } catch (...) {
+      stop_workers();
+      progress.end();
+      throw;
+    }
+    // Workers told FINISHED exit by themselves; those still running after a grace are stopped.
+    report.seconds = since(start);
+    const auto grace = Clock::now() + std::chrono::seconds(3);
+    while (launcher && launcher->running() > 0 && Clock::now() < grace)
+      std::this_thread::sleep_for(std::chrono::milliseconds(10));
+    stop_workers();
+    progress.end();
+    report.manager_cpu_seconds = cpu_seconds() - cpu_at_start;
+    report.manager_peak_rss_kb = peak_rss_kb(); // of the whole process, so far
+
+    return report;
+  }
+};
+
+Manager::Manager(ManagerOptions options, store::ComponentStore& store, Launcher* launcher, Logger& log,
+                 Progress& progress, const CancelToken& cancel)
+    : impl_(std::make_unique<Impl>(std::move(options), store, launcher, log, progress, cancel)) {}
+Manager::~Manager() = default;
+const std::string& Manager::endpoint() const {
+  return impl_->endpoint;
+}
+std::string Manager::new_token() {
+  return impl_->new_token();
+}
+ManagerReport Manager::run() {
+  return impl_->run();
+}
+
+} // namespace geotandem::runtime

@@ -1,0 +1,28 @@
+// The manager's report as JSON, for the store's run statistics (manager.hpp).
+#include <nlohmann/json.hpp>
+
+#include "geotandem/runtime/manager.hpp"
+
+namespace geotandem::runtime {
+
+std::string ManagerReport::to_json() const {
+  const nlohmann::json j = {
+      {"workers", workers},
+      {"deaths", deaths},
+      {"restarts", restarts},
+      {"leaves", leaves},
+      {"tasks", {{"extract", extract}, {"send", send}, {"merge", merge}, {"finish", finish}}},
+      {"redone_leaves", redone_leaves},
+      {"seconds",
+       {{"total", seconds}, {"extract", seconds_extract}, {"merge", seconds_merge}, {"finish", seconds_finish}}},
+      {"bytes",
+       {{"surfaces", surface_bytes}, {"largest_surface", largest_surface}, {"in", bytes_in}, {"out", bytes_out}}},
+      {"dropped_messages", dropped_messages},
+      {"components", components},
+      {"duplicates", duplicates},
+      {"manager", {{"cpu_seconds", manager_cpu_seconds}, {"peak_rss_kb", manager_peak_rss_kb}}},
+      {"worker_peak_rss_kb", worker_peak_rss_kb}};
+  return j.dump();
+}
+
+} // namespace geotandem::runtime

@@ -1,0 +1,236 @@
+// The manager's decisions, algorithm 6 of the seed (schedule.hpp).
+#include "geotandem/runtime/schedule.hpp"
+
+#include <stdexcept>
+#include <string>
+
+#include "geotandem/core/error.hpp"
+
+namespace geotandem::runtime {
+
+using tandem::kNoNode;
+using tandem::NodeId;
+
+const char* to_string(TaskKind kind) {
+  switch (kind) {
+  case TaskKind::extract: return "EXTRACT";
+  case TaskKind::send: return "SEND";
+  case TaskKind::merge: return "MERGE";
+  case TaskKind::wait: return "WAIT";
+  case TaskKind::finished: return "FINISHED";
+  }
+  return "?";
+}
+
+Schedule::Schedule(const tandem::BlockTree& tree) : tree_(tree), unprocessed_(tree.size(), 0) {
+  for (NodeId leaf : tree.leaves())
+    unprocessed_[static_cast<std::size_t>(leaf)] = 1;
+}
+
+void Schedule::skip(NodeId leaf) {
+  if (started_) throw std::logic_error("schedule: skip() after the first decision");
+  if (leaf < 0 || static_cast<std::size_t>(leaf) >= tree_.size() || !tree_.node(leaf).is_leaf())
+    throw InvalidArgument("schedule: node " + std::to_string(leaf) + " is not a leaf of the block tree");
+  if (unprocessed_[static_cast<std::size_t>(leaf)]) ++skipped_;
+  unprocessed_[static_cast<std::size_t>(leaf)] = 0;
+}
+
+Schedule::Worker& Schedule::worker(WorkerId id) {
+  auto it = workers_.find(id);
+  if (it == workers_.end()) throw std::logic_error("schedule: unknown worker " + std::to_string(id));
+  return it->second;
+}
+
+void Schedule::join(WorkerId id) {
+  if (!workers_.try_emplace(id, tree_).second)
+    throw std::logic_error("schedule: worker " + std::to_string(id) + " joined twice");
+}
+
+bool Schedule::busy(WorkerId id) const {
+  auto it = workers_.find(id);
+  return it != workers_.end() && it->second.task.has_value();
+}
+
+Aggregate Schedule::claimed(const Worker& w) const {
+  Aggregate all = w.held;
+  for (TransferId t : w.incoming)
+    all.add(transfers_.at(t).leaves);
+  return all;
+}
+
+// has_neighbor_worker: the live worker, other than this one, whose claimed leaves are
+// restricted-adjacent to this one's and at least as many; the one claiming most leaves first.
+std::optional<WorkerId> Schedule::neighbor(WorkerId id) {
+  const Aggregate& mine = worker(id).held;
+  std::optional<WorkerId> best;
+  std::size_t best_size = 0;
+  for (const auto& [other, w] : workers_) {
+    if (other == id) continue;
+    const Aggregate theirs = claimed(w);
+    // The smaller side travels: a worker does not send to a smaller neighbour (that one sends to
+    // it when it asks), so large aggregates stay put and their workers go on extracting.
+    if (!theirs.empty() && theirs.size() >= mine.size() && mine.adjacent(theirs) && theirs.size() > best_size) {
+      best = other;
+      best_size = theirs.size();
+    }
+  }
+  return best;
+}
+
+// has_unprocessed_block: one restricted-adjacent to the worker's aggregate first, any otherwise.
+NodeId Schedule::unprocessed_leaf(const Worker& w) const {
+  NodeId any = kNoNode;
+  const std::vector<NodeId> mine = w.held.maximal_nodes();
+  for (NodeId leaf : tree_.leaves()) {
+    if (!unprocessed_[static_cast<std::size_t>(leaf)]) continue;
+    if (any == kNoNode) any = leaf;
+    if (mine.empty()) break;
+    for (NodeId a : mine)
+      if (nodes_adjacent(tree_, a, leaf)) return leaf;
+  }
+  return any;
+}
+
+Decision Schedule::assign(Worker& w, Decision d) {
+  switch (d.kind) {
+  case TaskKind::extract: ++counts_.extract; break;
+  case TaskKind::send: ++counts_.send; break;
+  case TaskKind::merge: ++counts_.merge; break;
+  case TaskKind::wait: ++counts_.wait; return d; // nothing in progress
+  case TaskKind::finished:
+    ++counts_.finished;
+    if (!d.final) return d;
+    break;
+  }
+  w.task = d;
+  return d;
+}
+
+Decision Schedule::next(WorkerId id) {
+  started_ = true;
+  Worker& w = worker(id);
+  if (w.task) throw std::logic_error("schedule: worker " + std::to_string(id) + " asked while busy");
+  if (complete_) return assign(w, {.kind = TaskKind::finished});
+
+  // 1. has_waiting_surface
+  for (TransferId t : w.incoming) {
+    Transfer& tr = transfers_.at(t);
+    if (tr.arrived && !tr.merging) {
+      tr.merging = true;
+      w.held.add(tr.leaves);
+      return assign(w, {.kind = TaskKind::merge, .transfer = t});
+    }
+  }
+  if (!w.incoming.empty()) return assign(w, {.kind = TaskKind::wait});
+
+  // 2. has_neighbor_worker
+  if (!w.held.empty()) {
+    if (const std::optional<WorkerId> v = neighbor(id)) {
+      const TransferId t = next_transfer_++;
+      Transfer tr{.from = id, .to = *v, .leaves = w.held};
+      transfers_.emplace(t, std::move(tr));
+      worker(*v).incoming.push_back(t);
+      w.held.clear();
+      return assign(w, {.kind = TaskKind::send, .target = *v, .transfer = t});
+    }
+  }
+
+  // 3. has_unprocessed_block
+  const NodeId leaf = unprocessed_leaf(w);
+  if (leaf != kNoNode) {
+    unprocessed_[static_cast<std::size_t>(leaf)] = 0;
+    w.held.add(leaf);
+    return assign(w, {.kind = TaskKind::extract, .leaf = leaf});
+  }
+
+  if (skipped_ == tree_.leaves().size()) { // a resumed run with nothing left to do
+    complete_ = true;
+    return assign(w, {.kind = TaskKind::finished});
+  }
+  // 4. The whole surface in one worker, nothing on its way: it finishes the run.
+  if (transfers_.empty() && !w.held.empty() && w.held.size() == tree_.leaves().size() - skipped_)
+    return assign(w, {.kind = TaskKind::finished, .final = true});
+  return assign(w, {.kind = TaskKind::wait});
+}
+
+void Schedule::done(WorkerId id) {
+  Worker& w = worker(id);
+  if (!w.task) throw std::logic_error("schedule: worker " + std::to_string(id) + " reported a task it was not given");
+  const Decision d = *w.task;
+  if (d.kind == TaskKind::send) throw std::logic_error("schedule: a SEND ends with arrived(), not done()");
+  w.task.reset();
+  if (d.kind == TaskKind::merge) {
+    transfers_.erase(d.transfer);
+    std::erase(w.incoming, d.transfer);
+  } else if (d.kind == TaskKind::finished) {
+    w.held.clear();
+    complete_ = true;
+  }
+}
+
+bool Schedule::arrived(WorkerId sender, TransferId t) {
+  Worker& from = worker(sender);
+  if (from.task && from.task->kind == TaskKind::send && from.task->transfer == t) from.task.reset();
+  auto it = transfers_.find(t);
+  if (it == transfers_.end()) return false; // its target died: the leaves are re-done
+  if (it->second.from != sender || it->second.arrived)
+    throw std::logic_error("schedule: transfer " + std::to_string(t) + " is not on its way from worker " +
+                           std::to_string(sender));
+  it->second.arrived = true;
+  return true;
+}
+
+void Schedule::release(const Aggregate& leaves, std::vector<NodeId>& out) {
+  for (NodeId leaf : leaves.leaves()) {
+    unprocessed_[static_cast<std::size_t>(leaf)] = 1;
+    out.push_back(leaf);
+    ++counts_.redone_leaves;
+  }
+}
+
+std::vector<NodeId> Schedule::leave(WorkerId id) {
+  std::vector<NodeId> out;
+  Worker& w = worker(id);
+  release(w.held, out);
+  // Surfaces addressed to it, and those it was still sending, are lost with it.
+  for (auto it = transfers_.begin(); it != transfers_.end();) {
+    Transfer& t = it->second;
+    const bool to_it = t.to == id;
+    const bool from_it = t.from == id && !t.arrived;
+    if (!to_it && !from_it) {
+      ++it;
+      continue;
+    }
+    if (!t.merging) release(t.leaves, out); // a merging transfer's leaves are in w.held already
+    if (!to_it) std::erase(worker(t.to).incoming, it->first);
+    it = transfers_.erase(it);
+  }
+  workers_.erase(id);
+  return out;
+}
+
+std::optional<WorkerId> Schedule::transfer_target(TransferId t) const {
+  auto it = transfers_.find(t);
+  if (it == transfers_.end()) return std::nullopt;
+  return it->second.to;
+}
+
+std::optional<WorkerId> Schedule::transfer_source(TransferId t) const {
+  auto it = transfers_.find(t);
+  if (it == transfers_.end()) return std::nullopt;
+  return it->second.from;
+}
+
+std::size_t Schedule::unprocessed() const {
+  std::size_t n = 0;
+  for (NodeId leaf : tree_.leaves())
+    n += unprocessed_[static_cast<std::size_t>(leaf)] ? 1u : 0u;
+  return n;
+}
+
+std::size_t Schedule::leaves_held(WorkerId id) const {
+  auto it = workers_.find(id);
+  return it == workers_.end() ? 0 : it->second.held.size();
+}
+
+} // namespace geotandem::runtime

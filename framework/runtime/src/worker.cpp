@@ -1,0 +1,224 @@
+// The worker's task loop (worker.hpp).
+#include "geotandem/runtime/worker.hpp"
+
+#include <sys/resource.h>
+#include <unistd.h>
+
+#include <optional>
+#include <thread>
+#include <utility>
+
+#include "geotandem/core/error.hpp"
+#include "geotandem/store/shard.hpp"
+#include "geotandem/tandem/serialize.hpp"
+#include "worker_link.hpp"
+
+namespace geotandem::runtime {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+// Finished components to the worker's shard; their index entries wait for the next COMMIT.
+class ShardSink final : public mesh::ComponentSink {
+public:
+  ShardSink(store::ShardWriter& writer, std::int64_t run) : writer_(writer), run_(run) {}
+  void commit(const mesh::Component& c) override {
+    store::IndexEntry e;
+    e.key = c.key;
+    e.location = writer_.append(c);
+    e.stats = c.stats;
+    e.run = run_;
+    pending_.push_back(std::move(e));
+  }
+  std::vector<store::IndexEntry> take() {
+    if (!pending_.empty()) writer_.sync();
+    return std::exchange(pending_, {});
+  }
+
+private:
+  store::ShardWriter& writer_;
+  std::int64_t run_;
+  std::vector<store::IndexEntry> pending_;
+};
+
+class Worker {
+public:
+  Worker(const WorkerOptions& options, const VolumeFactory& factory, Logger& log, const CancelToken& cancel)
+      : options_(options), factory_(factory), log_(log), cancel_(cancel),
+        link_(context_,
+              {.endpoint = options.endpoint,
+               .token = options.token,
+               .heartbeat = options.heartbeat,
+               .manager_timeout = options.manager_timeout},
+              cancel_) {}
+
+  int run() {
+    Message hello;
+    hello.kind = MessageKind::hello;
+    hello.text = options_.token;
+    hello.number = static_cast<std::uint64_t>(getpid());
+    link_.send(hello);
+    for (;;) {
+      const Message m = next();
+      try {
+        if (handle(m)) return 0;
+      } catch (const Cancelled&) {
+        throw;
+      } catch (const std::exception& e) {
+        Message f;
+        f.kind = MessageKind::failed;
+        f.lease = m.lease;
+        f.text = e.what();
+        link_.send(f);
+        throw;
+      }
+    }
+  }
+
+private:
+  // Runs one task; true when the worker must stop.
+  bool handle(const Message& m) {
+    {
+      switch (m.kind) {
+      case MessageKind::setup: setup(m); break;
+      case MessageKind::extract: extract(m); break;
+      case MessageKind::send: send_surface(m); break;
+      case MessageKind::merge: merge(m); break;
+      case MessageKind::wait:
+        std::this_thread::sleep_for(std::chrono::milliseconds(std::min<std::uint64_t>(m.number, 2000)));
+        break;
+      case MessageKind::finished:
+        if (m.number == 1) finish(m);
+        return true;
+      default:
+        log_.warning("worker " + options_.token + ": unexpected " + to_string(m.kind) + " dropped");
+        return false;
+      }
+      ask();
+      return false;
+    }
+  }
+  Message next() {
+    for (;;) {
+      cancel_.throw_if_cancelled();
+      try {
+        if (std::optional<Message> m = link_.receive(std::chrono::milliseconds(200))) return *m;
+      } catch (const ProtocolError& e) {
+        log_.warning("worker " + options_.token + ": dropped a damaged message: " + e.what());
+      }
+    }
+  }
+
+  void ask() {
+    Message m;
+    m.kind = MessageKind::ask;
+    link_.send(m);
+  }
+
+  void setup(const Message& m) {
+    settings_ = RunSettings::from_json(m.text);
+    volume_ = factory_(settings_.volume);
+    writer_.emplace(settings_.store, options_.token, volume_->geometry());
+    sink_.emplace(*writer_, settings_.run);
+    options_tandem_ = settings_.tandem_options();
+    options_tandem_.cancel = &cancel_;
+    log_.info("worker " + options_.token + ": ready (" + volume_->source() + ")");
+  }
+
+  void need_setup(const Message& m) const {
+    if (!volume_)
+      throw Error(std::string(to_string(m.kind)) + " before SETUP", {.worker = options_.token},
+                  "the manager speaks another protocol: run the same geotandem version everywhere");
+  }
+
+  void report(const Message& task, Clock::time_point start) {
+    Message c;
+    c.kind = MessageKind::commit;
+    c.lease = task.lease;
+    c.entries = sink_->take();
+    if (!c.entries.empty()) link_.send(c);
+    Message d;
+    d.kind = MessageKind::done;
+    d.lease = task.lease;
+    d.number = static_cast<std::uint64_t>(std::chrono::duration<double, std::milli>(Clock::now() - start).count());
+    rusage u{};
+    getrusage(RUSAGE_SELF, &u);
+    d.box[0] = u.ru_maxrss;
+    link_.send(d);
+  }
+
+  void extract(const Message& m) {
+    need_setup(m);
+    const auto start = Clock::now();
+    const volume::Box cells{{m.box[0], m.box[1], m.box[2]}, {m.box[3], m.box[4], m.box[5]}};
+    std::unique_ptr<tandem::WorkingSurface> piece;
+    tandem::extract_block(*volume_, cells, options_tandem_, &*sink_, &piece, settings_.brute);
+    absorb(std::move(piece));
+    report(m, start);
+  }
+
+  void absorb(std::unique_ptr<tandem::WorkingSurface> piece) {
+    if (!surface_)
+      surface_ = std::move(piece);
+    else
+      surface_->merge(std::move(*piece), &cancel_);
+  }
+
+  void send_surface(const Message& m) {
+    need_setup(m);
+    Message s;
+    s.kind = MessageKind::surface;
+    s.lease = m.lease;
+    if (surface_) s.bytes = tandem::serialize(*surface_);
+    surface_.reset();
+    if (s.bytes.size() + 4096 > kDefaultMaxMessage)
+      throw InvalidArgument("a partial surface of " + std::to_string(s.bytes.size() >> 20) +
+                                " MiB is over the message cap of " + std::to_string(kDefaultMaxMessage >> 20) + " MiB",
+                            {.worker = options_.token}, "use smaller blocks (--block-size)");
+    link_.send(s);
+  }
+
+  void merge(const Message& m) {
+    need_setup(m);
+    const auto start = Clock::now();
+    // The received record goes straight into this worker's surface (no engine is rebuilt for the
+    // sender); a worker holding nothing takes the record as its surface.
+    if (surface_)
+      tandem::merge_record(*surface_, m.bytes, &cancel_);
+    else
+      surface_ = std::make_unique<tandem::WorkingSurface>(tandem::deserialize(m.bytes, &*sink_));
+    report(m, start);
+  }
+
+  void finish(const Message& m) {
+    need_setup(m);
+    const auto start = Clock::now();
+    if (surface_) surface_->finish(&cancel_);
+    surface_.reset();
+    report(m, start);
+  }
+
+  WorkerOptions options_;
+  const VolumeFactory& factory_;
+  Logger& log_;
+  CancelToken cancel_;
+  zmq::context_t context_{1};
+  detail::WorkerLink link_;
+  RunSettings settings_;
+  tandem::TandemOptions options_tandem_;
+  std::shared_ptr<const volume::Volume> volume_;
+  std::optional<store::ShardWriter> writer_;
+  std::optional<ShardSink> sink_;
+  std::unique_ptr<tandem::WorkingSurface> surface_;
+};
+
+} // namespace
+
+int run_worker(const WorkerOptions& options, const VolumeFactory& factory, Logger& log, const CancelToken& cancel) {
+  store::validate_writer_name(options.token);
+  Worker worker(options, factory, log, cancel);
+  return worker.run();
+}
+
+} // namespace geotandem::runtime

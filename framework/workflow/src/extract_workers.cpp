@@ -1,0 +1,65 @@
+// The extraction step through the manager/worker runtime (extract_step.hpp): this process is the
+// manager, local worker processes extract, send and merge the blocks.
+#include <chrono>
+
+#include "geotandem/core/error.hpp"
+#include "geotandem/runtime/manager.hpp"
+#include "geotandem/workflow/extract_step.hpp"
+
+namespace geotandem::workflow {
+
+ExtractResult extract_with_workers(const volume::Volume& volume, store::ComponentStore& store,
+                                   const ExtractSettings& settings, Logger& log, Progress& progress,
+                                   const CancelToken& cancel) {
+  if (!(store.geometry() == volume.geometry()))
+    throw InvalidArgument("the store was made for another cube geometry", {store.directory().string()},
+                          "extract into a new store directory");
+  if (settings.volume_description.empty() || settings.worker_command.empty())
+    throw InvalidArgument("workers need a description of the input volume and a worker command", {},
+                          "use --workers 0 to extract in this process");
+  if (settings.block_size != 0 && settings.block_size < 8)
+    throw InvalidArgument("block size must be at least 8 cells with workers, got " +
+                              std::to_string(settings.block_size),
+                          {}, "blocks of 64 to 256 cells are typical");
+  const auto start = std::chrono::steady_clock::now();
+  runtime::ManagerOptions options;
+  runtime::RunSettings& r = options.settings;
+  r.volume = settings.volume_description;
+  r.store = std::filesystem::absolute(store.directory()).string();
+  r.block_size = settings.block_size > 0 ? settings.block_size : 64;
+  r.iso = settings.iso;
+  r.axis = settings.axis;
+  r.max_error = settings.max_error;
+  r.isotropy = settings.isotropy;
+  r.extended_time_lag = settings.extended_time_lag;
+  r.dump = settings.mode != ExtractMode::tandem;
+  r.brute = settings.mode == ExtractMode::brute;
+  options.workers = settings.workers;
+  options.worker_command = settings.worker_command;
+
+  ExtractSettings effective = settings;
+  effective.block_size = r.block_size;
+  nlohmann::json parameters = extract_run_parameters(volume, effective);
+  parameters["workers"] = settings.workers;
+
+  ExtractResult result;
+  result.run = store.begin_run(parameters.dump());
+  r.run = result.run;
+  runtime::LocalLauncher launcher;
+  runtime::Manager manager(options, store, &launcher, log, progress, cancel);
+  log.info("extracting with " + std::to_string(settings.workers) + " local worker" +
+           (settings.workers == 1 ? "" : "s"));
+  const runtime::ManagerReport report = manager.run();
+  result.components = report.components;
+  result.duplicates = report.duplicates;
+  result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  result.peak_rss_kb = peak_rss_kb();
+  result.blocks = {{"block_size", r.block_size}, {"leaves", report.leaves}, {"merges", report.merge}};
+  result.statistics = nlohmann::json::parse(report.to_json());
+  result.statistics["peak_rss_kb"] = result.peak_rss_kb;
+  warn_if_empty(result, settings, log);
+  store.end_run(result.run, result.statistics.dump());
+  return result;
+}
+
+} // namespace geotandem::workflow

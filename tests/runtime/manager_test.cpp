@@ -1,0 +1,197 @@
+// The manager as a library with real sockets: no worker, workers that cannot start, and garbage
+// sent to its socket while real worker processes extract.
+#include <gtest/gtest.h>
+
+#include <atomic>
+#include <random>
+#include <thread>
+#include <zmq.hpp>
+
+#include "geotandem/core/error.hpp"
+#include "geotandem/runtime/manager.hpp"
+#include "geotandem/volume/io.hpp"
+#include "process_fixtures.hpp"
+#include "scratch.hpp"
+
+namespace geotandem::runtime {
+namespace {
+
+using testing::ScratchDir;
+
+struct ManagerRun {
+  ScratchDir dir;
+  std::string cube = dir.file("cube.raw");
+  std::unique_ptr<volume::Volume> volume;
+  std::optional<store::ComponentStore> store;
+  ManagerOptions options;
+  CancelToken cancel;
+  NullProgress progress;
+
+  explicit ManagerRun(const std::string& shape = "40 40 40") {
+    auto r = testing::run_geotandem("-q synth --kind analytic --shape " + shape + " --seed 3 --out '" + cube + "'");
+    EXPECT_EQ(r.exit_code, 0) << r.err;
+    volume = volume::open_volume(cube);
+    store = store::ComponentStore::create(dir.file("store"), volume->geometry());
+    options.settings.volume = R"({"kind":"file","path":")" + cube + R"(","nan":"error","variable":""})";
+    options.settings.store = dir.file("store");
+    options.settings.block_size = 8;
+    options.settings.iso = 0.5f;
+    options.settings.run = store->begin_run("{}");
+    options.worker_command = {GEOTANDEM_BINARY, "-q", "worker"};
+  }
+};
+
+std::string message_of(const std::function<void()>& f) {
+  try {
+    f();
+  } catch (const Error& e) {
+    return e.what();
+  }
+  return "";
+}
+
+TEST(Manager, NoWorkerWithinTheTimeoutIsAClearError) {
+  ManagerRun run;
+  run.options.connect_timeout = std::chrono::milliseconds(800);
+  Manager manager(run.options, *run.store, nullptr, Logger::null(), run.progress, run.cancel);
+  const std::string text = message_of([&] { manager.run(); });
+  EXPECT_NE(text.find("no worker connected to tcp://127.0.0.1:"), std::string::npos) << text;
+}
+
+TEST(Manager, WorkersThatCannotStartEndTheRunWithAClearError) {
+  ManagerRun run;
+  run.options.worker_command = {"/bin/false"};
+  run.options.max_restarts = 2;
+  LocalLauncher launcher;
+  Manager manager(run.options, *run.store, &launcher, Logger::null(), run.progress, run.cancel);
+  const std::string text = message_of([&] { manager.run(); });
+  EXPECT_NE(text.find("exited before connecting"), std::string::npos) << text;
+  EXPECT_EQ(launcher.running(), 0u);
+}
+
+TEST(Manager, AWorkerThatCannotOpenTheInputEndsTheRunWithItsReason) {
+  ManagerRun run;
+  run.options.settings.volume = R"({"kind":"file","path":"/nonexistent/cube.raw","nan":"error","variable":""})";
+  LocalLauncher launcher;
+  Manager manager(run.options, *run.store, &launcher, Logger::null(), run.progress, run.cancel);
+  const std::string text = message_of([&] { manager.run(); });
+  EXPECT_NE(text.find("could not start"), std::string::npos) << text;
+  EXPECT_NE(text.find("/nonexistent/cube.raw"), std::string::npos) << text;
+}
+
+// A worker started by hand (as a cluster scheduler would) joins a run that one local worker began,
+// and takes part: the run ends with the components of the in-process extraction.
+TEST(Manager, AWorkerJoiningLateTakesPart) {
+  ManagerRun run("48 44 40");
+  auto ref = testing::run_geotandem("-q extract '" + run.cube + "' --iso 0.5 --block-size 8 --workers 0 --out '" +
+                                    run.dir.file("ref") + "'");
+  ASSERT_EQ(ref.exit_code, 0) << ref.err;
+  run.options.workers = 1;
+  LocalLauncher launcher;
+  Logger log(std::cerr, LogLevel::info);
+  Manager manager(run.options, *run.store, &launcher, log, run.progress, run.cancel);
+  const std::string token = manager.new_token();
+  const std::string endpoint = manager.endpoint();
+  pid_t late = 0;
+  std::thread starter([&] {
+    std::this_thread::sleep_for(std::chrono::milliseconds(300));
+    late =
+        testing::spawn_geotandem({"-q", "worker", "--connect", endpoint, "--token", token}, run.dir.file("late.log"));
+  });
+  ManagerReport report;
+  EXPECT_NO_THROW(report = manager.run());
+  starter.join();
+  const int code = testing::wait_exit(late, 60);
+  EXPECT_EQ(code, 0) << testing::read_text(run.dir.file("late.log"));
+  EXPECT_EQ(report.workers, 2u) << "the late worker did not join";
+  const auto expected = testing::components_of(run.dir.file("ref"), false);
+  const auto got = testing::components_of(run.dir.file("store"), false);
+  ASSERT_EQ(got.size(), expected.size());
+  for (const auto& [key, c] : expected) {
+    ASSERT_TRUE(got.count(key)) << key;
+    EXPECT_NEAR(got.at(key).volume, c.volume, 0.005 * std::abs(c.volume) + 1e-9);
+  }
+}
+
+// Random bytes, truncated and damaged messages, oversized claims, replayed task results and HELLOs
+// under unknown tokens, sent from several foreign peers while two real workers run.
+void send_garbage(const std::string& endpoint, std::atomic<bool>& stop, std::atomic<int>& sent) {
+  zmq::context_t context(1);
+  std::mt19937 rng(17);
+  std::vector<zmq::socket_t> peers;
+  for (int i = 0; i < 4; ++i) {
+    peers.emplace_back(context, zmq::socket_type::dealer);
+    peers.back().set(zmq::sockopt::linger, 0);
+    if (i > 0) peers.back().set(zmq::sockopt::routing_id, "w-impostor-" + std::to_string(i));
+    peers.back().connect(endpoint);
+  }
+  Message done;
+  done.kind = MessageKind::done;
+  done.lease = {1, 1};
+  const std::vector<std::byte> valid = encode(done);
+  while (!stop) {
+    zmq::socket_t& s = peers[rng() % peers.size()];
+    std::vector<std::byte> frame;
+    switch (rng() % 6) {
+    case 0:
+      frame.resize(rng() % 300);
+      for (auto& b : frame)
+        b = static_cast<std::byte>(rng());
+      break;
+    case 1: frame.assign(valid.begin(), valid.begin() + static_cast<long>(rng() % valid.size())); break;
+    case 2:
+      frame = valid;
+      frame[rng() % frame.size()] ^= std::byte{0x40};
+      break;
+    case 3: { // a header announcing 4 GiB
+      frame = valid;
+      const std::uint32_t huge = 0xffffffffu;
+      std::memcpy(frame.data() + 8, &huge, 4);
+      break;
+    }
+    case 4: frame = valid; break; // a replayed result from a peer that holds no lease
+    case 5: {
+      Message hello;
+      hello.kind = MessageKind::hello;
+      hello.text = "w-impostor";
+      frame = encode(hello);
+      break;
+    }
+    }
+    (void)s.send(zmq::buffer(frame.data(), frame.size()), zmq::send_flags::dontwait);
+    if (rng() % 4 == 0) // and a multi-frame message
+      (void)s.send(zmq::str_buffer("x"), zmq::send_flags::sndmore | zmq::send_flags::dontwait),
+          (void)s.send(zmq::str_buffer("y"), zmq::send_flags::dontwait);
+    ++sent;
+    std::this_thread::sleep_for(std::chrono::microseconds(500));
+  }
+}
+
+TEST(Manager, GarbageOnItsSocketIsDroppedAndTheRunCompletes) {
+  ManagerRun run("48 44 40");
+  auto ref = testing::run_geotandem("-q extract '" + run.cube + "' --iso 0.5 --block-size 8 --workers 0 --out '" +
+                                    run.dir.file("ref") + "'");
+  ASSERT_EQ(ref.exit_code, 0) << ref.err;
+  run.options.workers = 2;
+  LocalLauncher launcher;
+  Manager manager(run.options, *run.store, &launcher, Logger::null(), run.progress, run.cancel);
+  std::atomic<bool> stop{false};
+  std::atomic<int> sent{0};
+  std::thread garbage(send_garbage, manager.endpoint(), std::ref(stop), std::ref(sent));
+  ManagerReport report;
+  EXPECT_NO_THROW(report = manager.run());
+  stop = true;
+  garbage.join();
+  EXPECT_GT(sent.load(), 50);
+  EXPECT_GT(report.dropped_messages, 0u);
+  const auto expected = testing::components_of(run.dir.file("ref"), false);
+  const auto got = testing::components_of(run.dir.file("store"), false);
+  ASSERT_EQ(got.size(), expected.size());
+  for (const auto& [key, c] : expected) {
+    ASSERT_TRUE(got.count(key)) << key;
+    EXPECT_NEAR(got.at(key).volume, c.volume, 0.005 * std::abs(c.volume) + 1e-9);
+  }
+}
+
+} // namespace
+} // namespace geotandem::runtime

@@ -1,0 +1,274 @@
+// The manager's decisions (algorithm 6) fed with events, without sockets: a replay of the seed's
+// figure 10 (three workers, eight blocks) and random event orders checked against a simulation of
+// what the workers really hold.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <map>
+#include <random>
+#include <set>
+
+#include "geotandem/runtime/schedule.hpp"
+#include "geotandem/tandem/block_tree.hpp"
+
+namespace geotandem::runtime {
+namespace {
+
+using tandem::BlockTree;
+using tandem::NodeId;
+
+volume::Box cells(std::int64_t x, std::int64_t y, std::int64_t z) {
+  return volume::Box{{0, 0, 0}, {x, y, z}};
+}
+
+// A cube of 32^3 cells with leaves of 16: eight blocks, cut along x (left 1, right 8), then y
+// (up/down), then z (front/back). Leaves in tree order: 3 4 6 7 10 11 13 14.
+TEST(Schedule, Figure10ReplayWithThreeWorkers) {
+  const BlockTree tree(cells(32, 32, 32), 16);
+  ASSERT_EQ(tree.leaves(), (std::vector<NodeId>{3, 4, 6, 7, 10, 11, 13, 14}));
+  Schedule s(tree);
+  for (WorkerId w : {1u, 2u, 3u})
+    s.join(w);
+  auto expect = [&](WorkerId w, TaskKind kind, NodeId leaf = tandem::kNoNode, WorkerId target = 0) {
+    const Decision d = s.next(w);
+    EXPECT_EQ(d.kind, kind) << "worker " << w << " got " << to_string(d.kind);
+    if (kind == TaskKind::extract) {
+      EXPECT_EQ(d.leaf, leaf) << "worker " << w;
+    }
+    if (kind == TaskKind::send) {
+      EXPECT_EQ(d.target, target) << "worker " << w;
+    }
+    return d;
+  };
+  // W1 ? -> EXTRACT 3; W2 ? -> EXTRACT 4; W3 ? -> EXTRACT 6 (nobody holds anything yet).
+  expect(1, TaskKind::extract, 3);
+  expect(2, TaskKind::extract, 4);
+  expect(3, TaskKind::extract, 6);
+  // W1 has leaf 3; W2 works on its brother 4: W1 ? -> SEND W2, then EXTRACT 7.
+  s.done(1);
+  const Decision send1 = expect(1, TaskKind::send, tandem::kNoNode, 2);
+  EXPECT_TRUE(s.arrived(1, send1.transfer));
+  expect(1, TaskKind::extract, 7);
+  // W2 ? -> MERGE (3 arrived): W2 holds node 2 = {3, 4}.
+  s.done(2);
+  expect(2, TaskKind::merge);
+  s.done(2);
+  EXPECT_EQ(s.leaves_held(2), 2u);
+  // W3 has leaf 6 (down-front under left). Node 2 (up) passes the restricted adjacency with leaf 6,
+  // and so does W1's leaf 7 (its brother); the larger aggregate receives: W3 ? -> SEND W2.
+  s.done(3);
+  const Decision send3 = expect(3, TaskKind::send, tandem::kNoNode, 2);
+  EXPECT_TRUE(s.arrived(3, send3.transfer));
+  // W3 ? -> EXTRACT 10: W3 holds nothing, so the first unprocessed leaf.
+  expect(3, TaskKind::extract, 10);
+  // W2 ? -> MERGE 6: W2 holds {3, 4, 6}.
+  expect(2, TaskKind::merge);
+  s.done(2);
+  // W2 holds {3,4,6}; W1 extracts 7, adjacent but smaller: the smaller side travels, so W2 does
+  // not send. No unprocessed leaf is adjacent to {2, 6}: W2 ? -> EXTRACT 11, the first left.
+  expect(2, TaskKind::extract, 11);
+  // W1 has 7 (brother of 6, held by W2, which claims 4 leaves): W1 ? -> SEND W2, then EXTRACT 13.
+  s.done(1);
+  const Decision send1b = expect(1, TaskKind::send, tandem::kNoNode, 2);
+  EXPECT_TRUE(s.arrived(1, send1b.transfer));
+  expect(1, TaskKind::extract, 13);
+  // W3 has 10: node 1 (the whole left half, now claimed by W2) passes the test with it (ancestry
+  // {10, 9}: front, up, none opposite to left), and 11 is its brother: W3 ? -> SEND W2, EXTRACT 14.
+  s.done(3);
+  const Decision send3b = expect(3, TaskKind::send, tandem::kNoNode, 2);
+  EXPECT_TRUE(s.arrived(3, send3b.transfer));
+  expect(3, TaskKind::extract, 14);
+  // W2 finishes 11 and merges both surfaces waiting for it.
+  s.done(2);
+  expect(2, TaskKind::merge);
+  s.done(2);
+  expect(2, TaskKind::merge);
+  s.done(2);
+  EXPECT_EQ(s.leaves_held(2), 6u);
+  // Its neighbours W1 (13) and W3 (14) are smaller and nothing is left to extract: W2 ? -> WAIT.
+  expect(2, TaskKind::wait);
+  EXPECT_EQ(s.unprocessed(), 0u);
+  // W1 has 13 (adjacent to node 9 of W2, and brother of W3's 14): the larger wins, SEND W2.
+  s.done(1);
+  const Decision send1c = expect(1, TaskKind::send, tandem::kNoNode, 2);
+  EXPECT_TRUE(s.arrived(1, send1c.transfer));
+  s.done(3);
+  const Decision send3c = expect(3, TaskKind::send, tandem::kNoNode, 2);
+  EXPECT_TRUE(s.arrived(3, send3c.transfer));
+  // W1 and W3 hold nothing and nothing is left: they wait until the run is complete.
+  expect(1, TaskKind::wait);
+  expect(3, TaskKind::wait);
+  expect(2, TaskKind::merge);
+  s.done(2);
+  expect(2, TaskKind::merge);
+  s.done(2);
+  EXPECT_EQ(s.leaves_held(2), 8u);
+  // W2 holds the whole surface: FINISHED (final); then everyone is told FINISHED.
+  const Decision last = expect(2, TaskKind::finished);
+  EXPECT_TRUE(last.final);
+  EXPECT_FALSE(s.complete());
+  s.done(2);
+  EXPECT_TRUE(s.complete());
+  EXPECT_EQ(s.counts().extract, 8u);
+  EXPECT_EQ(s.counts().send, 6u);
+  EXPECT_EQ(s.counts().merge, 6u); // with one extraction into a held surface (11): 7 joins in all
+  for (WorkerId w : {1u, 2u, 3u}) {
+    const Decision d = s.next(w);
+    EXPECT_EQ(d.kind, TaskKind::finished);
+    EXPECT_FALSE(d.final);
+  }
+}
+
+TEST(Schedule, OneWorkerProcessesAndAggregatesEverything) {
+  const BlockTree tree(cells(40, 24, 16), 8);
+  Schedule s(tree);
+  s.join(7);
+  std::size_t extracts = 0;
+  for (int i = 0; i < 1000 && !s.complete(); ++i) {
+    const Decision d = s.next(7);
+    ASSERT_NE(d.kind, TaskKind::send) << "a lone worker has nobody to send to";
+    ASSERT_NE(d.kind, TaskKind::wait) << "a lone worker never waits";
+    extracts += d.kind == TaskKind::extract;
+    s.done(7);
+  }
+  EXPECT_TRUE(s.complete());
+  EXPECT_EQ(extracts, tree.leaves().size());
+}
+
+TEST(Schedule, RestrictedAdjacencyOfTheSeedsFigure8) {
+  // The seed's example: leaf 6 passes the test against n13, leaf 7 does not. Here with a cube cut
+  // x, y, y: node 1 (left) against the leaves under 8 (right).
+  const BlockTree tree(cells(32, 32, 16), 16);
+  Aggregate left(tree);
+  for (NodeId leaf : tree.leaves())
+    if (tree.is_ancestor(1, leaf)) left.add(leaf);
+  EXPECT_EQ(left.maximal_nodes(), std::vector<NodeId>{1});
+  for (NodeId leaf : tree.leaves()) {
+    if (tree.is_ancestor(1, leaf)) continue;
+    // Every right leaf touches the left half's face x = 16 (the cut is along x only once).
+    EXPECT_TRUE(left.adjacent(leaf)) << tree.describe(leaf);
+    EXPECT_EQ(left.adjacent(leaf), tandem::boxes_share_face(tree.node(1).cells, tree.node(leaf).cells));
+  }
+}
+
+// What a worker really holds, simulated: leaf counts per surface.
+using Surface = std::map<NodeId, int>;
+
+struct Sim {
+  explicit Sim(const BlockTree& t, std::uint32_t seed) : tree(t), s(t), rng(seed) {}
+  const BlockTree& tree;
+  Schedule s;
+  std::mt19937 rng;
+  std::map<WorkerId, Surface> surface;
+  std::map<WorkerId, Decision> task;    // in progress
+  std::map<TransferId, Surface> parcel; // uploaded to the manager, waiting for its merge
+  std::map<NodeId, int> extracted;
+  WorkerId next_id = 1;
+  Surface final_surface;
+  bool final_seen = false;
+
+  void join() {
+    s.join(next_id);
+    surface[next_id];
+    ++next_id;
+  }
+  void kill(WorkerId w) {
+    s.leave(w);
+    surface.erase(w);
+    task.erase(w);
+    // The manager drops the surfaces it held for the dead worker (their leaves are re-done).
+    std::erase_if(parcel, [&](const auto& p) { return !s.transfer_target(p.first); });
+  }
+  void step() {
+    std::vector<WorkerId> ids;
+    for (auto& [w, _] : surface)
+      ids.push_back(w);
+    const WorkerId w = ids[std::uniform_int_distribution<std::size_t>(0, ids.size() - 1)(rng)];
+    auto it = task.find(w);
+    if (it == task.end()) {
+      const Decision d = s.next(w);
+      if (d.kind == TaskKind::wait || (d.kind == TaskKind::finished && !d.final)) return;
+      ASSERT_FALSE(d.kind == TaskKind::send && d.target == w) << "worker " << w << " sent to itself";
+      task[w] = d;
+      if (d.kind == TaskKind::extract) ++extracted[d.leaf];
+      return;
+    }
+    const Decision d = it->second;
+    task.erase(it);
+    Surface& mine = surface[w];
+    switch (d.kind) {
+    case TaskKind::extract:
+      ++mine[d.leaf];
+      s.done(w);
+      break;
+    case TaskKind::send:
+      if (s.arrived(w, d.transfer)) parcel[d.transfer] = mine;
+      mine.clear();
+      break;
+    case TaskKind::merge: {
+      ASSERT_TRUE(parcel.count(d.transfer)) << "MERGE of a surface that never arrived";
+      for (auto [leaf, n] : parcel[d.transfer])
+        mine[leaf] += n;
+      parcel.erase(d.transfer);
+      s.done(w);
+      break;
+    }
+    case TaskKind::finished:
+      final_surface = mine;
+      final_seen = true;
+      mine.clear();
+      s.done(w);
+      break;
+    case TaskKind::wait: break;
+    }
+  }
+};
+
+void run_random(std::uint32_t seed) {
+  std::mt19937 pick(seed);
+  const std::int64_t sizes[] = {16, 24, 40, 64};
+  const BlockTree tree(cells(sizes[pick() % 4], sizes[pick() % 4], sizes[pick() % 4]), 8 + 8 * (pick() % 2));
+  Sim sim(tree, seed);
+  const int first = 1 + static_cast<int>(pick() % 4);
+  for (int i = 0; i < first; ++i)
+    sim.join();
+  const bool faults = seed % 2 == 0;
+  int steps = 0, deaths = 0;
+  for (; !sim.s.complete() && steps < 200000; ++steps) {
+    const unsigned r = pick() % 1000;
+    if (r < 5 && sim.surface.size() < 6) {
+      sim.join(); // a worker joins late
+    } else if (faults && r < 9 && sim.surface.size() > 1 && deaths < 8) {
+      auto it = sim.surface.begin();
+      std::advance(it, pick() % sim.surface.size());
+      sim.kill(it->first); // dies (or leaves) at any moment of any task
+      ++deaths;
+    }
+    sim.step();
+    if (::testing::Test::HasFatalFailure()) return;
+  }
+  ASSERT_TRUE(sim.s.complete()) << "the run did not end after " << steps << " events";
+  ASSERT_TRUE(sim.final_seen);
+  // Every leaf exactly once in the one surface left.
+  ASSERT_EQ(sim.final_surface.size(), tree.leaves().size());
+  for (NodeId leaf : tree.leaves())
+    EXPECT_EQ(sim.final_surface[leaf], 1) << tree.describe(leaf);
+  if (deaths == 0) {
+    for (NodeId leaf : tree.leaves())
+      EXPECT_EQ(sim.extracted[leaf], 1) << "extracted twice without a fault: " << tree.describe(leaf);
+  }
+  EXPECT_TRUE(sim.parcel.empty());
+}
+
+// 300 event orders: odd seeds without faults, even seeds with workers dying at any moment; workers
+// join late in both.
+TEST(Schedule, EveryLeafOnceInTheFinalSurfaceWhateverTheOrder) {
+  for (std::uint32_t seed = 1; seed <= 300; ++seed) {
+    SCOPED_TRACE("seed " + std::to_string(seed));
+    run_random(seed);
+    if (::testing::Test::HasFailure()) return;
+  }
+}
+
+} // namespace
+} // namespace geotandem::runtime

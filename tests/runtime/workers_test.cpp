@@ -1,0 +1,185 @@
+// The manager/worker runtime with real processes and real sockets: `geotandem extract --workers N`
+// against the in-process extraction, workers killed or frozen at random moments, a manager killed
+// and rerun, Ctrl-C on the manager.
+#include <gtest/gtest.h>
+#include <signal.h>
+
+#include <chrono>
+#include <cmath>
+#include <random>
+#include <thread>
+
+#include "process_fixtures.hpp"
+#include "scratch.hpp"
+
+namespace geotandem::testing {
+namespace {
+
+// An analytic cube whose planted bodies cross block planes, split into leaves of 8 cells: every
+// body crosses many block faces.
+struct Fixture {
+  ScratchDir dir;
+  std::string cube = dir.file("cube.raw");
+  std::map<std::uint64_t, StoredComponent> reference;
+
+  Fixture() {
+    auto r = run_geotandem("-q synth --kind analytic --shape 48 44 40 --seed 3 --out '" + cube + "'");
+    EXPECT_EQ(r.exit_code, 0) << r.err;
+    r = run_geotandem("-q extract '" + cube + "' --iso 0.5 --block-size 8 --workers 0 --out '" + dir.file("ref") + "'");
+    EXPECT_EQ(r.exit_code, 0) << r.err;
+    reference = components_of(dir.file("ref"), true);
+  }
+
+  std::vector<std::string> extract_args(const std::string& out, int workers) const {
+    return {"-q",        "--log-level",           "debug", "extract",    cube, "--iso", "0.5", "--block-size", "8",
+            "--workers", std::to_string(workers), "--out", dir.file(out)};
+  }
+
+  // Same keys, volumes within 0.5 %, closed 2-manifolds where the reference is closed.
+  void expect_same(const std::string& out, bool check_meshes = true) const {
+    const auto got = components_of(dir.file(out), check_meshes);
+    ASSERT_GT(reference.size(), 5u);
+    ASSERT_EQ(got.size(), reference.size()) << out;
+    for (const auto& [key, ref] : reference) {
+      ASSERT_TRUE(got.count(key)) << "component " << key << " missing from " << out;
+      const StoredComponent& c = got.at(key);
+      EXPECT_NEAR(c.volume, ref.volume, 0.005 * std::abs(ref.volume) + 1e-9) << "component " << key;
+      EXPECT_EQ(c.closed, ref.closed) << "component " << key;
+      if (check_meshes && !ref.cut) {
+        EXPECT_TRUE(c.manifold) << "component " << key << " is not a closed 2-manifold";
+      }
+    }
+  }
+};
+
+TEST(Workers, OneTwoAndFourWorkersGiveTheComponentsOfTheInProcessRun) {
+  Fixture f;
+  for (int workers : {1, 2, 4}) {
+    const std::string out = "w" + std::to_string(workers);
+    const pid_t pid = spawn_geotandem(f.extract_args(out, workers), f.dir.file(out + ".log"));
+    ASSERT_EQ(wait_exit(pid, 300), 0) << read_text(f.dir.file(out + ".log"));
+    f.expect_same(out);
+  }
+}
+
+// The quickstart recipe (a synthetic seismic cube, a chaos and envelope attribute chain) with its
+// chain rebuilt and fused block by block in 2 and 3 workers, against the in-process run.
+TEST(Workers, ARecipesAttributeChainRunsInTheWorkers) {
+  ScratchDir dir;
+  const std::string recipe = std::string(GEOTANDEM_SOURCE_DIR) + "/workflows/quickstart.yaml";
+  const std::string small = " --set 'input.synthetic.shape=[64,64,48]' --set steps.extract.block_size=16";
+  auto r = run_geotandem("-q run-workflow '" + recipe + "' --set output.directory='" + dir.file("w1") + "'" + small);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto reference = components_of(dir.file("w1") + "/store", false);
+  ASSERT_GT(reference.size(), 5u);
+  for (int workers : {2, 3}) {
+    const std::string out = dir.file("w" + std::to_string(workers));
+    r = run_geotandem("--log-level info run-workflow '" + recipe + "' --set output.directory='" + out +
+                      "' --set execution.workers=" + std::to_string(workers) + small);
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_NE(r.err.find("extracting with " + std::to_string(workers) + " local workers"), std::string::npos) << r.err;
+    const auto got = components_of(out + "/store", true);
+    ASSERT_EQ(got.size(), reference.size());
+    for (const auto& [key, c] : reference) {
+      ASSERT_TRUE(got.count(key)) << "component " << key << " missing with " << workers << " workers";
+      EXPECT_NEAR(got.at(key).volume, c.volume, 0.005 * std::abs(c.volume) + 1e-9) << key;
+      if (!got.at(key).cut) {
+        EXPECT_TRUE(got.at(key).manifold) << key;
+      }
+    }
+  }
+}
+
+// Waits until the manager has at least one worker child; empty after the timeout.
+std::vector<pid_t> workers_of(pid_t manager, double timeout_s) {
+  const auto until = std::chrono::steady_clock::now() + std::chrono::duration<double>(timeout_s);
+  while (std::chrono::steady_clock::now() < until) {
+    auto kids = children_of(manager);
+    if (!kids.empty()) return kids;
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  }
+  return {};
+}
+
+TEST(Workers, AWorkerKilledAtARandomMomentChangesNothing) {
+  Fixture f;
+  std::mt19937 rng(5);
+  int killed = 0;
+  for (int run = 0; run < 20; ++run) {
+    const std::string out = "kill" + std::to_string(run), log = f.dir.file(out + ".log");
+    const pid_t manager = spawn_geotandem(f.extract_args(out, 2), log);
+    const std::vector<pid_t> workers = workers_of(manager, 30);
+    ASSERT_FALSE(workers.empty()) << read_text(log);
+    // Spread the moments over the run: extraction of the first blocks, sends and merges, the end.
+    std::this_thread::sleep_for(std::chrono::milliseconds(20 + rng() % 400));
+    if (kill(workers[rng() % workers.size()], SIGKILL) == 0) ++killed;
+    ASSERT_EQ(wait_exit(manager, 300), 0) << read_text(log);
+    f.expect_same(out, run % 5 == 0);
+  }
+  EXPECT_GT(killed, 10) << "most kills should land while the run is going on";
+}
+
+TEST(Workers, AFrozenWorkerIsDetectedByItsHeartbeat) {
+  Fixture f;
+  const std::string log = f.dir.file("stop.log");
+  const pid_t manager = spawn_geotandem(f.extract_args("stop", 2), log);
+  const std::vector<pid_t> workers = workers_of(manager, 30);
+  ASSERT_FALSE(workers.empty());
+  std::this_thread::sleep_for(std::chrono::milliseconds(150));
+  const bool stopped = kill(workers[0], SIGSTOP) == 0;
+  ASSERT_EQ(wait_exit(manager, 300), 0) << read_text(log);
+  kill(workers[0], SIGCONT);
+  f.expect_same("stop");
+  const std::string text = read_text(log);
+  if (stopped && text.find("joined; 2 connected") != std::string::npos) {
+    EXPECT_NE(text.find("silent"), std::string::npos) << text;
+  }
+}
+
+TEST(Workers, ManagerKilledThenRerunGivesTheSameComponentsOnce) {
+  Fixture f;
+  const std::string log = f.dir.file("m1.log");
+  const pid_t manager = spawn_geotandem(f.extract_args("resume", 2), log);
+  const std::vector<pid_t> workers = workers_of(manager, 30);
+  ASSERT_FALSE(workers.empty());
+  std::this_thread::sleep_for(std::chrono::milliseconds(200));
+  kill(manager, SIGKILL);
+  wait_exit(manager, 10);
+  // The workers notice the silence and exit by themselves.
+  for (pid_t w : workers) {
+    const auto until = std::chrono::steady_clock::now() + std::chrono::seconds(60);
+    while (alive(w) && std::chrono::steady_clock::now() < until)
+      std::this_thread::sleep_for(std::chrono::milliseconds(50));
+    EXPECT_FALSE(alive(w)) << "worker " << w << " outlived its manager";
+  }
+  const pid_t again = spawn_geotandem(f.extract_args("resume", 2), f.dir.file("m2.log"));
+  ASSERT_EQ(wait_exit(again, 300), 0) << read_text(f.dir.file("m2.log"));
+  f.expect_same("resume");
+}
+
+TEST(Workers, InterruptStopsTheWorkersAndLeavesAValidStore) {
+  Fixture f;
+  const std::string log = f.dir.file("int.log");
+  const pid_t manager = spawn_geotandem(f.extract_args("int", 2), log);
+  const std::vector<pid_t> workers = workers_of(manager, 30);
+  ASSERT_FALSE(workers.empty());
+  std::this_thread::sleep_for(std::chrono::milliseconds(150));
+  kill(manager, SIGINT);
+  const int code = wait_exit(manager, 60);
+  EXPECT_TRUE(code == 130 || code == 0) << code << read_text(log);
+  for (pid_t w : workers)
+    EXPECT_FALSE(alive(w)) << "worker " << w << " still runs after Ctrl-C";
+  // The store opens, and what it holds is a subset of the reference with the same volumes.
+  const auto got = components_of(f.dir.file("int"), false);
+  for (const auto& [key, c] : got) {
+    ASSERT_TRUE(f.reference.count(key)) << key;
+    EXPECT_NEAR(c.volume, f.reference.at(key).volume, 0.005 * std::abs(c.volume) + 1e-9);
+  }
+  // Rerunning completes it.
+  const pid_t again = spawn_geotandem(f.extract_args("int", 2), f.dir.file("int2.log"));
+  ASSERT_EQ(wait_exit(again, 300), 0) << read_text(f.dir.file("int2.log"));
+  f.expect_same("int");
+}
+
+} // namespace
+} // namespace geotandem::testing

@@ -44,7 +44,7 @@ void add_extract_command(CLI::App& app, Context& context, Runner& run) {
                      block_size = default_of("block_size"), mode = default_of("mode");
     bool no_extended_time_lag = false;
     std::optional<std::size_t> workers;
-    bool fresh = false; // reliab
+    bool fresh = false;
     volume::SegyOptions segy;
   };
   auto a = std::make_shared<Args>();
@@ -82,7 +82,7 @@ void add_extract_command(CLI::App& app, Context& context, Runner& run) {
   cmd->add_option("--workers", a->workers,
                   "local worker processes extracting and merging the blocks (manager/worker runtime); 0: in this "
                   "process (the default). Use with --block-size; --workers $(nproc) uses every core");
-  // reliab: start afresh instead of resuming (refused while another process writes the store).
+  // Start afresh instead of resuming (refused while another process writes the store).
   cmd->add_flag("--fresh", a->fresh, "replace the store in --out instead of resuming it");
   cmd->add_option("--inline-byte", a->segy.inline_byte, "SEG-Y: trace header byte (1-based) of the inline numbers")
       ->capture_default_str();
@@ -119,7 +119,7 @@ void add_extract_command(CLI::App& app, Context& context, Runner& run) {
         s.worker_command = {self_executable(), "worker"};
       }
       auto cube = volume::open_volume(a->cube, open);
-      if (a->fresh) store::ComponentStore::remove(a->out); // reliab
+      if (a->fresh) store::ComponentStore::remove(a->out); // refuses while another process writes it
       s.parameters = {{"command", "geotandem extract"}, {"cube", a->cube}};
       auto store = store::ComponentStore::open_or_create(a->out, cube->geometry(), {"geotandem extract", a->cube});
       auto progress = context.progress();

@@ -121,7 +121,7 @@ Layout read_layout(segy_file* file, const std::string& path) {
     if (samples == 0) samples = field(first, SEGY_TR_SAMPLE_COUNT) & 0xFFFF;
     if (interval == 0) interval = field(first, SEGY_TR_SAMPLE_INTER) & 0xFFFF;
   }
-  // reliab: intervals above 32767 are a negative number written as signed 16 bits (no survey
+  // Intervals above 32767 are a negative number written as signed 16 bits (no survey
   // samples that slowly): refused, never read as 61.536 ms for -4000.
   if (interval >= 0x8000)
     throw FormatError("the sample interval is negative (" + std::to_string(interval - 0x10000) +

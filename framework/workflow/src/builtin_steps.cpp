@@ -147,7 +147,7 @@ public:
     options.format = store::parse_export_format(p.at("format").text);
     options.per_component = p.at("per_component").boolean;
     std::string path = p.at("path").text.empty() ? "bodies." + p.at("format").text : p.at("path").text;
-    // reliab: a rerun replaces the run's own exports, inside its output directory; a file elsewhere
+    // A rerun replaces the run's own exports, inside its output directory; a file elsewhere
     // (an absolute path, or ../ leading out) is never replaced.
     const auto inside = std::filesystem::path(path).lexically_normal();
     options.overwrite = inside.is_relative() && !inside.empty() && *inside.begin() != "..";

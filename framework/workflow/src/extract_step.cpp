@@ -6,6 +6,7 @@
 #include <fstream>
 
 #include "geotandem/core/error.hpp"
+#include "geotandem/core/params.hpp"
 #include "geotandem/store/local_sink.hpp"
 #include "geotandem/tandem/blocks.hpp"
 #include "geotandem/tandem/marching_cubes.hpp"
@@ -39,10 +40,10 @@ int parse_axis(const std::string& text) {
 
 namespace {
 
-std::string number_text(double value) {
-  char buffer[64];
-  auto result = std::to_chars(buffer, buffer + sizeof buffer, value);
-  return std::string(buffer, result.ptr);
+// The float's shortest text, so that 0.6 reads 0.6 in messages and identities.
+std::string iso_text(float iso) {
+  char buffer[32];
+  return std::string(buffer, std::to_chars(buffer, buffer + sizeof buffer, iso).ptr);
 }
 
 std::vector<ParamSpec> make_extract_params() {
@@ -127,13 +128,10 @@ nlohmann::json extract_run_parameters(const volume::Volume& volume, const Extrac
   parameters["mode"] = to_string(settings.mode);
   parameters["extended_time_lag"] = settings.extended_time_lag;
   parameters["source"] = volume.source();
-  // reliab: what decides the components. The store refuses a run of another identity (it would mix
+  // What decides the components. The store refuses a run of another identity (it would mix
   // two extractions); a rerun of the same one resumes.
-  char iso_text[32]; // the float's shortest text, so that 0.6 reads 0.6 in messages
-  auto iso_end = std::to_chars(iso_text, iso_text + sizeof iso_text - 1, settings.iso).ptr;
-  *iso_end = '\0';
   parameters["identity"] = {
-      {"iso", std::strtod(iso_text, nullptr)},
+      {"iso", std::strtod(iso_text(settings.iso).c_str(), nullptr)},
       {"max_error", settings.max_error},
       {"isotropy", settings.isotropy},
       {"axis", parameters["axis"]},
@@ -149,9 +147,9 @@ nlohmann::json extract_run_parameters(const volume::Volume& volume, const Extrac
 }
 
 void warn_if_empty(ExtractResult& result, const ExtractSettings& settings, Logger& log) {
-  // reliab: an empty result is almost always an isovalue outside the data: say so.
+  // An empty result is almost always an isovalue outside the data: say so.
   if (result.components == 0 && result.duplicates == 0) {
-    const std::string warning = "no component was extracted: is the isovalue " + std::to_string(settings.iso) +
+    const std::string warning = "no component was extracted: is the isovalue " + iso_text(settings.iso) +
                                 " inside the cube's value range? ('geotandem info --stats' shows it)";
     log.warning(warning);
     result.statistics["warnings"] = {warning};

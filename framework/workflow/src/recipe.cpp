@@ -62,7 +62,7 @@ void parse_input(MapReader& m, InputSpec& in) {
                          "the planted bodies of a synthetic cube need room");
         in.shape[a] = v;
       }
-      // reliab: a shape this machine cannot hold is refused here, with the numbers, not at run time.
+      // A shape this machine cannot hold is refused here, with the numbers, not at run time.
       try {
         volume::check_shape_fits({in.shape[0], in.shape[1], in.shape[2]}, "input.synthetic.shape");
       } catch (const InvalidArgument& e) {
@@ -356,7 +356,7 @@ nlohmann::json to_json(const Recipe& r) {
 
 Recipe parse_recipe(const std::string& text, const std::string& name, const PluginRegistry& plugins,
                     const std::vector<std::string>& overrides) {
-  // reliab: one document, no duplicate keys, no control characters (yaml_reader.cpp).
+  // One document, no duplicate keys, no control characters (yaml_reader.cpp).
   YAML::Node root = detail::load_single_document(text, name);
   for (const auto& o : overrides)
     detail::apply_override(root, o);
@@ -393,7 +393,7 @@ Recipe parse_recipe(const std::string& text, const std::string& name, const Plug
 }
 
 Recipe load_recipe(const std::string& path, const PluginRegistry& plugins, const std::vector<std::string>& overrides) {
-  // reliab: regular files only (a FIFO or /dev/zero would block or never end), with a size limit.
+  // Regular files only (a FIFO or /dev/zero would block or never end), with a size limit.
   std::string text = detail::read_recipe_text(path);
   return parse_recipe(text, path, plugins, overrides);
 }

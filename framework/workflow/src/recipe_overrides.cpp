@@ -53,7 +53,7 @@ void apply_override(YAML::Node root, const std::string& text) {
       node.reset(node[part]);
     }
   }
-  // reliab: a malformed value is the --set's fault, named as such (not "base.yaml:1:1").
+  // A malformed value is the --set's fault, named as such (not "base.yaml:1:1").
   try {
     node[parts.back()] = load_single_document(value, "--set " + text);
   } catch (const YAML::Exception& e) {

@@ -81,7 +81,7 @@ std::unique_ptr<Progress> progress_of(const RunSettings& settings) {
   return settings.progress ? settings.progress() : std::make_unique<NullProgress>();
 }
 
-// reliab: the input file's content (size, mtime, sampled checksum) joins the chain's fingerprint,
+// The input file's content (size, mtime, sampled checksum) joins the chain's fingerprint,
 // so that a cube replaced at the same path is never taken for the one extracted before.
 std::string content_suffix(const nlohmann::json& content) {
   if (!content.contains("sampled_checksum")) return "";
@@ -89,7 +89,7 @@ std::string content_suffix(const nlohmann::json& content) {
          "-" + std::to_string(content.value("mtime_ns", 0LL));
 }
 
-// reliab: the extraction's warnings (no component: an isovalue outside the data?), for the report.
+// The extraction's warnings (no component: an isovalue outside the data?), for the report.
 std::string warnings_of(const ExtractResult& r) {
   std::string text;
   for (const auto& w : r.statistics.value("warnings", nlohmann::json::array()))
@@ -141,7 +141,7 @@ private:
   void extract(const Plugin& plugin, const StepSpec& step) {
     if (settings_.fresh && fs::exists(store_dir_)) {
       log_.info("--fresh: removing the previous store " + store_dir_.string());
-      store::ComponentStore::remove(store_dir_); // reliab: refuses while another process writes it
+      store::ComponentStore::remove(store_dir_); // Refuses while another process writes it
       state_.clear();
     }
     if (store::ComponentStore::exists(store_dir_) && state_.fingerprint_of("extract") != print_)
@@ -193,7 +193,7 @@ private:
     auto t = Clock::now();
     auto progress = progress_of(settings_);
     volume::WriteOptions w;
-    // reliab: replace only an attribute file this recipe's runs wrote (or with --fresh), never another
+    // Replace only an attribute file this recipe's runs wrote (or with --fresh), never another
     // file (the input cube, say) that happens to sit at that path.
     std::error_code same;
     const bool ours = state_.fingerprint_of("attribute_file") != "" &&
@@ -264,7 +264,7 @@ private:
   const ChainVolumes& volumes_;
   fs::path out_dir_, store_dir_;
   State state_;
-  nlohmann::json input_content_; // reliab
+  nlohmann::json input_content_; // the input file's content fingerprint
   std::string print_;
   std::optional<store::ComponentStore> store_;
   std::string selection_; // the newest selection: input of the next step and of exports

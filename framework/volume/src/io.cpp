@@ -4,6 +4,7 @@
 
 #include "formats.hpp"
 #include "geotandem/core/error.hpp"
+#include "geotandem/volume/size_guard.hpp"
 
 namespace fs = std::filesystem;
 
@@ -202,6 +203,8 @@ void write_volume(const Volume& volume, const std::string& path, const WriteOpti
                             "write it outside the store directory");
     if (dir == dir.root_path()) break;
   }
+  // Refused before anything is written or removed when the disk cannot hold the cube.
+  check_disk_fits(volume.geometry().shape, path, "the cube");
   if (fs::exists(path, ec)) {
     if (!options.overwrite) throw IoError("the output already exists", {path}, "remove it or pass --overwrite");
     fs::remove_all(path, ec);

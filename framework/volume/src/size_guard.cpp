@@ -62,4 +62,17 @@ void check_shape_fits(const Index3& shape, const std::string& what) {
                           {}, "use a smaller shape");
 }
 
+void check_disk_fits(const Index3& shape, const std::filesystem::path& path, const std::string& what) {
+  std::error_code ec;
+  std::filesystem::path dir = std::filesystem::absolute(path, ec).parent_path();
+  while (!dir.empty() && !std::filesystem::is_directory(dir, ec) && dir != dir.root_path())
+    dir = dir.parent_path();
+  const auto free = free_disk_bytes(dir);
+  const auto bytes = checked_byte_count(shape, sizeof(float));
+  if (!free || (bytes && *bytes <= *free)) return;
+  throw IoError(what + " needs " + (bytes ? byte_size_text(*bytes) : std::string("more than 2^64 bytes")) +
+                    " of float32 samples on disk, and " + dir.string() + " has " + byte_size_text(*free) + " free",
+                {path.string()}, "free some space, write elsewhere, or use a smaller shape");
+}
+
 } // namespace geotandem::volume

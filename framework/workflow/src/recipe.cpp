@@ -220,6 +220,15 @@ void parse_output(MapReader& m, Recipe& r, const std::string& recipe_stem, const
   out.directory = m.text("directory", recipe_stem + "-out");
   out.store = m.text("store", "store");
   out.attribute_file = m.text("attribute", "");
+  // A synthetic input's shape is known now: an attribute cube the disk cannot hold is refused here.
+  if (!out.attribute_file.empty() && r.input.synthetic) {
+    try {
+      volume::check_disk_fits({r.input.shape[0], r.input.shape[1], r.input.shape[2]},
+                              std::filesystem::path(out.directory) / out.attribute_file, "output.attribute");
+    } catch (const IoError& e) {
+      throw error_at(m.file(), m.node("attribute"), e.message(), e.hint());
+    }
+  }
   if (m.has("exports")) {
     const Plugin& exporter = output_step(plugins, "export", StepKind::export_step);
     YAML::Node list = m.node("exports");

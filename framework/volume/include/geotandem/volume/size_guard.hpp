@@ -28,4 +28,9 @@ std::string byte_size_text(std::uint64_t bytes);
 // holds in memory, twice over) exceeds the machine's physical memory.
 void check_shape_fits(const Index3& shape, const std::string& what);
 
+// Throws IoError naming `path` and `what`, with the numbers, when the float32 cube of `shape` does
+// not fit in the free space of the file system that would hold `path` (the nearest existing
+// directory above it). Nothing is thrown when the free space cannot be read.
+void check_disk_fits(const Index3& shape, const std::filesystem::path& path, const std::string& what);
+
 } // namespace geotandem::volume

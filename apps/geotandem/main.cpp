@@ -11,24 +11,12 @@
 #include "command.hpp"
 #include "geotandem/core/error.hpp"
 #include "geotandem/core/interrupt.hpp"
+#include "geotandem/volume/size_guard.hpp"
 
 namespace {
 
 // The size of the last allocation that failed, for the "out of memory" message.
 std::atomic<std::size_t> g_failed_allocation{0};
-
-std::string byte_text(std::size_t bytes) {
-  const char* units[] = {"bytes", "KiB", "MiB", "GiB", "TiB", "PiB", "EiB"};
-  double value = static_cast<double>(bytes);
-  int unit = 0;
-  while (value >= 1024 && unit < 6) {
-    value /= 1024;
-    ++unit;
-  }
-  char text[64];
-  std::snprintf(text, sizeof text, unit == 0 ? "%.0f %s" : "%.1f %s", value, units[unit]);
-  return text;
-}
 
 } // namespace
 
@@ -97,7 +85,7 @@ int main(int argc, char** argv) {
     // Out of memory is a size the machine cannot hold, not a bug: say how much was asked.
     const std::size_t asked = g_failed_allocation.load(std::memory_order_relaxed);
     std::cerr << "geotandem: error: out of memory"
-              << (asked ? " (an allocation of " + byte_text(asked) + " failed)" : std::string())
+              << (asked ? " (an allocation of " + volume::byte_size_text(asked) + " failed)" : std::string())
               << " (use a smaller cube or box, a --block-size, or a machine with more memory)\n";
     return 5;
   } catch (const std::length_error& e) {

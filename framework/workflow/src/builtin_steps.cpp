@@ -11,22 +11,12 @@
 #include "geotandem/workflow/component_steps.hpp"
 #include "geotandem/workflow/extract_step.hpp"
 #include "geotandem/workflow/report.hpp"
+#include "param_builder.hpp"
 
 namespace geotandem::workflow {
 namespace {
 
-ParamSpec spec(std::string name, ParamType type, std::optional<std::string> def, std::string help,
-               std::optional<double> lo = {}, std::optional<double> hi = {}, std::vector<std::string> choices = {}) {
-  ParamSpec s;
-  s.name = std::move(name);
-  s.type = type;
-  s.default_value = std::move(def);
-  s.help = std::move(help);
-  s.min_value = lo;
-  s.max_value = hi;
-  s.choices = std::move(choices);
-  return s;
-}
+using detail::param_spec;
 
 class BuiltinStep : public Plugin {
 public:
@@ -72,16 +62,16 @@ class RemoveBubbles final : public BuiltinStep {
 public:
   RemoveBubbles()
       : BuiltinStep("remove_bubbles", StepKind::component, "keeps the components above a volume threshold",
-                    {spec("min_volume", ParamType::real, "0",
-                          "keep components of at least this volume, in world units (m^3 or m^2*ms)", 0.0),
-                     spec("min_volume_fraction", ParamType::real, "0",
-                          "keep components of at least this fraction of the largest volume", 0.0, 1.0),
-                     spec("min_volume_percentile", ParamType::real, "0",
-                          "keep components at or above this percentile of volumes", 0.0, 100.0),
-                     spec("min_triangles", ParamType::integer, "0", "keep components of at least this many triangles",
-                          0.0, 1e12),
-                     spec("closed_only", ParamType::boolean, "false", "drop components cut by the cube's border"),
-                     spec("selection", ParamType::text, "kept", "name of the selection this step writes")}) {}
+                    {param_spec("min_volume", ParamType::real, "0",
+                                "keep components of at least this volume, in world units (m^3 or m^2*ms)", 0.0),
+                     param_spec("min_volume_fraction", ParamType::real, "0",
+                                "keep components of at least this fraction of the largest volume", 0.0, 1.0),
+                     param_spec("min_volume_percentile", ParamType::real, "0",
+                                "keep components at or above this percentile of volumes", 0.0, 100.0),
+                     param_spec("min_triangles", ParamType::integer, "0",
+                                "keep components of at least this many triangles", 0.0, 1e12),
+                     param_spec("closed_only", ParamType::boolean, "false", "drop components cut by the cube's border"),
+                     param_spec("selection", ParamType::text, "kept", "name of the selection this step writes")}) {}
   ComponentOutcome select(store::ComponentStore& store, const ParamValues& p, const std::string& from,
                           StepContext&) const override {
     BubbleRemoval rules;
@@ -106,11 +96,11 @@ public:
       : BuiltinStep(
             "sort_by_azimuth", StepKind::component,
             "ranks the components by the population of their azimuth bin, the dominant direction first",
-            {spec("bins", ParamType::integer, "18", "number of azimuth bins over 0-180 degrees", 1.0, 180.0),
-             spec("azimuth_min", ParamType::real, "0",
-                  "keep azimuths from this value (degrees, axial; may wrap past 180)", 0.0, 180.0),
-             spec("azimuth_max", ParamType::real, "180", "keep azimuths up to this value (degrees)", 0.0, 180.0),
-             spec("selection", ParamType::text, "sorted", "name of the selection this step writes")}) {}
+            {param_spec("bins", ParamType::integer, "18", "number of azimuth bins over 0-180 degrees", 1.0, 180.0),
+             param_spec("azimuth_min", ParamType::real, "0",
+                        "keep azimuths from this value (degrees, axial; may wrap past 180)", 0.0, 180.0),
+             param_spec("azimuth_max", ParamType::real, "180", "keep azimuths up to this value (degrees)", 0.0, 180.0),
+             param_spec("selection", ParamType::text, "sorted", "name of the selection this step writes")}) {}
   ComponentOutcome select(store::ComponentStore& store, const ParamValues& p, const std::string& from,
                           StepContext&) const override {
     AzimuthSorting rules;
@@ -131,13 +121,13 @@ class ExportStep final : public BuiltinStep {
 public:
   ExportStep()
       : BuiltinStep("export", StepKind::export_step, "writes the components of a selection as surface files",
-                    {spec("format", ParamType::choice, std::nullopt, "file format: ply, obj, vtp or ts", {}, {},
-                          {"ply", "obj", "vtp", "ts"}),
-                     spec("selection", ParamType::text, "", "the selection to write (empty: the newest one)"),
-                     spec("path", ParamType::text, "",
-                          "file (or directory with per_component), relative to the output directory; "
-                          "empty: bodies.FORMAT"),
-                     spec("per_component", ParamType::boolean, "false", "one file per component")}) {}
+                    {param_spec("format", ParamType::choice, std::nullopt, "file format: ply, obj, vtp or ts", {}, {},
+                                {"ply", "obj", "vtp", "ts"}),
+                     param_spec("selection", ParamType::text, "", "the selection to write (empty: the newest one)"),
+                     param_spec("path", ParamType::text, "",
+                                "file (or directory with per_component), relative to the output directory; "
+                                "empty: bodies.FORMAT"),
+                     param_spec("per_component", ParamType::boolean, "false", "one file per component")}) {}
   ExportOutcome export_components(const store::ComponentStore& store, const ParamValues& p, const std::string& current,
                                   const std::filesystem::path& out_dir, StepContext& context) const override {
     store::Query q;
@@ -159,9 +149,10 @@ public:
 class ReportWriter final : public BuiltinStep {
 public:
   ReportWriter()
-      : BuiltinStep("report", StepKind::report,
-                    "one self-contained HTML file: the recipe, timings, counts, plots of the components",
-                    {spec("path", ParamType::text, "report.html", "the file, relative to the output directory")}) {}
+      : BuiltinStep(
+            "report", StepKind::report,
+            "one self-contained HTML file: the recipe, timings, counts, plots of the components",
+            {param_spec("path", ParamType::text, "report.html", "the file, relative to the output directory")}) {}
   std::string write_report(const ReportData& data, const ParamValues& p,
                            const std::filesystem::path& out_dir) const override {
     std::filesystem::path path = out_dir / p.at("path").text;

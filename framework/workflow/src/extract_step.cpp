@@ -12,6 +12,7 @@
 #include "geotandem/tandem/marching_cubes.hpp"
 #include "geotandem/tandem/tandem.hpp"
 #include "geotandem/volume/fingerprint.hpp"
+#include "param_builder.hpp"
 
 namespace geotandem::workflow {
 
@@ -48,35 +49,23 @@ std::string iso_text(float iso) {
 
 std::vector<ParamSpec> make_extract_params() {
   const ExtractSettings d;
-  auto spec = [](std::string name, ParamType type, std::optional<std::string> def, std::string help,
-                 std::optional<double> lo = {}, std::optional<double> hi = {}, std::vector<std::string> choices = {}) {
-    ParamSpec s;
-    s.name = std::move(name);
-    s.type = type;
-    s.default_value = std::move(def);
-    s.help = std::move(help);
-    s.min_value = lo;
-    s.max_value = hi;
-    s.choices = std::move(choices);
-    return s;
-  };
   return {
-      spec("iso", ParamType::real, std::nullopt, "isovalue: samples >= iso are inside a body"),
-      spec("max_error", ParamType::real, number_text(d.max_error),
-           "E0, the largest shape error a collapse may make, in voxels", 1e-6, 100.0),
-      spec("isotropy", ParamType::real, number_text(d.isotropy),
-           "alpha, weight of triangle shape against surface fidelity", 0.0, 1.0),
-      spec("axis", ParamType::choice, std::string(1, "ijk"[d.axis]),
-           "extraction axis: i (inline), j (crossline) or k (sample)", {}, {}, {"i", "j", "k"}),
-      spec("block_size", ParamType::integer, std::to_string(d.block_size),
-           "leaf block edge in cells for the block tree: 0 (the whole cube as one block) or at least " +
-               std::to_string(min_block_size),
-           0.0, 4096.0),
-      spec("mode", ParamType::choice, to_string(d.mode),
-           "tandem-dump (default), tandem (no early dumping), brute (extract, then simplify)", {}, {},
-           {"tandem-dump", "tandem", "brute"}),
-      spec("extended_time_lag", ParamType::boolean, d.extended_time_lag ? "true" : "false",
-           "delay collapses near open block faces (the seed's section 3.2)"),
+      detail::param_spec("iso", ParamType::real, std::nullopt, "isovalue: samples >= iso are inside a body"),
+      detail::param_spec("max_error", ParamType::real, number_text(d.max_error),
+                         "E0, the largest shape error a collapse may make, in voxels", 1e-6, 100.0),
+      detail::param_spec("isotropy", ParamType::real, number_text(d.isotropy),
+                         "alpha, weight of triangle shape against surface fidelity", 0.0, 1.0),
+      detail::param_spec("axis", ParamType::choice, std::string(1, "ijk"[d.axis]),
+                         "extraction axis: i (inline), j (crossline) or k (sample)", {}, {}, {"i", "j", "k"}),
+      detail::param_spec("block_size", ParamType::integer, std::to_string(d.block_size),
+                         "leaf block edge in cells for the block tree: 0 (the whole cube as one block) or at least " +
+                             std::to_string(min_block_size),
+                         0.0, 4096.0),
+      detail::param_spec("mode", ParamType::choice, to_string(d.mode),
+                         "tandem-dump (default), tandem (no early dumping), brute (extract, then simplify)", {}, {},
+                         {"tandem-dump", "tandem", "brute"}),
+      detail::param_spec("extended_time_lag", ParamType::boolean, d.extended_time_lag ? "true" : "false",
+                         "delay collapses near open block faces (the seed's section 3.2)"),
   };
 }
 

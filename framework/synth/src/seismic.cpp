@@ -7,6 +7,7 @@
 #include <limits>
 
 #include "geotandem/core/error.hpp"
+#include "geotandem/core/simd.hpp"
 #include "geotandem/synth/synthetic.hpp"
 #include "hash.hpp"
 #include "seismic_model.hpp"
@@ -19,8 +20,8 @@ namespace {
 constexpr double binomial[3] = {0.25, 0.5, 0.25};
 
 // sum[k] += weight * x[k] for k < n: one term of many per-sample sums, each kept in its own order.
-[[gnu::target_clones("avx2", "default")]] void accumulate(double* __restrict sum, const double* __restrict x,
-                                                          double weight, std::int64_t n) {
+GEOTANDEM_AVX2_CLONES void accumulate(double* __restrict sum, const double* __restrict x, double weight,
+                                      std::int64_t n) {
   for (std::int64_t k = 0; k < n; ++k)
     sum[k] += weight * x[k];
 }

@@ -1,4 +1,5 @@
 #include "seismic_model.hpp"
+#include "geotandem/core/simd.hpp"
 
 #include <algorithm>
 #include <atomic>
@@ -16,9 +17,8 @@ constexpr double support_log = 16.11809565095832; // ln(1e7)
 
 // For each spike, exp(-a x^2) and exp(-a (2 x + 1)) at x = first - position, where the recurrence
 // along its support starts. Straight-line, so it vectorises (with an AVX2 clone).
-[[gnu::target_clones("avx2", "default")]] void exponentials(double a, const double* __restrict first,
-                                                            const double* __restrict position, double* __restrict g,
-                                                            double* __restrict ratio, std::size_t n) {
+GEOTANDEM_AVX2_CLONES void exponentials(double a, const double* __restrict first, const double* __restrict position,
+                                        double* __restrict g, double* __restrict ratio, std::size_t n) {
   for (std::size_t m = 0; m < n; ++m) {
     const double x = first[m] - position[m];
     g[m] = fast_exp(-a * x * x);

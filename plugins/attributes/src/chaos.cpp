@@ -1,4 +1,5 @@
 #include "geotandem/attributes/chaos.hpp"
+#include "geotandem/core/simd.hpp"
 
 #include <array>
 
@@ -79,8 +80,7 @@ ChaosOptions validated(const ChaosOptions& options) {
 // The chaos of n samples from their smoothed tensor components T00, T11, T22, T01, T02, T12.
 // Branch-free, so it vectorises; an AVX2 clone is picked at run time where the processor has it
 // (the same operations in the same order: results do not depend on the clone).
-[[gnu::target_clones("avx2", "default")]] void chaos_of_tensor(std::array<const float*, 6> t, float* out, std::size_t n,
-                                                               bool planarity) {
+GEOTANDEM_AVX2_CLONES void chaos_of_tensor(std::array<const float*, 6> t, float* out, std::size_t n, bool planarity) {
   const float *t00 = t[0], *t11 = t[1], *t22 = t[2], *t01 = t[3], *t02 = t[4], *t12 = t[5];
   // planarity: l1 + l2; marfurt: l1 + l3. Weights rather than a select keep the loop vectorisable
   // (adding 0 * l, l finite and >= 0, changes nothing).

@@ -1,4 +1,5 @@
 #include "filters.hpp"
+#include "geotandem/core/simd.hpp"
 
 #include <cmath>
 #include <numbers>
@@ -11,8 +12,8 @@ namespace {
 // One output line along axis 2: `centre` points at the input sample under o[0]; neighbours along
 // the filtered axis are `stride` floats apart. Loops run over k innermost so they vectorise, and
 // each o[k] accumulates its taps in the fixed order t = 1, 2, ..., radius.
-[[gnu::target_clones("avx2", "default")]] void filter_line(const float* centre, std::ptrdiff_t stride,
-                                                           const Kernel& kernel, float* __restrict o, std::size_t n) {
+GEOTANDEM_AVX2_CLONES void filter_line(const float* centre, std::ptrdiff_t stride, const Kernel& kernel,
+                                       float* __restrict o, std::size_t n) {
   const float* w = kernel.half.data();
   const int radius = kernel.radius();
   if (kernel.symmetry == Symmetry::even) {
@@ -42,8 +43,8 @@ namespace {
 }
 
 // filter_line with the neighbours given as pointers (planes[radius +- t]) rather than a stride.
-[[gnu::target_clones("avx2", "default")]] void filter_across(const float* const* planes, const Kernel& kernel,
-                                                             float* __restrict o, std::size_t n) {
+GEOTANDEM_AVX2_CLONES void filter_across(const float* const* planes, const Kernel& kernel, float* __restrict o,
+                                         std::size_t n) {
   const float* w = kernel.half.data();
   const int radius = kernel.radius();
   const float* centre = planes[radius];

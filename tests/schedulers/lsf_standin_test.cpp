@@ -126,7 +126,7 @@ TEST_F(LsfStandin, DestructionCancelsUnfinishedJobs) {
 TEST_F(LsfStandin, HangingBsubIsAClearErrorWithinABoundedTime) {
   EnvGuard hang_path("PATH", path_with(HANG_SIMULATOR_DIR));
   SchedulerOptions options;
-  options.command_timeout = std::chrono::seconds(2);
+  options.command_timeout = std::chrono::seconds(5);
   LsfScheduler scheduler(options);
   const auto start = std::chrono::steady_clock::now();
   try {

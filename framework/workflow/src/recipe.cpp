@@ -7,6 +7,7 @@
 
 #include "geotandem/core/error.hpp"
 #include "geotandem/synth/options.hpp"
+#include "geotandem/volume/io.hpp"
 #include "geotandem/volume/size_guard.hpp"
 #include "geotandem/workflow/suggest.hpp"
 #include "recipe_overrides.hpp"
@@ -220,6 +221,13 @@ void parse_output(MapReader& m, Recipe& r, const std::string& recipe_stem, const
   out.directory = m.text("directory", recipe_stem + "-out");
   out.store = m.text("store", "store");
   out.attribute_file = m.text("attribute", "");
+  if (!out.attribute_file.empty()) {
+    try {
+      volume::check_output_format(out.attribute_file);
+    } catch (const InvalidArgument& e) {
+      throw error_at(m.file(), m.node("attribute"), "output.attribute: " + e.message(), e.hint());
+    }
+  }
   // A synthetic input's shape is known now: an attribute cube the disk cannot hold is refused here.
   if (!out.attribute_file.empty() && r.input.synthetic) {
     try {

@@ -96,7 +96,7 @@ ParamValues parse_params(MapReader& m, const std::vector<ParamSpec>& specs, cons
     try {
       values[spec.name] = parse_param(spec, text);
     } catch (const Error& e) {
-      throw error_at(m.file(), at, e.message() + " in " + what, e.hint());
+      throw error_at(m.file(), at, what + ": " + e.message(), e.hint());
     }
   }
   return values;
@@ -115,7 +115,7 @@ void check_step(MapReader& m, const Plugin& plugin, const ParamValues& values, c
         at.reset(m.node(spec.name));
         break;
       }
-    throw error_at(m.file(), at, e.message() + " in " + what, e.hint());
+    throw error_at(m.file(), at, what + ": " + e.message(), e.hint());
   }
 }
 

@@ -39,8 +39,8 @@ std::string sci(double v) {
 // The surface column: closed by itself, closed by caps on the faces that cut it, or open (a store
 // written before caps).
 std::string surface_text(const ReportComponent& c) {
-  if (c.cut_faces.empty()) return c.closed ? "closed" : "open";
-  if (!c.closed || c.cut_faces == "border") return "cut by border (open)";
+  if (!c.closed) return "cut by border (open)";
+  if (c.cut_faces.empty() || c.cut_faces == "border") return "closed";
   return "cut " + c.cut_faces + ", capped";
 }
 

@@ -6,6 +6,7 @@
 #include <sqlite3.h>
 
 #include <fstream>
+#include <nlohmann/json.hpp>
 
 #include "fixtures.hpp"
 #include "geotandem/mesh/caps.hpp"
@@ -151,6 +152,31 @@ TEST(StoreCaps, StoresFromBeforeCapsOpen) {
   ASSERT_EQ(store.size(), 3u);
   EXPECT_EQ(mesh::cut_faces_text(store.find(11)->stats.cut_faces), "i+,j-,k-");
   EXPECT_GT(store.find(11)->stats.cap_area, 0.0);
+}
+
+TEST(StoreCaps, CommandLineShowsCutFacesAndExportsWithoutCaps) {
+  ScratchDir scratch;
+  const auto dir = make_store(scratch);
+  auto r = geotandem::testing::run_geotandem("store show " + dir.string() + " 7 --json");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto j = nlohmann::json::parse(r.out);
+  EXPECT_EQ(j.at("cut_faces"), "i-,k+");
+  EXPECT_GT(j.at("cap_area").get<double>(), 0.0);
+  r = geotandem::testing::run_geotandem("store show " + dir.string() + " 7");
+  EXPECT_NE(r.out.find("faces i-,k+"), std::string::npos) << r.out;
+  r = geotandem::testing::run_geotandem("store ls " + dir.string());
+  EXPECT_NE(r.out.find("cut i-,k+"), std::string::npos) << r.out;
+  for (bool caps : {true, false}) {
+    const auto out = scratch.path() / (caps ? "cli_with.obj" : "cli_without.obj");
+    r = geotandem::testing::run_geotandem("store export " + dir.string() + " --format obj --out " + out.string() +
+                                          (caps ? "" : " --no-caps"));
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    std::ifstream in(out);
+    std::size_t faces = 0;
+    for (std::string line; std::getline(in, line);)
+      faces += line.rfind("f ", 0) == 0 ? 1 : 0;
+    EXPECT_EQ(faces, caps ? 24u : 20u) << caps;
+  }
 }
 
 } // namespace

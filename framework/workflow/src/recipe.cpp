@@ -270,6 +270,7 @@ void parse_output(MapReader& m, Recipe& r, const std::string& recipe_stem, const
                          what + " writes " + spec.path + ", like an earlier export: the second would overwrite it",
                          "give each export its own 'path'");
       spec.per_component = step.params.at("per_component").boolean;
+      spec.caps = step.params.at("caps").boolean;
       out.exports.push_back(spec);
       r.finish.push_back(std::move(step));
     }
@@ -363,8 +364,11 @@ nlohmann::json to_json(const Recipe& r) {
   }
   j["output"] = {{"directory", r.output.directory}, {"store", r.output.store}, {"report", r.output.report}};
   for (const auto& e : r.output.exports)
-    j["output"]["exports"].push_back(
-        {{"format", e.format}, {"selection", e.selection}, {"path", e.path}, {"per_component", e.per_component}});
+    j["output"]["exports"].push_back({{"format", e.format},
+                                      {"selection", e.selection},
+                                      {"path", e.path},
+                                      {"per_component", e.per_component},
+                                      {"caps", e.caps}});
   j["execution"] = {{"scheduler", r.execution.scheduler}, {"workers", r.execution.workers}};
   return j;
 }

@@ -36,6 +36,11 @@ struct McOptions {
   // this many samples (at least one): a computed volume then pays its halo once per slab, not
   // once per section. Values and surfaces do not depend on it.
   std::int64_t slab_samples = kMcSlabSamples;
+  // Close bodies cut by the cube's border with caps on its outer sample planes (docs/caps.md):
+  // each inside sample on an outer plane becomes a vertex (LatticeIds::sample_id) and each square
+  // of samples on an outer plane contributes the inside part of it, bounded by the same edge
+  // vertices as the body, so the surface is a closed 2-manifold everywhere. Off: open borders.
+  bool caps = true;
 };
 
 // The cells of a whole cube of `shape` samples: [0, n - 1) per axis. A cell (i, j, k) spans the

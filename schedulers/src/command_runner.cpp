@@ -91,11 +91,13 @@ CommandResult ProcessCommandRunner::run(const std::vector<std::string>& argv, st
         status_lost = true;
       }
     }
-    auto left = std::chrono::duration_cast<std::chrono::milliseconds>(deadline - std::chrono::steady_clock::now());
-    if (left.count() <= 0) {
+    const auto now = std::chrono::steady_clock::now();
+    if (now >= deadline) { // not the rounded milliseconds below: they would stop up to 1 ms early
       result.timed_out = true;
       break;
     }
+    // Rounded up, so that the last wait reaches the deadline rather than stopping short of it.
+    auto left = std::chrono::ceil<std::chrono::milliseconds>(deadline - now);
     if (exited && !out_open && !err_open) break;
     pollfd fds[2] = {{out_pipe.read_end(), POLLIN, 0}, {err_pipe.read_end(), POLLIN, 0}};
     if (!out_open) fds[0].fd = -1;

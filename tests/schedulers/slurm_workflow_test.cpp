@@ -3,6 +3,8 @@
 // mid-run is replaced and the run completes; a refused submission is a clear error.
 #include <signal.h>
 
+#include <cstdio>
+
 #include "cluster_run.hpp"
 
 namespace geotandem::testing {
@@ -51,9 +53,13 @@ TEST_F(SlurmRun, AScancelledWorkerJobIsReplacedAndTheRunCompletes) {
 
 // The state squeue reports for a job ("RUNNING", "CANCELLED", ...).
 std::string squeue_state(const std::string& job) {
-  const auto r = std::system(("squeue -h -t all -j " + job + " -o %T > squeue.state 2>/dev/null").c_str());
-  std::string state = r == 0 ? read_text("squeue.state") : "";
-  std::filesystem::remove("squeue.state");
+  std::string state;
+  if (FILE* f = popen(("squeue -h -t all -j " + job + " -o %T 2>/dev/null").c_str(), "r")) {
+    char buffer[256];
+    while (std::fgets(buffer, sizeof buffer, f))
+      state += buffer;
+    pclose(f);
+  }
   while (!state.empty() && (state.back() == '\n' || state.back() == ' '))
     state.pop_back();
   return state;

@@ -55,6 +55,7 @@ public:
       settings.worker_command = description.at("worker_command").get<std::vector<std::string>>();
       settings.scheduler = description.value("scheduler", "local");
       settings.resources = description.value("resources", nlohmann::json::object());
+      settings.bind = description.value("bind", "");
       settings.parameters.erase("resources");
     }
     return extract_to_store(input, store, settings, context.log, context.progress, context.cancel);

@@ -5,6 +5,7 @@
 #include <memory>
 
 #include "geotandem/core/error.hpp"
+#include "geotandem/runtime/bind_address.hpp"
 #include "geotandem/runtime/manager.hpp"
 #include "geotandem/runtime/scheduler_launcher.hpp"
 #include "geotandem/workflow/extract_step.hpp"
@@ -81,6 +82,7 @@ ExtractResult extract_with_workers(const volume::Volume& volume, store::Componen
   r.dump = settings.mode != ExtractMode::tandem;
   r.brute = settings.mode == ExtractMode::brute;
   options.workers = settings.workers;
+  options.bind = runtime::manager_bind_endpoint(settings.bind);
   options.worker_command = settings.worker_command;
 
   ExtractSettings effective = settings;

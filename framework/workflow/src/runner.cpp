@@ -167,6 +167,7 @@ private:
         description["workers"] = ex.workers; // the extract step hands the chain to that many workers
         description["worker_command"] = settings_.worker_command;
         description["scheduler"] = ex.scheduler;
+        description["bind"] = ex.bind;
         description["resources"] = {{"cpus_per_worker", ex.resources.cpus_per_worker},
                                     {"memory_mb", ex.resources.memory_mb},
                                     {"walltime_s", ex.resources.walltime_s},

@@ -53,6 +53,7 @@ struct ExtractSettings {
   // account, extra_args). See extract_workers.cpp.
   std::string scheduler = "local";
   nlohmann::json resources;
+  std::string bind; // where the manager listens (runtime::manager_bind_endpoint); "": loopback
 };
 
 struct ExtractResult {

@@ -7,6 +7,7 @@
 
 #include <atomic>
 #include <cerrno>
+#include <cstdint>
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
@@ -61,16 +62,27 @@ std::string z85_of(const zmq::message_t& key) {
 
 class ServerSecurity {
 public:
-  ServerSecurity(zmq::context_t& context, std::set<std::string> allowed, std::string key_file, Logger& log)
-      : socket_(context, zmq::socket_type::rep), allowed_(std::move(allowed)), key_file_(std::move(key_file)),
-        log_(log) {
+  ServerSecurity(zmq::context_t& context, zmq::socket_t& router, std::set<std::string> allowed, std::string key_file,
+                 Logger& log)
+      : socket_(context, zmq::socket_type::rep), monitor_(context, zmq::socket_type::pair), router_(router.handle()),
+        allowed_(std::move(allowed)), key_file_(std::move(key_file)), log_(log) {
     socket_.set(zmq::sockopt::linger, 0);
     socket_.bind("inproc://zeromq.zap.01"); // before the router binds: no handshake goes unchecked
+    // A peer without CURVE fails before ZAP is asked: the socket's monitor reports it.
+    const std::string monitor =
+        "inproc://geotandem-curve-monitor-" + std::to_string(reinterpret_cast<std::uintptr_t>(this));
+    if (zmq_socket_monitor(router_, monitor.c_str(),
+                           ZMQ_EVENT_HANDSHAKE_FAILED_PROTOCOL | ZMQ_EVENT_HANDSHAKE_FAILED_NO_DETAIL) == 0) {
+      monitor_.set(zmq::sockopt::linger, 0);
+      monitor_.connect(monitor);
+      monitoring_ = true;
+    }
     thread_ = std::thread([this] { serve(); });
   }
   ~ServerSecurity() {
     stop_ = true;
     thread_.join();
+    if (monitoring_) zmq_socket_monitor(router_, nullptr, 0);
     const char* current = std::getenv(curve_key_variable);
     if (current && key_file_ == current) ::unsetenv(curve_key_variable);
   }
@@ -81,9 +93,10 @@ private:
   // ZAP (RFC 27): version, request id, domain, address, identity, mechanism, credentials...
   void serve() {
     while (!stop_) {
-      zmq::pollitem_t item{socket_.handle(), 0, ZMQ_POLLIN, 0};
-      poll_items(&item, 1, std::chrono::milliseconds(100));
-      if (!(item.revents & ZMQ_POLLIN)) continue;
+      zmq::pollitem_t items[] = {{socket_.handle(), 0, ZMQ_POLLIN, 0}, {monitor_.handle(), 0, ZMQ_POLLIN, 0}};
+      poll_items(items, monitoring_ ? 2 : 1, std::chrono::milliseconds(100));
+      if (monitoring_ && (items[1].revents & ZMQ_POLLIN)) handshake_failed();
+      if (!(items[0].revents & ZMQ_POLLIN)) continue;
       std::vector<zmq::message_t> frames;
       do {
         zmq::message_t frame;
@@ -110,7 +123,19 @@ private:
     }
   }
 
-  zmq::socket_t socket_;
+  // A monitor event: 6 bytes (event, value), then the endpoint.
+  void handshake_failed() {
+    zmq::message_t event, address;
+    if (!monitor_.recv(event, zmq::recv_flags::dontwait)) return;
+    if (event.more()) (void)monitor_.recv(address, zmq::recv_flags::none);
+    if (++refused_ <= 20)
+      log_.warning("refused a worker connection on " + address.to_string() +
+                   ": its handshake failed (it did not use CURVE with this run's server key)");
+  }
+
+  zmq::socket_t socket_, monitor_;
+  void* router_;
+  bool monitoring_ = false;
   std::set<std::string> allowed_;
   std::string key_file_;
   Logger& log_;
@@ -140,7 +165,7 @@ std::shared_ptr<ServerSecurity> secure_manager_socket(zmq::context_t& context, z
   const fs::path worker_file = dir / "worker.key";
   write_private(worker_file, "server " + server.public_key + "\npublic " + worker.public_key + "\nsecret " +
                                  worker.secret_key + "\n");
-  auto security = std::make_shared<ServerSecurity>(context, std::set<std::string>{worker.public_key},
+  auto security = std::make_shared<ServerSecurity>(context, router, std::set<std::string>{worker.public_key},
                                                    fs::absolute(worker_file).string(), log);
   router.set(zmq::sockopt::zap_domain, "geotandem");
   router.set(zmq::sockopt::curve_server, 1);

@@ -36,6 +36,8 @@ public:
     sch::LaunchRequest request;
     request.argv = argv;
     request.env = options_.env;
+    if (options_.walltime.count() > 0) // the worker stops taking tasks near it (walltime.hpp)
+      request.env["GEOTANDEM_WALLTIME_SECONDS"] = std::to_string(options_.walltime.count());
     request.workdir = options_.workdir;
     request.stdout_path = options_.log_pattern;
     request.stderr_path = options_.log_pattern;

@@ -76,8 +76,8 @@ public:
     if (!errors.empty())
       log_.warning(std::string(scheduler_->name()) + ": could not cancel every worker job: " + errors);
     else
-      log_.info(std::string(scheduler_->name()) + ": cancelled " + std::to_string(open_.size()) +
-                " unfinished worker job(s)");
+      log_.info(std::string(scheduler_->name()) + ": cancelled the worker jobs not yet seen finished (" +
+                std::to_string(open_.size()) + ")");
     open_.clear();
   }
 

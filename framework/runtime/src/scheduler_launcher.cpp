@@ -1,6 +1,7 @@
 // Workers as cluster jobs (scheduler_launcher.hpp).
 #include "geotandem/runtime/scheduler_launcher.hpp"
 
+#include <chrono>
 #include <set>
 #include <utility>
 
@@ -58,8 +59,11 @@ public:
     }
   }
 
+  // The manager asks this while waiting for workers told FINISHED to leave (the end of a run): it
+  // may ask the scheduler directly, at most once a second and 5 times in all, rather than wait for
+  // the next 30 s poll.
   std::size_t running() override {
-    refresh();
+    refresh(true);
     return open_.size();
   }
 
@@ -92,11 +96,19 @@ private:
 
   // Moves the jobs the scheduler reports finished from open_ to ended_, applying the replacement
   // policy. A poll that fails is logged and retried later: heartbeats still tell who is alive.
-  void refresh() {
+  void refresh(bool eager = false) {
     if (open_.empty() || stopped_) return;
     std::map<sch::JobId, sch::JobStatus> statuses;
+    const auto now = std::chrono::steady_clock::now();
+    eager = eager && eager_polls_ < 5 && now - last_eager_ >= std::chrono::seconds(1);
     try {
-      statuses = watcher_.statuses({open_.begin(), open_.end()});
+      if (eager) {
+        ++eager_polls_;
+        last_eager_ = now;
+        statuses = scheduler_->poll({open_.begin(), open_.end()});
+      } else {
+        statuses = watcher_.statuses({open_.begin(), open_.end()});
+      }
     } catch (const sch::SchedulerError& e) {
       log_.warning(std::string("cannot ask the scheduler about the worker jobs (will retry): ") + e.what());
       return;
@@ -131,6 +143,8 @@ private:
   std::set<sch::JobId> open_;              // submitted, not yet seen in a terminal state
   std::vector<std::string> ended_;
   bool stopped_ = false;
+  int eager_polls_ = 0;
+  std::chrono::steady_clock::time_point last_eager_{};
 };
 
 } // namespace

@@ -45,6 +45,27 @@ TEST_F(LsfRun, ABkilledWorkerJobIsReplacedAndTheRunCompletes) {
   expect_same_components(reference + "/store", out + "/store");
 }
 
+// Every worker job killed as soon as it is submitted: three are replaced, the fourth ends the run
+// with an error naming the job and the limit (exit 1, not 70), and no job is left running.
+TEST_F(LsfRun, PastTheReplacementLimitTheRunStopsWithAClearError) {
+  EnvGuard poll{"GEOTANDEM_SCHEDULER_POLL_SECONDS", "1"};
+  const std::string out = dir.file("limit"), log = dir.file("limit.log");
+  const pid_t manager = spawn_geotandem(cluster_args(out, "lsf", 1), log);
+  std::set<std::string> killed;
+  const auto until = std::chrono::steady_clock::now() + std::chrono::seconds(300);
+  while (alive(manager) && std::chrono::steady_clock::now() < until) {
+    for (const std::string& job : submitted_jobs(read_text(log)))
+      if (killed.insert(job).second) std::system(("bkill " + job + " >/dev/null 2>&1").c_str());
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  }
+  const int code = wait_exit(manager, 60);
+  const std::string text = read_text(log);
+  EXPECT_EQ(code, 1) << text;
+  EXPECT_NE(text.find("lsf: job "), std::string::npos) << text;
+  EXPECT_NE(text.find("has already replaced 3 lost or killed job(s), its limit"), std::string::npos) << text;
+  EXPECT_EQ(killed.size(), 4u) << text;
+}
+
 TEST_F(LsfRun, NoSuchQueueIsAClearError) {
   auto args = cluster_args(dir.file("noqueue"), "lsf", 2);
   args.insert(args.end(), {"--set", "execution.resources.queue=no_such_queue"});

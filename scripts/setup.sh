@@ -18,7 +18,7 @@ packages=(
   libsqlite3-dev sqlite3 libxxhash-dev zlib1g-dev
   clang-format clang-tidy
   clang libclang-rt-14-dev
-  slurmctld slurmd slurm-client munge
+  slurmctld slurmd slurm-client munge iproute2
   libjs-three chromium
 )
 

@@ -16,6 +16,7 @@ void add_workflow_command(CLI::App& app, Context& context, Runner& run) {
     bool dry_run = false;
     bool fresh = false;
     std::string scheduler;
+    std::string bind;
   };
   auto args = std::make_shared<Args>();
   auto* cmd = app.add_subcommand(
@@ -29,18 +30,19 @@ void add_workflow_command(CLI::App& app, Context& context, Runner& run) {
                 "validate the recipe and build the whole chain (plugins, parameters, input), then stop: "
                 "nothing is computed and nothing is written");
   cmd->add_flag("--fresh", args->fresh, "replace a store left in the output directory by other parameters");
-  cmd->add_option("--scheduler", args->scheduler, "local, slurm or lsf (overrides execution.scheduler)");
+  cmd->add_option("--scheduler", args->scheduler,
+                  "where the extraction's workers run: local, slurm or lsf (overrides execution.scheduler; "
+                  "execution.workers and execution.resources say how many and with what)");
+  cmd->add_option("--bind", args->bind,
+                  "where the manager listens for its workers: loopback (the default), an interface (ib0) or an "
+                  "address (10.0.0.5[:PORT]); anything but loopback turns CurveZMQ on (overrides execution.bind)");
   cmd->callback([args, &context, &run] {
     run = [args, &context] {
       auto registry = make_plugin_registry(context.log);
       auto sets = args->sets;
       if (!args->scheduler.empty()) sets.push_back("execution.scheduler=" + args->scheduler);
+      if (!args->bind.empty()) sets.push_back("execution.bind=" + args->bind);
       auto recipe = workflow::load_recipe(args->recipe, registry, sets);
-      if (recipe.execution.scheduler != "local")
-        context.log.warning("execution: scheduler '" + recipe.execution.scheduler + "' with " +
-                            std::to_string(recipe.execution.workers) +
-                            " worker(s) is validated, but this build starts workers locally only: the "
-                            "extraction runs in this process");
       workflow::RunSettings settings;
       settings.dry_run = args->dry_run;
       settings.fresh = args->fresh;

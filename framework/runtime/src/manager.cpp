@@ -14,6 +14,7 @@
 #include "geotandem/core/error.hpp"
 #include "geotandem/runtime/schedule.hpp"
 #include "geotandem/tandem/marching_cubes.hpp"
+#include "transport_security.hpp"
 #include "zmq_poll.hpp"
 
 namespace geotandem::runtime {
@@ -68,6 +69,7 @@ struct Manager::Impl {
   const CancelToken& cancel;
   zmq::context_t context{1};
   zmq::socket_t router{context, zmq::socket_type::router};
+  std::shared_ptr<detail::ServerSecurity> security; // CURVE and its ZAP handler off loopback
   std::string endpoint;
   std::string run_prefix = random_hex(6);
   std::size_t token_count = 0;
@@ -91,6 +93,7 @@ struct Manager::Impl {
     router.set(zmq::sockopt::router_mandatory, 1);
     router.set(zmq::sockopt::router_handover, 1);
     router.set(zmq::sockopt::maxmsgsize, static_cast<std::int64_t>(options.max_message));
+    security = detail::secure_manager_socket(context, router, options.bind, s.directory().string() + ".keys", log);
     try {
       router.bind(options.bind);
     } catch (const zmq::error_t& e) {

@@ -11,6 +11,7 @@
 #include "geotandem/core/error.hpp"
 #include "geotandem/store/shard.hpp"
 #include "geotandem/tandem/serialize.hpp"
+#include "walltime.hpp"
 #include "worker_link.hpp"
 
 namespace geotandem::runtime {
@@ -94,6 +95,13 @@ private:
       default:
         log_.warning("worker " + options_.token + ": unexpected " + to_string(m.kind) + " dropped");
         return false;
+      }
+      // Near the walltime: leave after a task (never right after SETUP: every worker does some
+      // work); the manager re-assigns what it held.
+      if (const std::string why = m.kind == MessageKind::setup ? std::string() : detail::walltime_exhausted();
+          !why.empty()) {
+        log_.warning("worker " + options_.token + ": near its walltime, stops taking tasks: " + why);
+        return true;
       }
       ask();
       return false;

@@ -1,6 +1,8 @@
 // The worker's I/O thread (worker_link.hpp).
 #include "worker_link.hpp"
 
+#include "transport_security.hpp"
+
 #include "zmq_poll.hpp"
 
 #include <unistd.h>
@@ -28,6 +30,7 @@ WorkerLink::WorkerLink(zmq::context_t& context, LinkOptions options, CancelToken
       inproc_("inproc://worker-link-" + std::to_string(getpid()) + "-" +
               std::to_string(reinterpret_cast<std::uintptr_t>(this))),
       pair_(context, zmq::socket_type::pair) {
+  check_worker_keys(); // CURVE keys, when the manager gave a key file
   pair_.set(zmq::sockopt::linger, 0);
   pair_.connect(inproc_); // inproc connect before bind is fine since ZeroMQ 4
   io_ = std::thread([this] { io_loop(); });
@@ -67,6 +70,7 @@ void WorkerLink::io_loop() {
   dealer.set(zmq::sockopt::routing_id, options_.token);
   dealer.set(zmq::sockopt::linger, 1000); // a final message gets a second to leave
   dealer.set(zmq::sockopt::maxmsgsize, static_cast<std::int64_t>(options_.max_message));
+  secure_worker_socket(dealer); // CURVE when the manager's key file is given
   dealer.connect(options_.endpoint);
   using Clock = std::chrono::steady_clock;
   auto heard = Clock::now(), beat = Clock::now();

@@ -53,6 +53,10 @@ public:
       settings.workers = description.at("workers").get<std::size_t>();
       settings.volume_description = nlohmann::json{{"kind", "chain"}, {"chain", description.at("chain")}}.dump();
       settings.worker_command = description.at("worker_command").get<std::vector<std::string>>();
+      settings.scheduler = description.value("scheduler", "local");
+      settings.resources = description.value("resources", nlohmann::json::object());
+      settings.bind = description.value("bind", "");
+      settings.parameters.erase("resources");
     }
     return extract_to_store(input, store, settings, context.log, context.progress, context.cancel);
   }

@@ -1,12 +1,59 @@
 // The extraction step through the manager/worker runtime (extract_step.hpp): this process is the
 // manager, local worker processes extract, send and merge the blocks.
 #include <chrono>
+#include <cstdlib>
+#include <memory>
 
 #include "geotandem/core/error.hpp"
+#include "geotandem/runtime/bind_address.hpp"
 #include "geotandem/runtime/manager.hpp"
+#include "geotandem/runtime/scheduler_launcher.hpp"
 #include "geotandem/workflow/extract_step.hpp"
 
 namespace geotandem::workflow {
+
+namespace {
+
+// Seconds from an environment variable (tests shorten the scheduler's intervals), or `fallback`.
+std::chrono::milliseconds seconds_from_env(const char* name, std::chrono::milliseconds fallback) {
+  const char* text = std::getenv(name);
+  if (!text || !*text) return fallback;
+  char* end = nullptr;
+  const double v = std::strtod(text, &end);
+  if (!(v > 0) || (end && *end))
+    throw InvalidArgument(std::string(name) + "='" + text + "' is not a positive number of seconds", {},
+                          "unset it or give seconds, e.g. 30");
+  return std::chrono::milliseconds(static_cast<long long>(v * 1000));
+}
+
+// The workers' launcher: local child processes, or jobs of a cluster scheduler.
+std::unique_ptr<runtime::Launcher> make_launcher(const ExtractSettings& settings, const store::ComponentStore& store,
+                                                 runtime::ManagerOptions& manager, Logger& log) {
+  if (settings.scheduler.empty() || settings.scheduler == "local") return std::make_unique<runtime::LocalLauncher>();
+  runtime::SchedulerLaunchOptions o;
+  o.backend = settings.scheduler;
+  const nlohmann::json& r = settings.resources;
+  if (r.is_object()) {
+    o.cpus = r.value("cpus_per_worker", 1);
+    o.memory_mb = r.value("memory_mb", std::uint64_t{0});
+    o.walltime = std::chrono::seconds(r.value("walltime_s", std::int64_t{0}));
+    o.queue = r.value("queue", "");
+    o.account = r.value("account", "");
+    o.extra_args = r.value("extra_args", std::vector<std::string>{});
+  }
+  const std::filesystem::path logs = std::filesystem::absolute(store.directory()).parent_path() / "worker-logs";
+  std::filesystem::create_directories(logs);
+  o.workdir = logs.string();
+  o.log_pattern = (logs / "{job}.log").string();
+  o.poll_interval = seconds_from_env("GEOTANDEM_SCHEDULER_POLL_SECONDS", o.poll_interval);
+  o.command_timeout = seconds_from_env("GEOTANDEM_SCHEDULER_COMMAND_TIMEOUT", o.command_timeout);
+  // Jobs may wait in the queue: the manager waits longer for the first worker than with local ones.
+  manager.connect_timeout = seconds_from_env("GEOTANDEM_SCHEDULER_CONNECT_TIMEOUT", std::chrono::minutes(30));
+  log.info("workers run as " + settings.scheduler + " jobs; their logs go to " + logs.string());
+  return runtime::make_scheduler_launcher(o, log);
+}
+
+} // namespace
 
 ExtractResult extract_with_workers(const volume::Volume& volume, store::ComponentStore& store,
                                    const ExtractSettings& settings, Logger& log, Progress& progress,
@@ -35,6 +82,7 @@ ExtractResult extract_with_workers(const volume::Volume& volume, store::Componen
   r.dump = settings.mode != ExtractMode::tandem;
   r.brute = settings.mode == ExtractMode::brute;
   options.workers = settings.workers;
+  options.bind = runtime::manager_bind_endpoint(settings.bind);
   options.worker_command = settings.worker_command;
 
   ExtractSettings effective = settings;
@@ -45,9 +93,10 @@ ExtractResult extract_with_workers(const volume::Volume& volume, store::Componen
   ExtractResult result;
   result.run = store.begin_run(parameters.dump());
   r.run = result.run;
-  runtime::LocalLauncher launcher;
-  runtime::Manager manager(options, store, &launcher, log, progress, cancel);
-  log.info("extracting with " + std::to_string(settings.workers) + " local worker" +
+  std::unique_ptr<runtime::Launcher> launcher = make_launcher(settings, store, options, log);
+  runtime::Manager manager(options, store, launcher.get(), log, progress, cancel);
+  log.info("extracting with " + std::to_string(settings.workers) + " " +
+           (settings.scheduler.empty() ? std::string("local") : settings.scheduler) + " worker" +
            (settings.workers == 1 ? "" : "s"));
   const runtime::ManagerReport report = manager.run();
   result.components = report.components;

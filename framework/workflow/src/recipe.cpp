@@ -6,6 +6,7 @@
 #include <set>
 
 #include "geotandem/core/error.hpp"
+#include "geotandem/runtime/bind_address.hpp"
 #include "geotandem/synth/options.hpp"
 #include "geotandem/volume/io.hpp"
 #include "geotandem/volume/size_guard.hpp"
@@ -336,7 +337,13 @@ void parse_execution(MapReader& m, ExecutionSpec& ex) {
     ex.resources.extra_args = r.text_list("extra_args");
     r.finish({"cpus_per_worker", "memory", "walltime", "queue", "account", "extra_args"});
   }
-  m.finish({"scheduler", "workers", "resources"});
+  ex.bind = m.text("bind", "");
+  try {
+    (void)runtime::manager_bind_endpoint(ex.bind); // an unknown interface is an error at validation
+  } catch (const InvalidArgument& e) {
+    throw error_at(m.file(), m.node("bind"), e.message(), e.hint());
+  }
+  m.finish({"scheduler", "workers", "resources", "bind"});
 }
 
 nlohmann::json to_json(const Recipe& r) {

@@ -87,9 +87,8 @@ std::string describe_execution(const nlohmann::json& recipe) {
   std::string scheduler = ex.value("scheduler", "local");
   int workers = ex.value("workers", 1);
   if (scheduler == "local" && workers <= 1) return "local, in this process";
-  return "the recipe asks for scheduler <b>" + escape(scheduler) + "</b> with " + std::to_string(workers) +
-         " worker(s); this build has no manager/worker runtime, so the extraction ran in this process on this "
-         "machine";
+  if (scheduler == "local") return std::to_string(workers) + " local worker processes";
+  return std::to_string(workers) + " worker(s) as <b>" + escape(scheduler) + "</b> jobs";
 }
 
 const char* style =

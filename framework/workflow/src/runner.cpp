@@ -163,9 +163,17 @@ private:
                                     {"chain_fingerprint", print_},
                                     {"input_content", input_content_}};
       const ExecutionSpec& ex = recipe_.execution;
-      if (ex.scheduler == "local" && ex.workers >= 2 && !settings_.worker_command.empty()) {
+      if ((ex.scheduler != "local" || ex.workers >= 2) && !settings_.worker_command.empty()) {
         description["workers"] = ex.workers; // the extract step hands the chain to that many workers
         description["worker_command"] = settings_.worker_command;
+        description["scheduler"] = ex.scheduler;
+        description["bind"] = ex.bind;
+        description["resources"] = {{"cpus_per_worker", ex.resources.cpus_per_worker},
+                                    {"memory_mb", ex.resources.memory_mb},
+                                    {"walltime_s", ex.resources.walltime_s},
+                                    {"queue", ex.resources.queue},
+                                    {"account", ex.resources.account},
+                                    {"extra_args", ex.resources.extra_args}};
       }
       auto progress = progress_of(settings_);
       StepContext c = context(*progress);

@@ -48,6 +48,12 @@ struct ExtractSettings {
   std::size_t workers = 0;
   std::string volume_description;
   std::vector<std::string> worker_command;
+  // Where the workers run: "local" (child processes) or a cluster scheduler ("slurm", "lsf"), with
+  // the recipe's execution.resources as JSON (cpus_per_worker, memory_mb, walltime_s, queue,
+  // account, extra_args). See extract_workers.cpp.
+  std::string scheduler = "local";
+  nlohmann::json resources;
+  std::string bind; // where the manager listens (runtime::manager_bind_endpoint); "": loopback
 };
 
 struct ExtractResult {

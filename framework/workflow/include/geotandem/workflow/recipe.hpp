@@ -75,6 +75,7 @@ struct ExecutionSpec {
   std::string scheduler = "local"; // local | slurm | lsf
   int workers = 1;
   ResourceSpec resources;
+  std::string bind; // where the manager listens: "" (loopback), an interface or an address
 };
 
 struct Recipe {

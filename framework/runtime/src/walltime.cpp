@@ -1,0 +1,38 @@
+// The worker's walltime (walltime.hpp).
+#include "walltime.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cstdlib>
+#include <optional>
+
+namespace geotandem::runtime::detail {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+const Clock::time_point process_start = Clock::now(); // when the library was loaded: the worker's start
+
+std::optional<double> seconds_in(const char* name) {
+  const char* text = std::getenv(name);
+  if (!text || !*text) return std::nullopt;
+  char* end = nullptr;
+  const double v = std::strtod(text, &end);
+  if (!(v > 0) || (end && *end)) return std::nullopt;
+  return v;
+}
+
+} // namespace
+
+std::string walltime_exhausted() {
+  const std::optional<double> walltime = seconds_in(walltime_variable);
+  if (!walltime) return {};
+  const double margin = seconds_in(walltime_margin_variable).value_or(std::clamp(*walltime * 0.05, 60.0, 600.0));
+  const double used = std::chrono::duration<double>(Clock::now() - process_start).count();
+  if (used + margin < *walltime) return {};
+  return std::to_string(static_cast<long long>(std::max(0.0, *walltime - used))) + " s left of its " +
+         std::to_string(static_cast<long long>(*walltime)) + " s walltime (it stops " +
+         std::to_string(static_cast<long long>(margin)) + " s before)";
+}
+
+} // namespace geotandem::runtime::detail

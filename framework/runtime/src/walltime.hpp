@@ -1,0 +1,20 @@
+#pragma once
+// A worker near the end of its job's walltime stops taking tasks: it finishes the task in hand and
+// leaves, so that the scheduler never kills it in the middle of one; the manager re-assigns what
+// it held and starts a replacement job (with a fresh walltime). The walltime comes from the job's
+// environment: GEOTANDEM_WALLTIME_SECONDS, which the scheduler launcher exports when the run asks
+// for one (execution.resources.walltime), counted from the worker's start.
+#include <string>
+
+namespace geotandem::runtime::detail {
+
+inline constexpr const char* walltime_variable = "GEOTANDEM_WALLTIME_SECONDS";
+// Seconds before the walltime at which a worker stops taking tasks (default: 5 % of the walltime,
+// at least 60 s and at most 10 minutes). Tests set it.
+inline constexpr const char* walltime_margin_variable = "GEOTANDEM_WALLTIME_MARGIN_SECONDS";
+
+// Empty while the worker may take another task; otherwise why it must stop ("2 s left of its
+// 60 s walltime ..."). Without a walltime in the environment: always empty.
+std::string walltime_exhausted();
+
+} // namespace geotandem::runtime::detail

@@ -130,7 +130,11 @@ void add_extract_command(CLI::App& app, Context& context, Runner& run) {
         const auto& st = r.statistics;
         std::cout << " in " << r.seconds << " s with " << st["workers"] << " worker(s) (" << st["deaths"]
                   << " lost); tasks " << st["tasks"].dump() << "; "
-                  << st["bytes"]["surfaces"].get<std::uint64_t>() / 1024 << " KiB of partial surfaces moved\n";
+                  << st["bytes"]["surfaces"].get<std::uint64_t>() / 1024 << " KiB of partial surfaces moved";
+        if (st.value("skipped_leaves", 0) > 0)
+          std::cout << "; resumed: " << st["skipped_leaves"] << " of " << st["leaves"]
+                    << " blocks finished by an earlier run were not redone";
+        std::cout << "\n";
         std::cout << "store: " << a->out << " (run " << r.run << ")\n";
         return 0;
       }

@@ -11,6 +11,7 @@
 #include <thread>
 #include <zmq.hpp>
 
+#include "finished_blocks.hpp"
 #include "geotandem/core/error.hpp"
 #include "geotandem/runtime/schedule.hpp"
 #include "geotandem/tandem/marching_cubes.hpp"
@@ -75,6 +76,7 @@ struct Manager::Impl {
   std::map<std::string, Peer> peers; // by token
   tandem::BlockTree tree;
   Schedule schedule{tree};
+  detail::FinishedBlocks finished{store.directory(), tree};
   std::map<TransferId, std::vector<std::byte>> parcels;
   std::map<tandem::NodeId, std::uint32_t> attempts;
   std::uint64_t next_task = 1;
@@ -98,6 +100,9 @@ struct Manager::Impl {
     }
     endpoint = router.get(zmq::sockopt::last_endpoint);
     report.leaves = tree.leaves().size();
+    for (tandem::NodeId leaf : finished.load(log))
+      schedule.skip(leaf);
+    report.skipped_leaves = schedule.skipped();
   }
 
   std::string new_token() {
@@ -229,6 +234,13 @@ struct Manager::Impl {
     default: break;
     }
     ++p.tasks;
+    // An empty surface: its leaves' components are all committed (the COMMIT came first).
+    if (m.box[1] == 1) {
+      const std::vector<tandem::NodeId> leaves = schedule.held(p.id);
+      log.debug("worker " + p.token + ": surface empty after " + task_text(p) + "; " + std::to_string(leaves.size()) +
+                " leaves finished");
+      finished.record(leaves);
+    }
     const bool final = p.task->kind == TaskKind::finished;
     p.task.reset();
     schedule.done(p.id);
@@ -358,6 +370,12 @@ struct Manager::Impl {
     start = Clock::now();
     cpu_at_start = cpu_seconds();
     progress.begin("extraction, " + std::to_string(report.leaves) + " blocks", report.leaves + 1, "blocks+final");
+    if (report.skipped_leaves > 0) {
+      log.info("resuming: " + std::to_string(report.skipped_leaves) + " of " + std::to_string(report.leaves) +
+               " blocks were finished by an earlier run (their components are in the store) and are not redone");
+      for (std::size_t i = 0; i < report.skipped_leaves; ++i)
+        advance();
+    }
     if (launcher)
       for (std::size_t i = 0; i < options.workers; ++i)
         launch_one();

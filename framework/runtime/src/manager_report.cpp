@@ -11,6 +11,7 @@ std::string ManagerReport::to_json() const {
       {"deaths", deaths},
       {"restarts", restarts},
       {"leaves", leaves},
+      {"skipped_leaves", skipped_leaves},
       {"tasks", {{"extract", extract}, {"send", send}, {"merge", merge}, {"finish", finish}}},
       {"redone_leaves", redone_leaves},
       {"seconds",

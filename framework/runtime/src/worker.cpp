@@ -10,6 +10,7 @@
 
 #include "geotandem/core/error.hpp"
 #include "geotandem/store/shard.hpp"
+#include "geotandem/tandem/marching_cubes.hpp"
 #include "geotandem/tandem/serialize.hpp"
 #include "worker_link.hpp"
 
@@ -145,6 +146,9 @@ private:
     rusage u{};
     getrusage(RUSAGE_SELF, &u);
     d.box[0] = u.ru_maxrss;
+    // 1: this worker's surface holds nothing after the task; every component of its leaves is in
+    // the COMMIT above, so the manager may record the leaves as finished (resume).
+    d.box[1] = !surface_ || surface_->component_count() == 0 ? 1 : 0;
     link_.send(d);
   }
 
@@ -194,7 +198,15 @@ private:
   void finish(const Message& m) {
     need_setup(m);
     const auto start = Clock::now();
-    if (surface_) surface_->finish(&cancel_);
+    if (surface_) {
+      // The final surface covers every leaf but those an earlier run finished (resume): those
+      // held nothing, so the whole cube is this surface's region and no face is open any more.
+      const volume::Box cube = tandem::cube_cells(volume_->geometry().shape);
+      const tandem::Region& region = surface_->region();
+      if (region.blocks().size() != 1 || !(region.blocks().front() == cube))
+        surface_->set_region(tandem::Region::block(cube, cube));
+      surface_->finish(&cancel_);
+    }
     surface_.reset();
     report(m, start);
   }

@@ -57,7 +57,7 @@ ExtractResult extract_with_workers(const volume::Volume& volume, store::Componen
   result.blocks = {{"block_size", r.block_size}, {"leaves", report.leaves}, {"merges", report.merge}};
   result.statistics = nlohmann::json::parse(report.to_json());
   result.statistics["peak_rss_kb"] = result.peak_rss_kb;
-  warn_if_empty(result, settings, log);
+  if (report.skipped_leaves == 0) warn_if_empty(result, settings, log); // a resumed run may add nothing
   store.end_run(result.run, result.statistics.dump());
   return result;
 }

@@ -50,6 +50,7 @@ struct ManagerReport {
   std::uint64_t dropped_messages = 0;        // damaged, unknown sender, stale lease
   std::uint64_t components = 0, duplicates = 0;
   std::size_t leaves = 0;
+  std::size_t skipped_leaves = 0;              // finished by an earlier run (resume): not redone
   double seconds = 0, manager_cpu_seconds = 0; // the run's wall time; CPU the manager used in it
   std::int64_t manager_peak_rss_kb = 0;        // of the manager's process, so far
   std::int64_t worker_peak_rss_kb = 0;         // the largest over the workers

@@ -35,7 +35,8 @@ enum class MessageKind : std::uint8_t {
   // worker -> manager
   hello = 1,     // token, pid: the worker is up
   ask = 2,       // the seed's get_task()
-  done = 3,      // lease, number = milliseconds, box[0] = peak RSS (KiB): EXTRACT, MERGE or final over
+  done = 3,      // lease, number = milliseconds, box[0] = peak RSS (KiB), box[1] = 1 when the worker's
+                 // surface is empty after it: EXTRACT, MERGE or final over
   surface = 4,   // lease, bytes: the worker's surface for its SEND (relayed by the manager)
   commit = 5,    // lease, entries: components written (and synced) to the worker's shard
   failed = 6,    // lease, text: the task failed; the worker goes on

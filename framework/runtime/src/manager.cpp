@@ -9,13 +9,14 @@
 #include <random>
 #include <set>
 #include <thread>
-#include <zmq.hpp>
 
+#include "component_committer.hpp"
 #include "finished_blocks.hpp"
 #include "geotandem/core/error.hpp"
 #include "geotandem/runtime/schedule.hpp"
 #include "geotandem/tandem/marching_cubes.hpp"
-#include "zmq_poll.hpp"
+#include "manager_socket.hpp"
+#include "worker_failure.hpp"
 
 namespace geotandem::runtime {
 
@@ -67,9 +68,9 @@ struct Manager::Impl {
   Logger& log;
   Progress& progress;
   const CancelToken& cancel;
-  zmq::context_t context{1};
-  zmq::socket_t router{context, zmq::socket_type::router};
-  std::string endpoint;
+  detail::ManagerSocket socket;
+  const std::string& endpoint = socket.endpoint();
+  detail::ComponentCommitter committer{store};
   std::string run_prefix = random_hex(6);
   std::size_t token_count = 0;
   std::set<std::string> allowed, dead;
@@ -88,19 +89,23 @@ struct Manager::Impl {
 
   Impl(ManagerOptions o, store::ComponentStore& s, Launcher* l, Logger& lg, Progress& p, const CancelToken& c)
       : options(std::move(o)), store(s), launcher(l), log(lg), progress(p), cancel(c),
+        socket(options.bind, options.max_message, lg),
         tree(tandem::cube_cells(s.geometry().shape), std::max<std::int64_t>(options.settings.block_size, 8)) {
-    router.set(zmq::sockopt::linger, 0);
-    router.set(zmq::sockopt::router_mandatory, 1);
-    router.set(zmq::sockopt::router_handover, 1);
-    router.set(zmq::sockopt::maxmsgsize, static_cast<std::int64_t>(options.max_message));
-    try {
-      router.bind(options.bind);
-    } catch (const zmq::error_t& e) {
-      throw IoError("cannot listen on " + options.bind + ": " + e.what(), {}, "choose another address or port");
-    }
-    endpoint = router.get(zmq::sockopt::last_endpoint);
     report.leaves = tree.leaves().size();
-    for (tandem::NodeId leaf : finished.load(log))
+  }
+
+  // Resume: the leaves an earlier run finished are not redone, unless the store holds damaged
+  // records (which leaves they came from is not known: then everything is redone, and the
+  // damaged records are written again).
+  void skip_finished_leaves() {
+    const std::vector<tandem::NodeId> done = finished.load(log);
+    if (done.empty()) return;
+    if (const std::uint64_t damaged = committer.count_damaged(cancel)) {
+      log.warning(std::to_string(damaged) + " damaged record(s) in the store: every block is extracted again to "
+                                            "write them again");
+      return;
+    }
+    for (tandem::NodeId leaf : done)
       schedule.skip(leaf);
     report.skipped_leaves = schedule.skipped();
   }
@@ -118,18 +123,7 @@ struct Manager::Impl {
     launcher->launch(argv, token);
   }
 
-  bool send(const std::string& token, const Message& m) {
-    const std::vector<std::byte> bytes = encode(m);
-    try {
-      router.send(zmq::buffer(token), zmq::send_flags::sndmore);
-      router.send(zmq::buffer(bytes.data(), bytes.size()), zmq::send_flags::none);
-      report.bytes_out += bytes.size();
-      return true;
-    } catch (const zmq::error_t& e) {
-      log.debug("cannot reach worker " + token + ": " + e.what());
-      return false;
-    }
-  }
+  bool send(const std::string& token, const Message& m) { return socket.send(token, encode(m)); }
 
   void drop(const std::string& why) {
     ++report.dropped_messages;
@@ -248,7 +242,6 @@ struct Manager::Impl {
   }
 
   void handle(const std::string& token, std::span<const std::byte> frame) {
-    report.bytes_in += frame.size();
     if (dead.count(token)) { // a frozen worker woke up, or a late message of one that left
       Message f;
       f.kind = MessageKind::finished;
@@ -266,6 +259,13 @@ struct Manager::Impl {
     auto it = peers.find(token);
     if (m.kind == MessageKind::hello) {
       if (it != peers.end()) return drop("a second HELLO from worker " + token);
+      if (schedule.complete()) { // a late starter: nothing left to do
+        Message f;
+        f.kind = MessageKind::finished;
+        send(token, f);
+        dead.insert(token);
+        return;
+      }
       Peer p{.id = next_worker++, .token = token, .pid = m.number, .heard = Clock::now()};
       schedule.join(p.id);
       ++report.workers;
@@ -291,23 +291,19 @@ struct Manager::Impl {
       return decide(p);
     case MessageKind::failed:
       if (!p.task && m.lease == Lease{}) // SETUP failed: every worker would fail the same way
-        throw Error("worker " + token + " could not start: " + m.text, {.worker = token},
-                    "check that every worker can read the input and write to the store directory");
+        detail::throw_worker_failure(static_cast<int>(m.number), "could not start: " + m.text, token,
+                                     "every worker reads the input itself: check that it is readable and "
+                                     "intact from every worker, and that the store directory is writable");
       if (!p.task || !(m.lease == p.lease)) return drop("a stale FAILED from worker " + token);
-      throw Error("worker " + token + " failed during " + task_text(p) + ": " + m.text, {.worker = token},
-                  "fix the cause and rerun the same command: committed components are kept");
+      detail::throw_worker_failure(static_cast<int>(m.number), "failed during " + task_text(p) + ": " + m.text, token,
+                                   "fix the cause and rerun the same command: committed components are kept");
     default: break;
     }
     if (!p.task || !(m.lease == p.lease))
       return drop(std::string(to_string(m.kind)) + " from worker " + token + " with a stale lease (task " +
                   std::to_string(m.lease.task) + ", attempt " + std::to_string(m.lease.attempt) + ")");
     switch (m.kind) {
-    case MessageKind::commit: {
-      const std::size_t added = store.commit(m.entries);
-      report.components += added;
-      report.duplicates += m.entries.size() - added;
-      return;
-    }
+    case MessageKind::commit: committer.commit(std::move(m.entries)); return;
     case MessageKind::surface: {
       if (p.task->kind != TaskKind::send) return drop("SURFACE from worker " + token + " outside a SEND");
       const TransferId t = p.task->transfer;
@@ -369,6 +365,7 @@ struct Manager::Impl {
   ManagerReport run() {
     start = Clock::now();
     cpu_at_start = cpu_seconds();
+    skip_finished_leaves();
     progress.begin("extraction, " + std::to_string(report.leaves) + " blocks", report.leaves + 1, "blocks+final");
     if (report.skipped_leaves > 0) {
       log.info("resuming: " + std::to_string(report.skipped_leaves) + " of " + std::to_string(report.leaves) +
@@ -386,33 +383,16 @@ struct Manager::Impl {
     try {
       for (;;) {
         cancel.throw_if_cancelled();
-        zmq::pollitem_t item{router.handle(), 0, ZMQ_POLLIN, 0};
-        detail::poll_items(&item, 1, std::chrono::milliseconds(100));
-        zmq::message_t id, body;
-        while (router.recv(id, zmq::recv_flags::dontwait)) {
-          if (!id.more()) {
-            drop("a frame without a routing id");
-            continue;
-          }
-          (void)router.recv(body, zmq::recv_flags::none);
-          // Extra frames from a foreign peer: read and drop them.
-          bool extra = false;
-          while (body.more()) {
-            zmq::message_t rest;
-            (void)router.recv(rest, zmq::recv_flags::none);
-            extra = true;
-            body.swap(rest);
-          }
-          if (extra) {
-            drop("a message of more than one frame");
-            continue;
-          }
-          handle(id.to_string(), std::span(static_cast<const std::byte*>(body.data()), body.size()));
-        }
+        socket.receive(
+            std::chrono::milliseconds(100),
+            [this](const std::string& token, std::span<const std::byte> body) { handle(token, body); },
+            [this](const std::string& why) { drop(why); });
         heartbeats();
         if (schedule.complete()) {
           if (!completed) completed = Clock::now();
-          if (peers.empty() || since(*completed) > 3.0) break; // each is told FINISHED when it asks
+          // Each is told FINISHED when it asks (or says HELLO, if it starts late).
+          const bool all_gone = peers.empty() && (!launcher || launcher->running() == 0);
+          if (all_gone || since(*completed) > 3.0) break;
         }
         if (!peers.empty()) alone = Clock::now();
         if (peers.empty() && Clock::now() - alone > options.connect_timeout)
@@ -435,6 +415,11 @@ struct Manager::Impl {
     stop_workers();
     progress.end();
     report.manager_cpu_seconds = cpu_seconds() - cpu_at_start;
+    report.components = committer.added();
+    report.duplicates = committer.duplicates();
+    report.repaired = committer.repaired();
+    report.bytes_in = socket.bytes_in();
+    report.bytes_out = socket.bytes_out();
     report.manager_peak_rss_kb = peak_rss_kb(); // of the whole process, so far
 
     return report;

@@ -12,6 +12,7 @@
 #include "geotandem/store/shard.hpp"
 #include "geotandem/tandem/marching_cubes.hpp"
 #include "geotandem/tandem/serialize.hpp"
+#include "worker_failure.hpp"
 #include "worker_link.hpp"
 
 namespace geotandem::runtime {
@@ -71,6 +72,7 @@ public:
         f.kind = MessageKind::failed;
         f.lease = m.lease;
         f.text = e.what();
+        f.number = static_cast<std::uint64_t>(detail::failure_code(e));
         link_.send(f);
         throw;
       }

@@ -16,6 +16,7 @@
 #include "geotandem/runtime/schedule.hpp"
 #include "geotandem/tandem/marching_cubes.hpp"
 #include "manager_socket.hpp"
+#include "surface_relay.hpp"
 #include "worker_failure.hpp"
 
 namespace geotandem::runtime {
@@ -78,7 +79,7 @@ struct Manager::Impl {
   tandem::BlockTree tree;
   Schedule schedule{tree};
   detail::FinishedBlocks finished{store.directory(), tree};
-  std::map<TransferId, std::vector<std::byte>> parcels;
+  detail::SurfaceRelay relay{options.max_surface, static_cast<std::size_t>(options.settings.chunk_bytes)};
   std::map<tandem::NodeId, std::uint32_t> attempts;
   std::uint64_t next_task = 1;
   WorkerId next_worker = 1;
@@ -143,7 +144,8 @@ struct Manager::Impl {
     if (it == peers.end()) return;
     Peer& p = it->second;
     const std::vector<tandem::NodeId> redo = schedule.leave(p.id);
-    std::erase_if(parcels, [&](const auto& kv) { return !schedule.transfer_target(kv.first); });
+    relay.forget(token);
+    relay.drop_kept([&](TransferId t) { return !schedule.transfer_target(t); });
     log.warning("worker " + token + " (pid " + std::to_string(p.pid) + ") " + why + " during " + task_text(p) + ": " +
                 std::to_string(redo.size()) + " block(s) will be re-done from the volume");
     Message f;
@@ -176,11 +178,7 @@ struct Manager::Impl {
       m.kind = MessageKind::send;
       m.number = d.target;
       break;
-    case TaskKind::merge:
-      m.kind = MessageKind::merge;
-      m.bytes = std::move(parcels.at(d.transfer));
-      parcels.erase(d.transfer);
-      break;
+    case TaskKind::merge: m.kind = MessageKind::merge; break;
     case TaskKind::wait:
       m.kind = MessageKind::wait;
       m.number = 100;
@@ -198,8 +196,27 @@ struct Manager::Impl {
       p.task_start = Clock::now();
       log.debug("worker " + p.token + ": " + task_text(p));
     }
+    if (d.kind == TaskKind::merge) {
+      const detail::SurfaceRelay::Header h = relay.begin_outbound(p.token, d.transfer);
+      m.number = h.total;
+      m.box[0] = static_cast<std::int64_t>(h.checksum);
+    }
+    if (d.kind == TaskKind::send) relay.begin_inbound(p.token);
     if (!send(p.token, m)) return kill_peer(p.token, "cannot be reached");
+    if (d.kind == TaskKind::merge) pump(p, 0);
     if (d.kind == TaskKind::finished && !d.final) depart(p.token);
+  }
+
+  // The chunks of the MERGE in progress that the worker's credits allow now.
+  void pump(Peer& p, std::uint64_t credits) {
+    relay.pump(p.token, credits, [&](std::uint64_t offset, std::span<const std::byte> piece) {
+      Message c;
+      c.kind = MessageKind::merge_chunk;
+      c.lease = p.lease;
+      c.number = offset;
+      c.bytes.assign(piece.begin(), piece.end());
+      send(p.token, c);
+    });
   }
 
   // A worker told to stop leaves the run without a warning.
@@ -208,6 +225,7 @@ struct Manager::Impl {
     if (it == peers.end()) return;
     log.info("worker " + token + " done after " + std::to_string(it->second.tasks) + " task(s)");
     schedule.leave(it->second.id);
+    relay.forget(token);
     dead.insert(token);
     peers.erase(it);
   }
@@ -304,15 +322,38 @@ struct Manager::Impl {
                   std::to_string(m.lease.task) + ", attempt " + std::to_string(m.lease.attempt) + ")");
     switch (m.kind) {
     case MessageKind::commit: committer.commit(std::move(m.entries)); return;
+    case MessageKind::surface_chunk: {
+      if (p.task->kind != TaskKind::send) return drop("a surface chunk from worker " + token + " outside a SEND");
+      if (const std::optional<std::string> why = relay.chunk_in(token, m.number, m.bytes)) {
+        drop("from worker " + token + ": " + *why); // its surface cannot arrive whole: its leaves are redone
+        return kill_peer(token, "sent a damaged partial surface");
+      }
+      Message credit;
+      credit.kind = MessageKind::surface_credit;
+      credit.lease = m.lease;
+      credit.number = 1;
+      send(token, credit);
+      return;
+    }
+    case MessageKind::merge_credit:
+      if (p.task->kind != TaskKind::merge) return drop("a merge credit from worker " + token + " outside a MERGE");
+      return pump(p, m.number);
     case MessageKind::surface: {
       if (p.task->kind != TaskKind::send) return drop("SURFACE from worker " + token + " outside a SEND");
       const TransferId t = p.task->transfer;
-      report.surface_bytes += m.bytes.size();
-      report.largest_surface = std::max<std::uint64_t>(report.largest_surface, m.bytes.size());
+      std::uint64_t bytes = 0;
+      if (const std::optional<std::string> why =
+              relay.end_inbound(token, m.number, static_cast<std::uint64_t>(m.box[0]), bytes)) {
+        drop("from worker " + token + ": " + *why);
+        return kill_peer(token, "sent a damaged partial surface");
+      }
+      report.surface_bytes += bytes;
+      report.largest_surface = std::max<std::uint64_t>(report.largest_surface, bytes);
       ++report.send;
       ++p.tasks;
       p.task.reset();
-      if (schedule.arrived(p.id, t)) parcels[t] = std::move(m.bytes);
+      if (schedule.arrived(p.id, t)) relay.keep(token, t);
+      relay.forget(token);
       return;
     }
     case MessageKind::done:

@@ -9,6 +9,7 @@
 #include <utility>
 
 #include "geotandem/core/error.hpp"
+#include "geotandem/runtime/surface_chunks.hpp"
 #include "geotandem/store/shard.hpp"
 #include "geotandem/tandem/marching_cubes.hpp"
 #include "geotandem/tandem/serialize.hpp"
@@ -65,6 +66,8 @@ public:
       const Message m = next();
       try {
         if (handle(m)) return 0;
+      } catch (const StopRequested&) {
+        return 0;
       } catch (const Cancelled&) {
         throw;
       } catch (const std::exception& e) {
@@ -94,6 +97,7 @@ private:
       case MessageKind::finished:
         if (m.number == 1) finish(m);
         return true;
+      case MessageKind::surface_credit: return false; // the last credits of a SEND already over
       default:
         log_.warning("worker " + options_.token + ": unexpected " + to_string(m.kind) + " dropped");
         return false;
@@ -171,29 +175,78 @@ private:
       surface_->merge(std::move(*piece), &cancel_);
   }
 
-  void send_surface(const Message& m) {
-    need_setup(m);
-    Message s;
-    s.kind = MessageKind::surface;
-    s.lease = m.lease;
-    if (surface_) s.bytes = tandem::serialize(*surface_);
-    surface_.reset();
-    if (s.bytes.size() + 4096 > kDefaultMaxMessage)
-      throw InvalidArgument("a partial surface of " + std::to_string(s.bytes.size() >> 20) +
-                                " MiB is over the message cap of " + std::to_string(kDefaultMaxMessage >> 20) + " MiB",
-                            {.worker = options_.token}, "use smaller blocks (--block-size)");
-    link_.send(s);
+  // The manager gave up on this worker during a transfer (FINISHED): it stops.
+  struct StopRequested {};
+
+  // The next message of the transfer under `lease` of kind `kind`; other messages of the task's
+  // time are dropped (logged), FINISHED stops the worker.
+  Message transfer_message(const Lease& lease, MessageKind kind) {
+    for (;;) {
+      Message r = next();
+      if (r.kind == kind && r.lease == lease) return r;
+      if (r.kind == MessageKind::finished) throw StopRequested{};
+      log_.warning("worker " + options_.token + ": " + to_string(r.kind) + " dropped during a transfer");
+    }
   }
 
+  // SEND: the surface in chunks, at most kChunkWindow ahead of the manager's credits, then its
+  // total size and checksum.
+  void send_surface(const Message& m) {
+    need_setup(m);
+    std::vector<std::byte> record;
+    if (surface_) record = tandem::serialize(*surface_);
+    surface_.reset();
+    if (record.size() > kDefaultMaxSurface)
+      throw InvalidArgument("a partial surface of " + std::to_string(record.size() >> 20) + " MiB is over the cap of " +
+                                std::to_string(kDefaultMaxSurface >> 20) + " MiB",
+                            {.worker = options_.token}, "use smaller blocks (--block-size)");
+    std::size_t ahead = 0;
+    std::uint64_t offset = 0;
+    for (std::span<const std::byte> piece : cut_into_chunks(record, settings_.chunk_bytes)) {
+      while (ahead >= kChunkWindow)
+        ahead -= std::min<std::size_t>(ahead, transfer_message(m.lease, MessageKind::surface_credit).number);
+      Message c;
+      c.kind = MessageKind::surface_chunk;
+      c.lease = m.lease;
+      c.number = offset;
+      c.bytes.assign(piece.begin(), piece.end());
+      link_.send(c);
+      offset += piece.size();
+      ++ahead;
+    }
+    Message end;
+    end.kind = MessageKind::surface;
+    end.lease = m.lease;
+    end.number = record.size();
+    end.box[0] = static_cast<std::int64_t>(surface_checksum(record));
+    link_.send(end);
+  }
+
+  // MERGE: the announced surface arrives in chunks (each acknowledged with a credit), is checked
+  // against its size and checksum, and goes straight into this worker's surface (no engine is
+  // rebuilt for the sender); a worker holding nothing takes the record as its surface.
   void merge(const Message& m) {
     need_setup(m);
     const auto start = Clock::now();
-    // The received record goes straight into this worker's surface (no engine is rebuilt for the
-    // sender); a worker holding nothing takes the record as its surface.
+    SurfaceAssembler in(kDefaultMaxSurface, m.number, settings_.chunk_bytes);
+    while (!in.complete() && !in.broken()) {
+      const Message c = transfer_message(m.lease, MessageKind::merge_chunk);
+      if (const std::optional<std::string> why = in.add(c.number, c.bytes))
+        log_.warning("worker " + options_.token + ": dropped " + *why);
+      Message credit;
+      credit.kind = MessageKind::merge_credit;
+      credit.lease = m.lease;
+      credit.number = 1;
+      link_.send(credit);
+    }
+    if (const std::optional<std::string> why = in.finish(m.number, static_cast<std::uint64_t>(m.box[0])))
+      throw DataError("the partial surface to merge is damaged: " + *why, {.worker = options_.token},
+                      "rerun the same command: committed components are kept");
+    const std::vector<std::byte> record = in.take();
     if (surface_)
-      tandem::merge_record(*surface_, m.bytes, &cancel_);
+      tandem::merge_record(*surface_, record, &cancel_);
     else
-      surface_ = std::make_unique<tandem::WorkingSurface>(tandem::deserialize(m.bytes, &*sink_));
+      surface_ = std::make_unique<tandem::WorkingSurface>(tandem::deserialize(record, &*sink_));
     report(m, start);
   }
 

@@ -35,6 +35,7 @@ struct ManagerOptions {
   std::chrono::milliseconds connect_timeout{60000};
   std::size_t max_restarts = 16; // replacement workers launched after deaths, at most
   std::size_t max_message = kDefaultMaxMessage;
+  std::uint64_t max_surface = kDefaultMaxSurface; // a partial surface above this is refused
 };
 
 struct ManagerReport {

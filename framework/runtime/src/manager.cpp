@@ -1,12 +1,10 @@
 // The manager's event loop (manager.hpp). Decisions come from Schedule; this file moves messages.
 #include "geotandem/runtime/manager.hpp"
 
-#include <sys/resource.h>
 #include <unistd.h>
 
 #include <algorithm>
 #include <map>
-#include <random>
 #include <set>
 #include <thread>
 
@@ -16,40 +14,17 @@
 #include "geotandem/runtime/schedule.hpp"
 #include "geotandem/tandem/marching_cubes.hpp"
 #include "manager_socket.hpp"
+#include "manager_support.hpp"
 #include "surface_relay.hpp"
 #include "worker_failure.hpp"
 
 namespace geotandem::runtime {
 
-namespace {
-using Clock = std::chrono::steady_clock;
-
-double since(Clock::time_point t) {
-  return std::chrono::duration<double>(Clock::now() - t).count();
-}
-
-std::int64_t peak_rss_kb() {
-  rusage u{};
-  getrusage(RUSAGE_SELF, &u);
-  return u.ru_maxrss;
-}
-
-double cpu_seconds() {
-  rusage u{};
-  getrusage(RUSAGE_SELF, &u);
-  return static_cast<double>(u.ru_utime.tv_sec + u.ru_stime.tv_sec) +
-         static_cast<double>(u.ru_utime.tv_usec + u.ru_stime.tv_usec) / 1e6;
-}
-
-std::string random_hex(std::size_t n) {
-  static constexpr char kDigits[] = "0123456789abcdef";
-  std::random_device rd;
-  std::string s;
-  for (std::size_t i = 0; i < n; ++i)
-    s += kDigits[rd() % 16];
-  return s;
-}
-} // namespace
+using detail::Clock;
+using detail::cpu_seconds;
+using detail::peak_rss_kb;
+using detail::random_hex;
+using detail::since;
 
 struct Manager::Impl {
   struct Peer {
@@ -164,30 +139,8 @@ struct Manager::Impl {
 
   void decide(Peer& p) {
     const Decision d = schedule.next(p.id);
-    Message m;
-    switch (d.kind) {
-    case TaskKind::extract: {
-      m.kind = MessageKind::extract;
-      const volume::Box& b = tree.node(d.leaf).cells;
-      m.box = {b.lo[0], b.lo[1], b.lo[2], b.hi[0], b.hi[1], b.hi[2]};
-      m.number = static_cast<std::uint64_t>(d.leaf);
-      m.lease.attempt = ++attempts[d.leaf];
-      break;
-    }
-    case TaskKind::send:
-      m.kind = MessageKind::send;
-      m.number = d.target;
-      break;
-    case TaskKind::merge: m.kind = MessageKind::merge; break;
-    case TaskKind::wait:
-      m.kind = MessageKind::wait;
-      m.number = 100;
-      break;
-    case TaskKind::finished:
-      m.kind = MessageKind::finished;
-      m.number = d.final ? 1 : 0;
-      break;
-    }
+    Message m = detail::task_message(d, tree);
+    if (d.kind == TaskKind::extract) m.lease.attempt = ++attempts[d.leaf];
     const bool busy = d.kind != TaskKind::wait && (d.kind != TaskKind::finished || d.final);
     if (busy) {
       m.lease.task = next_task++;

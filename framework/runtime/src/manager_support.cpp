@@ -50,7 +50,7 @@ Message task_message(const Decision& d, const tandem::BlockTree& tree) {
   case TaskKind::merge: m.kind = MessageKind::merge; break;
   case TaskKind::wait:
     m.kind = MessageKind::wait;
-    m.number = 100;
+    m.number = 20;
     break;
   case TaskKind::finished:
     m.kind = MessageKind::finished;

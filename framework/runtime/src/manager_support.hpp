@@ -20,7 +20,7 @@ double cpu_seconds();       // user + system CPU of this process
 std::string random_hex(std::size_t n);
 
 // The message of a decision, without its lease (the manager sets it): EXTRACT with the leaf's
-// cells, SEND with its target, MERGE (its size and checksum come with the surface), WAIT 100 ms,
+// cells, SEND with its target, MERGE (its size and checksum come with the surface), WAIT 20 ms,
 // FINISHED (1: the final pass).
 Message task_message(const Decision& d, const tandem::BlockTree& tree);
 

@@ -4,6 +4,7 @@
 #include <sys/resource.h>
 #include <unistd.h>
 
+#include <functional>
 #include <optional>
 #include <thread>
 #include <utility>
@@ -22,10 +23,13 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
-// Finished components to the worker's shard; their index entries wait for the next COMMIT.
+// Finished components to the worker's shard; their index entries wait for the next COMMIT, which
+// goes at the end of the task or, during a long one, every 200 ms (or 256 components): a manager
+// killed mid-task then loses little.
 class ShardSink final : public mesh::ComponentSink {
 public:
-  ShardSink(store::ShardWriter& writer, std::int64_t run) : writer_(writer), run_(run) {}
+  ShardSink(store::ShardWriter& writer, std::int64_t run, std::function<void()> flush)
+      : writer_(writer), run_(run), flush_(std::move(flush)) {}
   void commit(const mesh::Component& c) override {
     store::IndexEntry e;
     e.key = c.key;
@@ -33,8 +37,10 @@ public:
     e.stats = c.stats;
     e.run = run_;
     pending_.push_back(std::move(e));
+    if (pending_.size() >= 256 || Clock::now() - last_ > std::chrono::milliseconds(200)) flush_();
   }
   std::vector<store::IndexEntry> take() {
+    last_ = Clock::now();
     if (!pending_.empty()) writer_.sync();
     return std::exchange(pending_, {});
   }
@@ -42,7 +48,9 @@ public:
 private:
   store::ShardWriter& writer_;
   std::int64_t run_;
+  std::function<void()> flush_;
   std::vector<store::IndexEntry> pending_;
+  Clock::time_point last_ = Clock::now();
 };
 
 class Worker {
@@ -86,6 +94,7 @@ private:
   // Runs one task; true when the worker must stop.
   bool handle(const Message& m) {
     {
+      task_lease_ = m.lease;
       switch (m.kind) {
       case MessageKind::setup: setup(m); break;
       case MessageKind::extract: extract(m); break;
@@ -127,7 +136,7 @@ private:
     settings_ = RunSettings::from_json(m.text);
     volume_ = factory_(settings_.volume);
     writer_.emplace(settings_.store, options_.token, volume_->geometry());
-    sink_.emplace(*writer_, settings_.run);
+    sink_.emplace(*writer_, settings_.run, [this] { send_commit(task_lease_); });
     options_tandem_ = settings_.tandem_options();
     options_tandem_.cancel = &cancel_;
     log_.info("worker " + options_.token + ": ready (" + volume_->source() + ")");
@@ -139,12 +148,17 @@ private:
                   "the manager speaks another protocol: run the same geotandem version everywhere");
   }
 
-  void report(const Message& task, Clock::time_point start) {
+  // The components written since the last COMMIT, synced, to the manager.
+  void send_commit(const Lease& lease) {
     Message c;
     c.kind = MessageKind::commit;
-    c.lease = task.lease;
+    c.lease = lease;
     c.entries = sink_->take();
     if (!c.entries.empty()) link_.send(c);
+  }
+
+  void report(const Message& task, Clock::time_point start) {
+    send_commit(task.lease);
     Message d;
     d.kind = MessageKind::done;
     d.lease = task.lease;
@@ -278,6 +292,7 @@ private:
   std::optional<store::ShardWriter> writer_;
   std::optional<ShardSink> sink_;
   std::unique_ptr<tandem::WorkingSurface> surface_;
+  Lease task_lease_; // of the task in progress (mid-task COMMITs carry it)
 };
 
 } // namespace

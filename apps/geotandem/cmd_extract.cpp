@@ -2,6 +2,7 @@
 // Its options are the extract step's declared parameters: the same defaults, ranges and checks as
 // in recipes (workflow::extract_params()).
 
+#include <algorithm>
 #include <iostream>
 #include <optional>
 #include <thread>
@@ -67,8 +68,8 @@ void add_extract_command(CLI::App& app, Context& context, Runner& run) {
       ->type_name("i|j|k");
   cmd->add_option("--block-size", a->block_size,
                   "leaf block edge of the block tree, in cells (at least " + std::to_string(workflow::min_block_size) +
-                      "; 0: the whole cube as one block). The blocks are extracted one after the other and merged "
-                      "in this process")
+                      "; 0: the whole cube as one block, in this process). The workers extract and merge the blocks in "
+                      "parallel")
       ->capture_default_str()
       ->type_name("INT");
   cmd->add_option("--mode", a->mode, "tandem-dump, tandem (no early dumping) or brute (extract all, then simplify)")
@@ -80,8 +81,9 @@ void add_extract_command(CLI::App& app, Context& context, Runner& run) {
       ->capture_default_str();
   cmd->add_option("--variable", a->variable, "the array to read from a multidimensional file with several");
   cmd->add_option("--workers", a->workers,
-                  "local worker processes extracting and merging the blocks (manager/worker runtime); 0: in this "
-                  "process (the default). Use with --block-size; --workers $(nproc) uses every core");
+                  "local worker processes extracting and merging the blocks (manager/worker runtime); the default is "
+                  "one per core, at most one per block (a cube of one block is extracted in this process); 0: "
+                  "everything in this process, on one core");
   // Start afresh instead of resuming (refused while another process writes the store).
   cmd->add_flag("--fresh", a->fresh, "replace the store in --out instead of resuming it");
   cmd->add_option("--inline-byte", a->segy.inline_byte, "SEG-Y: trace header byte (1-based) of the inline numbers")
@@ -110,15 +112,14 @@ void add_extract_command(CLI::App& app, Context& context, Runner& run) {
       } catch (const Error& e) {
         throw InvalidArgument("--block-size: " + e.message(), {}, e.hint());
       }
-      // --workers 0 (in this process) stays the default until the store-safety checks of the
-      // in-process route (exit codes of input errors, shard names in resumed stores) hold for
-      // workers too; --workers N opts in.
-      s.workers = a->workers.value_or(0u);
+      auto cube = volume::open_volume(a->cube, open);
+      // One worker per core unless told otherwise (no more than there are blocks; one block is
+      // extracted in this process); --workers 0 extracts in this process.
+      s.workers = a->workers.value_or(workflow::default_worker_count(cube->geometry(), s.block_size));
       if (s.workers > 0) {
         s.volume_description = describe_cube_file(a->cube, a->nan, a->variable, a->segy);
         s.worker_command = {self_executable(), "worker"};
       }
-      auto cube = volume::open_volume(a->cube, open);
       if (a->fresh) store::ComponentStore::remove(a->out); // refuses while another process writes it
       s.parameters = {{"command", "geotandem extract"}, {"cube", a->cube}};
       auto store = store::ComponentStore::open_or_create(a->out, cube->geometry(), {"geotandem extract", a->cube});
@@ -130,7 +131,11 @@ void add_extract_command(CLI::App& app, Context& context, Runner& run) {
         const auto& st = r.statistics;
         std::cout << " in " << r.seconds << " s with " << st["workers"] << " worker(s) (" << st["deaths"]
                   << " lost); tasks " << st["tasks"].dump() << "; "
-                  << st["bytes"]["surfaces"].get<std::uint64_t>() / 1024 << " KiB of partial surfaces moved\n";
+                  << st["bytes"]["surfaces"].get<std::uint64_t>() / 1024 << " KiB of partial surfaces moved";
+        if (st.value("skipped_leaves", 0) > 0)
+          std::cout << "; resumed: " << st["skipped_leaves"] << " of " << st["leaves"]
+                    << " blocks finished by an earlier run were not redone";
+        std::cout << "\n";
         std::cout << "store: " << a->out << " (run " << r.run << ")\n";
         return 0;
       }

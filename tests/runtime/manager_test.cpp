@@ -4,6 +4,7 @@
 
 #include <atomic>
 #include <random>
+#include <sstream>
 #include <thread>
 #include <zmq.hpp>
 
@@ -82,7 +83,9 @@ TEST(Manager, AWorkerThatCannotOpenTheInputEndsTheRunWithItsReason) {
 // A worker started by hand (as a cluster scheduler would) joins a run that one local worker began,
 // and takes part: the run ends with the components of the in-process extraction.
 TEST(Manager, AWorkerJoiningLateTakesPart) {
-  ManagerRun run("48 44 40");
+  // Large enough that the run is still going when the late worker has started, on a loaded
+  // machine too (a worker saying HELLO after the end is told FINISHED without joining).
+  ManagerRun run("64 60 56");
   auto ref = testing::run_geotandem("-q extract '" + run.cube + "' --iso 0.5 --block-size 8 --workers 0 --out '" +
                                     run.dir.file("ref") + "'");
   ASSERT_EQ(ref.exit_code, 0) << ref.err;
@@ -94,7 +97,7 @@ TEST(Manager, AWorkerJoiningLateTakesPart) {
   const std::string endpoint = manager.endpoint();
   pid_t late = 0;
   std::thread starter([&] {
-    std::this_thread::sleep_for(std::chrono::milliseconds(300));
+    std::this_thread::sleep_for(std::chrono::milliseconds(100));
     late =
         testing::spawn_geotandem({"-q", "worker", "--connect", endpoint, "--token", token}, run.dir.file("late.log"));
   });
@@ -191,6 +194,54 @@ TEST(Manager, GarbageOnItsSocketIsDroppedAndTheRunCompletes) {
     ASSERT_TRUE(got.count(key)) << key;
     EXPECT_NEAR(got.at(key).volume, c.volume, 0.005 * std::abs(c.volume) + 1e-9);
   }
+}
+
+// Partial surfaces of a few KiB cut into chunks of 256 bytes: every SEND and MERGE runs many
+// windows of credits through the manager, and the result is the in-process one.
+TEST(Manager, SurfacesInSmallChunksUnderCreditsGiveTheSameComponents) {
+  ManagerRun run("48 44 40");
+  auto ref = testing::run_geotandem("-q extract '" + run.cube + "' --iso 0.5 --block-size 8 --workers 0 --out '" +
+                                    run.dir.file("ref") + "'");
+  ASSERT_EQ(ref.exit_code, 0) << ref.err;
+  run.options.workers = 2;
+  run.options.settings.chunk_bytes = 256;
+  LocalLauncher launcher;
+  Manager manager(run.options, *run.store, &launcher, Logger::null(), run.progress, run.cancel);
+  ManagerReport report;
+  ASSERT_NO_THROW(report = manager.run());
+  EXPECT_GT(report.largest_surface, 256u * kChunkWindow) << "no surface needed more than one window of credits";
+  EXPECT_EQ(report.dropped_messages, 0u);
+  EXPECT_EQ(report.deaths, 0u);
+  const auto expected = testing::components_of(run.dir.file("ref"), false);
+  const auto got = testing::components_of(run.dir.file("store"), true);
+  ASSERT_EQ(got.size(), expected.size());
+  for (const auto& [key, c] : expected) {
+    ASSERT_TRUE(got.count(key)) << key;
+    EXPECT_NEAR(got.at(key).volume, c.volume, 0.005 * std::abs(c.volume) + 1e-9);
+  }
+}
+
+// A size cap below the surfaces: each oversized SEND is logged and dropped, its worker is taken
+// for faulty and replaced; the run ends (the last worker standing may finish alone, or no worker
+// is left: a clear error) instead of crashing or hanging.
+TEST(Manager, SurfacesOverTheSizeCapAreDroppedNotACrash) {
+  ManagerRun run("48 44 40");
+  run.options.workers = 2;
+  run.options.max_restarts = 2;
+  run.options.max_surface = 2048;
+  run.options.settings.chunk_bytes = 512;
+  run.options.connect_timeout = std::chrono::milliseconds(3000);
+  LocalLauncher launcher;
+  std::ostringstream text;
+  Logger log(text, LogLevel::info);
+  Manager manager(run.options, *run.store, &launcher, log, run.progress, run.cancel);
+  const std::string error = message_of([&] { manager.run(); });
+  EXPECT_NE(text.str().find("past the cap of 2048 bytes"), std::string::npos) << text.str();
+  EXPECT_NE(text.str().find("sent a damaged partial surface"), std::string::npos) << text.str();
+  if (!error.empty()) {
+    EXPECT_NE(error.find("no worker connected"), std::string::npos) << error;
+  }
+  EXPECT_EQ(launcher.running(), 0u);
 }
 
 } // namespace

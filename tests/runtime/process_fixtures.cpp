@@ -55,8 +55,13 @@ int wait_exit(pid_t pid, double timeout_s) {
 namespace {
 // Fields of /proc/PID/stat after the command name: state, ppid.
 bool stat_of(pid_t pid, char& state, pid_t& ppid) {
-  std::ifstream in("/proc/" + std::to_string(pid) + "/stat");
-  std::string text((std::istreambuf_iterator<char>(in)), {});
+  std::string text;
+  try { // a process that exits while its stat is read fails the read (ESRCH): it is gone
+    std::ifstream in("/proc/" + std::to_string(pid) + "/stat");
+    text.assign(std::istreambuf_iterator<char>(in), {});
+  } catch (const std::exception&) {
+    return false;
+  }
   const auto close = text.rfind(')');
   if (close == std::string::npos) return false;
   std::istringstream rest(text.substr(close + 2));

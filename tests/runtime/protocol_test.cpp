@@ -8,6 +8,7 @@
 #include <random>
 
 #include "geotandem/runtime/protocol.hpp"
+#include "geotandem/runtime/surface_chunks.hpp"
 
 namespace geotandem::runtime {
 namespace {
@@ -139,6 +140,85 @@ TEST(Protocol, ACorruptCountDoesNotAllocateWildly) {
     FAIL() << "a count of 2^60 entries was accepted";
   } catch (const ProtocolError& e) {
     EXPECT_NE(std::string(e.what()).find("does not fit"), std::string::npos) << e.what();
+  }
+}
+
+// Chunks of a partial surface: in order they make the record back; out of order, replayed,
+// oversized, past the cap, truncated or damaged they are refused with a reason, never a crash.
+TEST(SurfaceChunks, AssembleInOrderAndRefuseEverythingElse) {
+  std::vector<std::byte> record(10000);
+  std::mt19937 rng(3);
+  for (std::byte& b : record)
+    b = static_cast<std::byte>(rng());
+  const auto chunks = cut_into_chunks(record, 4096);
+  ASSERT_EQ(chunks.size(), 3u);
+  EXPECT_EQ(chunks[2].size(), 10000u - 8192u);
+  const std::uint64_t sum = surface_checksum(record);
+  {
+    SurfaceAssembler in(1 << 20, std::nullopt, 4096);
+    std::uint64_t at = 0;
+    for (auto c : chunks) {
+      EXPECT_FALSE(in.add(at, c));
+      at += c.size();
+    }
+    EXPECT_FALSE(in.finish(record.size(), sum));
+    EXPECT_EQ(in.take(), record);
+  }
+  {
+    SurfaceAssembler in(1 << 20, record.size(), 4096); // announced (MERGE)
+    EXPECT_FALSE(in.add(0, chunks[0]));
+    EXPECT_FALSE(in.complete());
+    const auto replayed = in.add(0, chunks[0]);
+    ASSERT_TRUE(replayed);
+    EXPECT_NE(replayed->find("out of order"), std::string::npos) << *replayed;
+    EXPECT_TRUE(in.broken());
+    EXPECT_TRUE(in.add(4096, chunks[1])) << "nothing is taken after a refusal";
+    EXPECT_TRUE(in.finish(record.size(), sum));
+  }
+  {
+    SurfaceAssembler in(1 << 20, std::nullopt, 4096);
+    const auto big = in.add(0, std::span(record).first(5000));
+    ASSERT_TRUE(big);
+    EXPECT_NE(big->find("5000 bytes"), std::string::npos) << *big;
+  }
+  {
+    SurfaceAssembler in(6000, std::nullopt, 4096); // the cap
+    EXPECT_FALSE(in.add(0, chunks[0]));
+    const auto over = in.add(4096, chunks[1]);
+    ASSERT_TRUE(over);
+    EXPECT_NE(over->find("cap"), std::string::npos) << *over;
+  }
+  {
+    SurfaceAssembler in(1 << 20, std::nullopt, 4096); // truncated: the last chunk never came
+    EXPECT_FALSE(in.add(0, chunks[0]));
+    EXPECT_FALSE(in.add(4096, chunks[1]));
+    const auto cut = in.finish(record.size(), sum);
+    ASSERT_TRUE(cut);
+    EXPECT_NE(cut->find("truncated"), std::string::npos) << *cut;
+  }
+  {
+    SurfaceAssembler in(1 << 20, std::nullopt, 4096); // one flipped byte
+    std::vector<std::byte> damaged(chunks[1].begin(), chunks[1].end());
+    damaged[100] ^= std::byte{0x20};
+    EXPECT_FALSE(in.add(0, chunks[0]));
+    EXPECT_FALSE(in.add(4096, damaged));
+    EXPECT_FALSE(in.add(8192, chunks[2]));
+    const auto bad = in.finish(record.size(), sum);
+    ASSERT_TRUE(bad);
+    EXPECT_NE(bad->find("checksum"), std::string::npos) << *bad;
+  }
+  {
+    SurfaceAssembler in(1 << 20, 5000000, 4096); // an announced total over the cap
+    EXPECT_TRUE(in.broken());
+    EXPECT_TRUE(in.add(0, chunks[0]));
+  }
+  {
+    SurfaceAssembler in(1 << 20, std::nullopt, 4096); // random chunks never crash
+    for (int i = 0; i < 200; ++i) {
+      std::vector<std::byte> piece(rng() % 6000);
+      (void)in.add(rng() % 20000, piece);
+    }
+    EXPECT_TRUE(in.finish(rng() % 20000, rng()));
   }
 }
 

@@ -4,8 +4,10 @@
 #include <gtest/gtest.h>
 #include <signal.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdlib>
 #include <random>
 #include <thread>
 
@@ -136,25 +138,59 @@ TEST(Workers, AFrozenWorkerIsDetectedByItsHeartbeat) {
   }
 }
 
+// Lines in the store's record of finished leaves (0 while it does not exist).
+std::size_t finished_lines(const std::string& store) {
+  const std::string text = read_text(store + "/finished-blocks.txt");
+  return static_cast<std::size_t>(std::count(text.begin(), text.end(), '\n'));
+}
+
+// The number after `label` in `text` (the first occurrence); -1 when absent.
+long number_after(const std::string& text, const std::string& label) {
+  const std::size_t at = text.find(label);
+  if (at == std::string::npos) return -1;
+  return std::strtol(text.c_str() + at + label.size(), nullptr, 10);
+}
+
 TEST(Workers, ManagerKilledThenRerunGivesTheSameComponentsOnce) {
   Fixture f;
-  const std::string log = f.dir.file("m1.log");
+  const std::string log = f.dir.file("m1.log"), store = f.dir.file("resume");
   const pid_t manager = spawn_geotandem(f.extract_args("resume", 2), log);
   const std::vector<pid_t> workers = workers_of(manager, 30);
   ASSERT_FALSE(workers.empty());
-  std::this_thread::sleep_for(std::chrono::milliseconds(200));
+  // Killed once some leaves are finished (their components committed), well before the end.
+  const auto until = std::chrono::steady_clock::now() + std::chrono::seconds(120);
+  while (finished_lines(store) < 20 && alive(manager) && std::chrono::steady_clock::now() < until)
+    std::this_thread::sleep_for(std::chrono::milliseconds(2));
   kill(manager, SIGKILL);
+  const std::size_t finished_before = finished_lines(store);
   wait_exit(manager, 10);
+  ASSERT_GE(finished_before, 20u) << read_text(log);
   // The workers notice the silence and exit by themselves.
   for (pid_t w : workers) {
-    const auto until = std::chrono::steady_clock::now() + std::chrono::seconds(60);
-    while (alive(w) && std::chrono::steady_clock::now() < until)
+    const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(60);
+    while (alive(w) && std::chrono::steady_clock::now() < deadline)
       std::this_thread::sleep_for(std::chrono::milliseconds(50));
     EXPECT_FALSE(alive(w)) << "worker " << w << " outlived its manager";
   }
   const pid_t again = spawn_geotandem(f.extract_args("resume", 2), f.dir.file("m2.log"));
   ASSERT_EQ(wait_exit(again, 300), 0) << read_text(f.dir.file("m2.log"));
   f.expect_same("resume");
+  // The finished leaves were not extracted again: the rerun extracted the others only (none of its
+  // workers died, so each of them once).
+  const std::string out = read_text(f.dir.file("m2.log"));
+  const long skipped = number_after(out, "resumed: ");
+  const long extracted = number_after(out, "tasks {\"extract\":");
+  ASSERT_GE(skipped, static_cast<long>(finished_before)) << out;
+  ASSERT_GE(extracted, 0) << out;
+  const long all = number_after(out, "resumed: " + std::to_string(skipped) + " of ");
+  EXPECT_EQ(extracted + skipped, all) << out;
+  EXPECT_LT(extracted, all) << out;
+  // A third run has nothing left to extract.
+  const pid_t third = spawn_geotandem(f.extract_args("resume", 2), f.dir.file("m3.log"));
+  ASSERT_EQ(wait_exit(third, 300), 0) << read_text(f.dir.file("m3.log"));
+  const std::string out3 = read_text(f.dir.file("m3.log"));
+  EXPECT_EQ(number_after(out3, "tasks {\"extract\":"), 0) << out3;
+  f.expect_same("resume", false);
 }
 
 TEST(Workers, InterruptStopsTheWorkersAndLeavesAValidStore) {

@@ -1,53 +1,30 @@
 // The manager's event loop (manager.hpp). Decisions come from Schedule; this file moves messages.
 #include "geotandem/runtime/manager.hpp"
 
-#include <sys/resource.h>
 #include <unistd.h>
 
 #include <algorithm>
 #include <map>
-#include <random>
 #include <set>
 #include <thread>
-#include <zmq.hpp>
 
+#include "component_committer.hpp"
+#include "finished_blocks.hpp"
 #include "geotandem/core/error.hpp"
 #include "geotandem/runtime/schedule.hpp"
 #include "geotandem/tandem/marching_cubes.hpp"
-#include "transport_security.hpp"
-#include "zmq_poll.hpp"
+#include "manager_socket.hpp"
+#include "manager_support.hpp"
+#include "surface_relay.hpp"
+#include "worker_failure.hpp"
 
 namespace geotandem::runtime {
 
-namespace {
-using Clock = std::chrono::steady_clock;
-
-double since(Clock::time_point t) {
-  return std::chrono::duration<double>(Clock::now() - t).count();
-}
-
-std::int64_t peak_rss_kb() {
-  rusage u{};
-  getrusage(RUSAGE_SELF, &u);
-  return u.ru_maxrss;
-}
-
-double cpu_seconds() {
-  rusage u{};
-  getrusage(RUSAGE_SELF, &u);
-  return static_cast<double>(u.ru_utime.tv_sec + u.ru_stime.tv_sec) +
-         static_cast<double>(u.ru_utime.tv_usec + u.ru_stime.tv_usec) / 1e6;
-}
-
-std::string random_hex(std::size_t n) {
-  static constexpr char kDigits[] = "0123456789abcdef";
-  std::random_device rd;
-  std::string s;
-  for (std::size_t i = 0; i < n; ++i)
-    s += kDigits[rd() % 16];
-  return s;
-}
-} // namespace
+using detail::Clock;
+using detail::cpu_seconds;
+using detail::peak_rss_kb;
+using detail::random_hex;
+using detail::since;
 
 struct Manager::Impl {
   struct Peer {
@@ -67,17 +44,17 @@ struct Manager::Impl {
   Logger& log;
   Progress& progress;
   const CancelToken& cancel;
-  zmq::context_t context{1};
-  zmq::socket_t router{context, zmq::socket_type::router};
-  std::shared_ptr<detail::ServerSecurity> security; // CURVE and its ZAP handler off loopback
-  std::string endpoint;
+  detail::ManagerSocket socket;
+  const std::string& endpoint = socket.endpoint();
+  detail::ComponentCommitter committer{store};
   std::string run_prefix = random_hex(6);
   std::size_t token_count = 0;
   std::set<std::string> allowed, dead;
   std::map<std::string, Peer> peers; // by token
   tandem::BlockTree tree;
   Schedule schedule{tree};
-  std::map<TransferId, std::vector<std::byte>> parcels;
+  detail::FinishedBlocks finished{store.directory(), tree};
+  detail::SurfaceRelay relay{options.max_surface, static_cast<std::size_t>(options.settings.chunk_bytes)};
   std::map<tandem::NodeId, std::uint32_t> attempts;
   std::uint64_t next_task = 1;
   WorkerId next_worker = 1;
@@ -88,19 +65,25 @@ struct Manager::Impl {
 
   Impl(ManagerOptions o, store::ComponentStore& s, Launcher* l, Logger& lg, Progress& p, const CancelToken& c)
       : options(std::move(o)), store(s), launcher(l), log(lg), progress(p), cancel(c),
+        socket(options.bind, options.max_message, s.directory().string() + ".keys", lg),
         tree(tandem::cube_cells(s.geometry().shape), std::max<std::int64_t>(options.settings.block_size, 8)) {
-    router.set(zmq::sockopt::linger, 0);
-    router.set(zmq::sockopt::router_mandatory, 1);
-    router.set(zmq::sockopt::router_handover, 1);
-    router.set(zmq::sockopt::maxmsgsize, static_cast<std::int64_t>(options.max_message));
-    security = detail::secure_manager_socket(context, router, options.bind, s.directory().string() + ".keys", log);
-    try {
-      router.bind(options.bind);
-    } catch (const zmq::error_t& e) {
-      throw IoError("cannot listen on " + options.bind + ": " + e.what(), {}, "choose another address or port");
-    }
-    endpoint = router.get(zmq::sockopt::last_endpoint);
     report.leaves = tree.leaves().size();
+  }
+
+  // Resume: the leaves an earlier run finished are not redone, unless the store holds damaged
+  // records (which leaves they came from is not known: then everything is redone, and the
+  // damaged records are written again).
+  void skip_finished_leaves() {
+    const std::vector<tandem::NodeId> done = finished.load(log);
+    if (done.empty()) return;
+    if (const std::uint64_t damaged = committer.count_damaged(cancel)) {
+      log.warning(std::to_string(damaged) + " damaged record(s) in the store: every block is extracted again to "
+                                            "write them again");
+      return;
+    }
+    for (tandem::NodeId leaf : done)
+      schedule.skip(leaf);
+    report.skipped_leaves = schedule.skipped();
   }
 
   std::string new_token() {
@@ -116,18 +99,7 @@ struct Manager::Impl {
     launcher->launch(argv, token);
   }
 
-  bool send(const std::string& token, const Message& m) {
-    const std::vector<std::byte> bytes = encode(m);
-    try {
-      router.send(zmq::buffer(token), zmq::send_flags::sndmore);
-      router.send(zmq::buffer(bytes.data(), bytes.size()), zmq::send_flags::none);
-      report.bytes_out += bytes.size();
-      return true;
-    } catch (const zmq::error_t& e) {
-      log.debug("cannot reach worker " + token + ": " + e.what());
-      return false;
-    }
-  }
+  bool send(const std::string& token, const Message& m) { return socket.send(token, encode(m)); }
 
   void drop(const std::string& why) {
     ++report.dropped_messages;
@@ -147,7 +119,8 @@ struct Manager::Impl {
     if (it == peers.end()) return;
     Peer& p = it->second;
     const std::vector<tandem::NodeId> redo = schedule.leave(p.id);
-    std::erase_if(parcels, [&](const auto& kv) { return !schedule.transfer_target(kv.first); });
+    relay.forget(token);
+    relay.drop_kept([&](TransferId t) { return !schedule.transfer_target(t); });
     log.warning("worker " + token + " (pid " + std::to_string(p.pid) + ") " + why + " during " + task_text(p) + ": " +
                 std::to_string(redo.size()) + " block(s) will be re-done from the volume");
     Message f;
@@ -166,34 +139,8 @@ struct Manager::Impl {
 
   void decide(Peer& p) {
     const Decision d = schedule.next(p.id);
-    Message m;
-    switch (d.kind) {
-    case TaskKind::extract: {
-      m.kind = MessageKind::extract;
-      const volume::Box& b = tree.node(d.leaf).cells;
-      m.box = {b.lo[0], b.lo[1], b.lo[2], b.hi[0], b.hi[1], b.hi[2]};
-      m.number = static_cast<std::uint64_t>(d.leaf);
-      m.lease.attempt = ++attempts[d.leaf];
-      break;
-    }
-    case TaskKind::send:
-      m.kind = MessageKind::send;
-      m.number = d.target;
-      break;
-    case TaskKind::merge:
-      m.kind = MessageKind::merge;
-      m.bytes = std::move(parcels.at(d.transfer));
-      parcels.erase(d.transfer);
-      break;
-    case TaskKind::wait:
-      m.kind = MessageKind::wait;
-      m.number = 100;
-      break;
-    case TaskKind::finished:
-      m.kind = MessageKind::finished;
-      m.number = d.final ? 1 : 0;
-      break;
-    }
+    Message m = detail::task_message(d, tree);
+    if (d.kind == TaskKind::extract) m.lease.attempt = ++attempts[d.leaf];
     const bool busy = d.kind != TaskKind::wait && (d.kind != TaskKind::finished || d.final);
     if (busy) {
       m.lease.task = next_task++;
@@ -202,8 +149,27 @@ struct Manager::Impl {
       p.task_start = Clock::now();
       log.debug("worker " + p.token + ": " + task_text(p));
     }
+    if (d.kind == TaskKind::merge) {
+      const detail::SurfaceRelay::Header h = relay.begin_outbound(p.token, d.transfer);
+      m.number = h.total;
+      m.box[0] = static_cast<std::int64_t>(h.checksum);
+    }
+    if (d.kind == TaskKind::send) relay.begin_inbound(p.token);
     if (!send(p.token, m)) return kill_peer(p.token, "cannot be reached");
+    if (d.kind == TaskKind::merge) pump(p, 0);
     if (d.kind == TaskKind::finished && !d.final) depart(p.token);
+  }
+
+  // The chunks of the MERGE in progress that the worker's credits allow now.
+  void pump(Peer& p, std::uint64_t credits) {
+    relay.pump(p.token, credits, [&](std::uint64_t offset, std::span<const std::byte> piece) {
+      Message c;
+      c.kind = MessageKind::merge_chunk;
+      c.lease = p.lease;
+      c.number = offset;
+      c.bytes.assign(piece.begin(), piece.end());
+      send(p.token, c);
+    });
   }
 
   // A worker told to stop leaves the run without a warning.
@@ -212,6 +178,7 @@ struct Manager::Impl {
     if (it == peers.end()) return;
     log.info("worker " + token + " done after " + std::to_string(it->second.tasks) + " task(s)");
     schedule.leave(it->second.id);
+    relay.forget(token);
     dead.insert(token);
     peers.erase(it);
   }
@@ -232,6 +199,13 @@ struct Manager::Impl {
     default: break;
     }
     ++p.tasks;
+    // An empty surface: its leaves' components are all committed (the COMMIT came first).
+    if (m.box[1] == 1) {
+      const std::vector<tandem::NodeId> leaves = schedule.held(p.id);
+      log.debug("worker " + p.token + ": surface empty after " + task_text(p) + "; " + std::to_string(leaves.size()) +
+                " leaves finished");
+      finished.record(leaves);
+    }
     const bool final = p.task->kind == TaskKind::finished;
     p.task.reset();
     schedule.done(p.id);
@@ -239,7 +213,6 @@ struct Manager::Impl {
   }
 
   void handle(const std::string& token, std::span<const std::byte> frame) {
-    report.bytes_in += frame.size();
     if (dead.count(token)) { // a frozen worker woke up, or a late message of one that left
       Message f;
       f.kind = MessageKind::finished;
@@ -257,6 +230,13 @@ struct Manager::Impl {
     auto it = peers.find(token);
     if (m.kind == MessageKind::hello) {
       if (it != peers.end()) return drop("a second HELLO from worker " + token);
+      if (schedule.complete()) { // a late starter: nothing left to do
+        Message f;
+        f.kind = MessageKind::finished;
+        send(token, f);
+        dead.insert(token);
+        return;
+      }
       Peer p{.id = next_worker++, .token = token, .pid = m.number, .heard = Clock::now()};
       schedule.join(p.id);
       ++report.workers;
@@ -282,32 +262,51 @@ struct Manager::Impl {
       return decide(p);
     case MessageKind::failed:
       if (!p.task && m.lease == Lease{}) // SETUP failed: every worker would fail the same way
-        throw Error("worker " + token + " could not start: " + m.text, {.worker = token},
-                    "check that every worker can read the input and write to the store directory");
+        detail::throw_worker_failure(static_cast<int>(m.number), "could not start: " + m.text, token,
+                                     "every worker reads the input itself: check that it is readable and "
+                                     "intact from every worker, and that the store directory is writable");
       if (!p.task || !(m.lease == p.lease)) return drop("a stale FAILED from worker " + token);
-      throw Error("worker " + token + " failed during " + task_text(p) + ": " + m.text, {.worker = token},
-                  "fix the cause and rerun the same command: committed components are kept");
+      detail::throw_worker_failure(static_cast<int>(m.number), "failed during " + task_text(p) + ": " + m.text, token,
+                                   "fix the cause and rerun the same command: committed components are kept");
     default: break;
     }
     if (!p.task || !(m.lease == p.lease))
       return drop(std::string(to_string(m.kind)) + " from worker " + token + " with a stale lease (task " +
                   std::to_string(m.lease.task) + ", attempt " + std::to_string(m.lease.attempt) + ")");
     switch (m.kind) {
-    case MessageKind::commit: {
-      const std::size_t added = store.commit(m.entries);
-      report.components += added;
-      report.duplicates += m.entries.size() - added;
+    case MessageKind::commit: committer.commit(std::move(m.entries)); return;
+    case MessageKind::surface_chunk: {
+      if (p.task->kind != TaskKind::send) return drop("a surface chunk from worker " + token + " outside a SEND");
+      if (const std::optional<std::string> why = relay.chunk_in(token, m.number, m.bytes)) {
+        drop("from worker " + token + ": " + *why); // its surface cannot arrive whole: its leaves are redone
+        return kill_peer(token, "sent a damaged partial surface");
+      }
+      Message credit;
+      credit.kind = MessageKind::surface_credit;
+      credit.lease = m.lease;
+      credit.number = 1;
+      send(token, credit);
       return;
     }
+    case MessageKind::merge_credit:
+      if (p.task->kind != TaskKind::merge) return drop("a merge credit from worker " + token + " outside a MERGE");
+      return pump(p, m.number);
     case MessageKind::surface: {
       if (p.task->kind != TaskKind::send) return drop("SURFACE from worker " + token + " outside a SEND");
       const TransferId t = p.task->transfer;
-      report.surface_bytes += m.bytes.size();
-      report.largest_surface = std::max<std::uint64_t>(report.largest_surface, m.bytes.size());
+      std::uint64_t bytes = 0;
+      if (const std::optional<std::string> why =
+              relay.end_inbound(token, m.number, static_cast<std::uint64_t>(m.box[0]), bytes)) {
+        drop("from worker " + token + ": " + *why);
+        return kill_peer(token, "sent a damaged partial surface");
+      }
+      report.surface_bytes += bytes;
+      report.largest_surface = std::max<std::uint64_t>(report.largest_surface, bytes);
       ++report.send;
       ++p.tasks;
       p.task.reset();
-      if (schedule.arrived(p.id, t)) parcels[t] = std::move(m.bytes);
+      if (schedule.arrived(p.id, t)) relay.keep(token, t);
+      relay.forget(token);
       return;
     }
     case MessageKind::done:
@@ -360,7 +359,14 @@ struct Manager::Impl {
   ManagerReport run() {
     start = Clock::now();
     cpu_at_start = cpu_seconds();
+    skip_finished_leaves();
     progress.begin("extraction, " + std::to_string(report.leaves) + " blocks", report.leaves + 1, "blocks+final");
+    if (report.skipped_leaves > 0) {
+      log.info("resuming: " + std::to_string(report.skipped_leaves) + " of " + std::to_string(report.leaves) +
+               " blocks were finished by an earlier run (their components are in the store) and are not redone");
+      for (std::size_t i = 0; i < report.skipped_leaves; ++i)
+        advance();
+    }
     if (launcher)
       for (std::size_t i = 0; i < options.workers; ++i)
         launch_one();
@@ -371,33 +377,16 @@ struct Manager::Impl {
     try {
       for (;;) {
         cancel.throw_if_cancelled();
-        zmq::pollitem_t item{router.handle(), 0, ZMQ_POLLIN, 0};
-        detail::poll_items(&item, 1, std::chrono::milliseconds(100));
-        zmq::message_t id, body;
-        while (router.recv(id, zmq::recv_flags::dontwait)) {
-          if (!id.more()) {
-            drop("a frame without a routing id");
-            continue;
-          }
-          (void)router.recv(body, zmq::recv_flags::none);
-          // Extra frames from a foreign peer: read and drop them.
-          bool extra = false;
-          while (body.more()) {
-            zmq::message_t rest;
-            (void)router.recv(rest, zmq::recv_flags::none);
-            extra = true;
-            body.swap(rest);
-          }
-          if (extra) {
-            drop("a message of more than one frame");
-            continue;
-          }
-          handle(id.to_string(), std::span(static_cast<const std::byte*>(body.data()), body.size()));
-        }
+        socket.receive(
+            std::chrono::milliseconds(100),
+            [this](const std::string& token, std::span<const std::byte> body) { handle(token, body); },
+            [this](const std::string& why) { drop(why); });
         heartbeats();
         if (schedule.complete()) {
           if (!completed) completed = Clock::now();
-          if (peers.empty() || since(*completed) > 3.0) break; // each is told FINISHED when it asks
+          // Each is told FINISHED when it asks (or says HELLO, if it starts late).
+          const bool all_gone = peers.empty() && (!launcher || launcher->running() == 0);
+          if (all_gone || since(*completed) > 3.0) break;
         }
         if (!peers.empty()) alone = Clock::now();
         if (peers.empty() && Clock::now() - alone > options.connect_timeout)
@@ -420,6 +409,11 @@ struct Manager::Impl {
     stop_workers();
     progress.end();
     report.manager_cpu_seconds = cpu_seconds() - cpu_at_start;
+    report.components = committer.added();
+    report.duplicates = committer.duplicates();
+    report.repaired = committer.repaired();
+    report.bytes_in = socket.bytes_in();
+    report.bytes_out = socket.bytes_out();
     report.manager_peak_rss_kb = peak_rss_kb(); // of the whole process, so far
 
     return report;

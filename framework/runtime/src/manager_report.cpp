@@ -11,6 +11,7 @@ std::string ManagerReport::to_json() const {
       {"deaths", deaths},
       {"restarts", restarts},
       {"leaves", leaves},
+      {"skipped_leaves", skipped_leaves},
       {"tasks", {{"extract", extract}, {"send", send}, {"merge", merge}, {"finish", finish}}},
       {"redone_leaves", redone_leaves},
       {"seconds",
@@ -20,6 +21,7 @@ std::string ManagerReport::to_json() const {
       {"dropped_messages", dropped_messages},
       {"components", components},
       {"duplicates", duplicates},
+      {"repaired", repaired},
       {"manager", {{"cpu_seconds", manager_cpu_seconds}, {"peak_rss_kb", manager_peak_rss_kb}}},
       {"worker_peak_rss_kb", worker_peak_rss_kb}};
   return j.dump();

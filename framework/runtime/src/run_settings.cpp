@@ -19,7 +19,8 @@ std::string RunSettings::to_json() const {
                             {"extended_time_lag", extended_time_lag},
                             {"dump", dump},
                             {"brute", brute},
-                            {"run", run}};
+                            {"run", run},
+                            {"chunk_bytes", chunk_bytes}};
   return j.dump();
 }
 
@@ -40,6 +41,9 @@ RunSettings RunSettings::from_json(const std::string& text) {
     s.dump = j.at("dump").get<bool>();
     s.brute = j.at("brute").get<bool>();
     s.run = j.at("run").get<std::int64_t>();
+    s.chunk_bytes = j.at("chunk_bytes").get<std::uint64_t>();
+    if (s.chunk_bytes == 0 || s.chunk_bytes > (std::uint64_t{1} << 28))
+      throw ProtocolError("run settings: chunk_bytes " + std::to_string(s.chunk_bytes) + " is not in 1..2^28");
     return s;
   } catch (const nlohmann::json::exception& e) {
     throw ProtocolError(std::string("run settings: ") + e.what());

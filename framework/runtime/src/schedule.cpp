@@ -77,6 +77,25 @@ std::optional<WorkerId> Schedule::neighbor(WorkerId id) {
   return best;
 }
 
+// After a resume, skipped leaves can leave gaps between the aggregates that the restricted
+// adjacency never bridges: once nothing is left to extract, a worker hands its surface to the
+// worker holding most leaves (at least as many as its own), adjacent or not. Merging surfaces that
+// do not touch is valid (the region becomes their union).
+std::optional<WorkerId> Schedule::any_holder(WorkerId id) const {
+  const std::size_t mine = workers_.at(id).held.size();
+  std::optional<WorkerId> best;
+  std::size_t best_size = 0;
+  for (const auto& [other, w] : workers_) {
+    if (other == id) continue;
+    const std::size_t theirs = claimed(w).size();
+    if (theirs > 0 && theirs >= mine && theirs > best_size) {
+      best = other;
+      best_size = theirs;
+    }
+  }
+  return best;
+}
+
 // has_unprocessed_block: one restricted-adjacent to the worker's aggregate first, any otherwise.
 NodeId Schedule::unprocessed_leaf(const Worker& w) const {
   NodeId any = kNoNode;
@@ -141,6 +160,16 @@ Decision Schedule::next(WorkerId id) {
     unprocessed_[static_cast<std::size_t>(leaf)] = 0;
     w.held.add(leaf);
     return assign(w, {.kind = TaskKind::extract, .leaf = leaf});
+  }
+
+  if (skipped_ > 0 && !w.held.empty() && unprocessed() == 0) {
+    if (const std::optional<WorkerId> v = any_holder(id)) {
+      const TransferId t = next_transfer_++;
+      transfers_.emplace(t, Transfer{.from = id, .to = *v, .leaves = w.held});
+      worker(*v).incoming.push_back(t);
+      w.held.clear();
+      return assign(w, {.kind = TaskKind::send, .target = *v, .transfer = t});
+    }
   }
 
   if (skipped_ == tree_.leaves().size()) { // a resumed run with nothing left to do
@@ -226,6 +255,11 @@ std::size_t Schedule::unprocessed() const {
   for (NodeId leaf : tree_.leaves())
     n += unprocessed_[static_cast<std::size_t>(leaf)] ? 1u : 0u;
   return n;
+}
+
+std::vector<NodeId> Schedule::held(WorkerId id) const {
+  auto it = workers_.find(id);
+  return it == workers_.end() ? std::vector<NodeId>{} : it->second.held.leaves();
 }
 
 std::size_t Schedule::leaves_held(WorkerId id) const {

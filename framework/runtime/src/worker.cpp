@@ -4,14 +4,18 @@
 #include <sys/resource.h>
 #include <unistd.h>
 
+#include <functional>
 #include <optional>
 #include <thread>
 #include <utility>
 
 #include "geotandem/core/error.hpp"
+#include "geotandem/runtime/surface_chunks.hpp"
 #include "geotandem/store/shard.hpp"
+#include "geotandem/tandem/marching_cubes.hpp"
 #include "geotandem/tandem/serialize.hpp"
 #include "walltime.hpp"
+#include "worker_failure.hpp"
 #include "worker_link.hpp"
 
 namespace geotandem::runtime {
@@ -20,10 +24,13 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
-// Finished components to the worker's shard; their index entries wait for the next COMMIT.
+// Finished components to the worker's shard; their index entries wait for the next COMMIT, which
+// goes at the end of the task or, during a long one, every 200 ms (or 256 components): a manager
+// killed mid-task then loses little.
 class ShardSink final : public mesh::ComponentSink {
 public:
-  ShardSink(store::ShardWriter& writer, std::int64_t run) : writer_(writer), run_(run) {}
+  ShardSink(store::ShardWriter& writer, std::int64_t run, std::function<void()> flush)
+      : writer_(writer), run_(run), flush_(std::move(flush)) {}
   void commit(const mesh::Component& c) override {
     store::IndexEntry e;
     e.key = c.key;
@@ -31,8 +38,10 @@ public:
     e.stats = c.stats;
     e.run = run_;
     pending_.push_back(std::move(e));
+    if (pending_.size() >= 256 || Clock::now() - last_ > std::chrono::milliseconds(200)) flush_();
   }
   std::vector<store::IndexEntry> take() {
+    last_ = Clock::now();
     if (!pending_.empty()) writer_.sync();
     return std::exchange(pending_, {});
   }
@@ -40,7 +49,9 @@ public:
 private:
   store::ShardWriter& writer_;
   std::int64_t run_;
+  std::function<void()> flush_;
   std::vector<store::IndexEntry> pending_;
+  Clock::time_point last_ = Clock::now();
 };
 
 class Worker {
@@ -64,6 +75,8 @@ public:
       const Message m = next();
       try {
         if (handle(m)) return 0;
+      } catch (const StopRequested&) {
+        return 0;
       } catch (const Cancelled&) {
         throw;
       } catch (const std::exception& e) {
@@ -71,6 +84,7 @@ public:
         f.kind = MessageKind::failed;
         f.lease = m.lease;
         f.text = e.what();
+        f.number = static_cast<std::uint64_t>(detail::failure_code(e));
         link_.send(f);
         throw;
       }
@@ -81,6 +95,7 @@ private:
   // Runs one task; true when the worker must stop.
   bool handle(const Message& m) {
     {
+      task_lease_ = m.lease;
       switch (m.kind) {
       case MessageKind::setup: setup(m); break;
       case MessageKind::extract: extract(m); break;
@@ -92,6 +107,7 @@ private:
       case MessageKind::finished:
         if (m.number == 1) finish(m);
         return true;
+      case MessageKind::surface_credit: return false; // the last credits of a SEND already over
       default:
         log_.warning("worker " + options_.token + ": unexpected " + to_string(m.kind) + " dropped");
         return false;
@@ -128,7 +144,7 @@ private:
     settings_ = RunSettings::from_json(m.text);
     volume_ = factory_(settings_.volume);
     writer_.emplace(settings_.store, options_.token, volume_->geometry());
-    sink_.emplace(*writer_, settings_.run);
+    sink_.emplace(*writer_, settings_.run, [this] { send_commit(task_lease_); });
     options_tandem_ = settings_.tandem_options();
     options_tandem_.cancel = &cancel_;
     log_.info("worker " + options_.token + ": ready (" + volume_->source() + ")");
@@ -140,12 +156,17 @@ private:
                   "the manager speaks another protocol: run the same geotandem version everywhere");
   }
 
-  void report(const Message& task, Clock::time_point start) {
+  // The components written since the last COMMIT, synced, to the manager.
+  void send_commit(const Lease& lease) {
     Message c;
     c.kind = MessageKind::commit;
-    c.lease = task.lease;
+    c.lease = lease;
     c.entries = sink_->take();
     if (!c.entries.empty()) link_.send(c);
+  }
+
+  void report(const Message& task, Clock::time_point start) {
+    send_commit(task.lease);
     Message d;
     d.kind = MessageKind::done;
     d.lease = task.lease;
@@ -153,6 +174,9 @@ private:
     rusage u{};
     getrusage(RUSAGE_SELF, &u);
     d.box[0] = u.ru_maxrss;
+    // 1: this worker's surface holds nothing after the task; every component of its leaves is in
+    // the COMMIT above, so the manager may record the leaves as finished (resume).
+    d.box[1] = !surface_ || surface_->component_count() == 0 ? 1 : 0;
     link_.send(d);
   }
 
@@ -173,36 +197,93 @@ private:
       surface_->merge(std::move(*piece), &cancel_);
   }
 
-  void send_surface(const Message& m) {
-    need_setup(m);
-    Message s;
-    s.kind = MessageKind::surface;
-    s.lease = m.lease;
-    if (surface_) s.bytes = tandem::serialize(*surface_);
-    surface_.reset();
-    if (s.bytes.size() + 4096 > kDefaultMaxMessage)
-      throw InvalidArgument("a partial surface of " + std::to_string(s.bytes.size() >> 20) +
-                                " MiB is over the message cap of " + std::to_string(kDefaultMaxMessage >> 20) + " MiB",
-                            {.worker = options_.token}, "use smaller blocks (--block-size)");
-    link_.send(s);
+  // The manager gave up on this worker during a transfer (FINISHED): it stops.
+  struct StopRequested {};
+
+  // The next message of the transfer under `lease` of kind `kind`; other messages of the task's
+  // time are dropped (logged), FINISHED stops the worker.
+  Message transfer_message(const Lease& lease, MessageKind kind) {
+    for (;;) {
+      Message r = next();
+      if (r.kind == kind && r.lease == lease) return r;
+      if (r.kind == MessageKind::finished) throw StopRequested{};
+      log_.warning("worker " + options_.token + ": " + to_string(r.kind) + " dropped during a transfer");
+    }
   }
 
+  // SEND: the surface in chunks, at most kChunkWindow ahead of the manager's credits, then its
+  // total size and checksum.
+  void send_surface(const Message& m) {
+    need_setup(m);
+    std::vector<std::byte> record;
+    if (surface_) record = tandem::serialize(*surface_);
+    surface_.reset();
+    if (record.size() > kDefaultMaxSurface)
+      throw InvalidArgument("a partial surface of " + std::to_string(record.size() >> 20) + " MiB is over the cap of " +
+                                std::to_string(kDefaultMaxSurface >> 20) + " MiB",
+                            {.worker = options_.token}, "use smaller blocks (--block-size)");
+    std::size_t ahead = 0;
+    std::uint64_t offset = 0;
+    for (std::span<const std::byte> piece : cut_into_chunks(record, settings_.chunk_bytes)) {
+      while (ahead >= kChunkWindow)
+        ahead -= std::min<std::size_t>(ahead, transfer_message(m.lease, MessageKind::surface_credit).number);
+      Message c;
+      c.kind = MessageKind::surface_chunk;
+      c.lease = m.lease;
+      c.number = offset;
+      c.bytes.assign(piece.begin(), piece.end());
+      link_.send(c);
+      offset += piece.size();
+      ++ahead;
+    }
+    Message end;
+    end.kind = MessageKind::surface;
+    end.lease = m.lease;
+    end.number = record.size();
+    end.box[0] = static_cast<std::int64_t>(surface_checksum(record));
+    link_.send(end);
+  }
+
+  // MERGE: the announced surface arrives in chunks (each acknowledged with a credit), is checked
+  // against its size and checksum, and goes straight into this worker's surface (no engine is
+  // rebuilt for the sender); a worker holding nothing takes the record as its surface.
   void merge(const Message& m) {
     need_setup(m);
     const auto start = Clock::now();
-    // The received record goes straight into this worker's surface (no engine is rebuilt for the
-    // sender); a worker holding nothing takes the record as its surface.
+    SurfaceAssembler in(kDefaultMaxSurface, m.number, settings_.chunk_bytes);
+    while (!in.complete() && !in.broken()) {
+      const Message c = transfer_message(m.lease, MessageKind::merge_chunk);
+      if (const std::optional<std::string> why = in.add(c.number, c.bytes))
+        log_.warning("worker " + options_.token + ": dropped " + *why);
+      Message credit;
+      credit.kind = MessageKind::merge_credit;
+      credit.lease = m.lease;
+      credit.number = 1;
+      link_.send(credit);
+    }
+    if (const std::optional<std::string> why = in.finish(m.number, static_cast<std::uint64_t>(m.box[0])))
+      throw DataError("the partial surface to merge is damaged: " + *why, {.worker = options_.token},
+                      "rerun the same command: committed components are kept");
+    const std::vector<std::byte> record = in.take();
     if (surface_)
-      tandem::merge_record(*surface_, m.bytes, &cancel_);
+      tandem::merge_record(*surface_, record, &cancel_);
     else
-      surface_ = std::make_unique<tandem::WorkingSurface>(tandem::deserialize(m.bytes, &*sink_));
+      surface_ = std::make_unique<tandem::WorkingSurface>(tandem::deserialize(record, &*sink_));
     report(m, start);
   }
 
   void finish(const Message& m) {
     need_setup(m);
     const auto start = Clock::now();
-    if (surface_) surface_->finish(&cancel_);
+    if (surface_) {
+      // The final surface covers every leaf but those an earlier run finished (resume): those
+      // held nothing, so the whole cube is this surface's region and no face is open any more.
+      const volume::Box cube = tandem::cube_cells(volume_->geometry().shape);
+      const tandem::Region& region = surface_->region();
+      if (region.blocks().size() != 1 || !(region.blocks().front() == cube))
+        surface_->set_region(tandem::Region::block(cube, cube));
+      surface_->finish(&cancel_);
+    }
     surface_.reset();
     report(m, start);
   }
@@ -219,6 +300,7 @@ private:
   std::optional<store::ShardWriter> writer_;
   std::optional<ShardSink> sink_;
   std::unique_ptr<tandem::WorkingSurface> surface_;
+  Lease task_lease_; // of the task in progress (mid-task COMMITs carry it)
 };
 
 } // namespace

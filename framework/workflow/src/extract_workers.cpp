@@ -1,13 +1,17 @@
 // The extraction step through the manager/worker runtime (extract_step.hpp): this process is the
 // manager, local worker processes extract, send and merge the blocks.
+#include <algorithm>
 #include <chrono>
 #include <cstdlib>
 #include <memory>
+#include <thread>
 
 #include "geotandem/core/error.hpp"
 #include "geotandem/runtime/bind_address.hpp"
 #include "geotandem/runtime/manager.hpp"
 #include "geotandem/runtime/scheduler_launcher.hpp"
+#include "geotandem/tandem/block_tree.hpp"
+#include "geotandem/tandem/marching_cubes.hpp"
 #include "geotandem/workflow/extract_step.hpp"
 
 namespace geotandem::workflow {
@@ -55,6 +59,14 @@ std::unique_ptr<runtime::Launcher> make_launcher(const ExtractSettings& settings
 
 } // namespace
 
+std::size_t default_worker_count(const volume::Geometry& geometry, std::int64_t block_size) {
+  if (block_size <= 0) return 0;
+  const tandem::BlockTree tree(tandem::cube_cells(geometry.shape), std::max<std::int64_t>(block_size, 8));
+  const std::size_t leaves = tree.leaves().size();
+  if (leaves <= 1) return 0;
+  return std::min<std::size_t>(leaves, std::max(1u, std::thread::hardware_concurrency()));
+}
+
 ExtractResult extract_with_workers(const volume::Volume& volume, store::ComponentStore& store,
                                    const ExtractSettings& settings, Logger& log, Progress& progress,
                                    const CancelToken& cancel) {
@@ -98,15 +110,18 @@ ExtractResult extract_with_workers(const volume::Volume& volume, store::Componen
   log.info("extracting with " + std::to_string(settings.workers) + " " +
            (settings.scheduler.empty() ? std::string("local") : settings.scheduler) + " worker" +
            (settings.workers == 1 ? "" : "s"));
+  const std::uint64_t rows_before = store.size();
   const runtime::ManagerReport report = manager.run();
   result.components = report.components;
   result.duplicates = report.duplicates;
+  // Resumed: what the finished blocks hold was in the store already, as what was found again.
+  if (report.skipped_leaves > 0) result.duplicates = std::max<std::uint64_t>(result.duplicates, rows_before);
   result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   result.peak_rss_kb = peak_rss_kb();
   result.blocks = {{"block_size", r.block_size}, {"leaves", report.leaves}, {"merges", report.merge}};
   result.statistics = nlohmann::json::parse(report.to_json());
   result.statistics["peak_rss_kb"] = result.peak_rss_kb;
-  warn_if_empty(result, settings, log);
+  if (report.skipped_leaves == 0) warn_if_empty(result, settings, log); // a resumed run may add nothing
   store.end_run(result.run, result.statistics.dump());
   return result;
 }

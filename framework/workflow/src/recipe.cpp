@@ -320,6 +320,7 @@ void parse_execution(MapReader& m, ExecutionSpec& ex) {
   if (ex.scheduler != "local" && ex.scheduler != "slurm" && ex.scheduler != "lsf")
     throw error_at(m.file(), m.node("scheduler"), "unknown scheduler '" + ex.scheduler + "'",
                    suggestion_hint(ex.scheduler, {"local", "slurm", "lsf"}));
+  ex.workers_given = m.has("workers");
   ex.workers = static_cast<int>(m.integer("workers", 1, 1, 4096));
   if (m.has("resources")) {
     MapReader r(m.file(), m.node("resources"), "execution.resources");

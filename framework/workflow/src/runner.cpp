@@ -163,8 +163,15 @@ private:
                                     {"chain_fingerprint", print_},
                                     {"input_content", input_content_}};
       const ExecutionSpec& ex = recipe_.execution;
-      if ((ex.scheduler != "local" || ex.workers >= 2) && !settings_.worker_command.empty()) {
-        description["workers"] = ex.workers; // the extract step hands the chain to that many workers
+      // Without `workers`, one per core locally (a cube of one block stays in this process); a
+      // cluster scheduler gets the recipe's count.
+      const bool cluster = ex.scheduler != "local";
+      const std::size_t workers =
+          ex.workers_given || cluster || !step.params.count("block_size")
+              ? static_cast<std::size_t>(ex.workers)
+              : default_worker_count(volumes_.result->geometry(), step.params.at("block_size").integer);
+      if ((cluster || workers >= 2) && !settings_.worker_command.empty()) {
+        description["workers"] = workers; // the extract step hands the chain to that many workers
         description["worker_command"] = settings_.worker_command;
         description["scheduler"] = ex.scheduler;
         description["bind"] = ex.bind;

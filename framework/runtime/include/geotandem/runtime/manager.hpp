@@ -35,6 +35,7 @@ struct ManagerOptions {
   std::chrono::milliseconds connect_timeout{60000};
   std::size_t max_restarts = 16; // replacement workers launched after deaths, at most
   std::size_t max_message = kDefaultMaxMessage;
+  std::uint64_t max_surface = kDefaultMaxSurface; // a partial surface above this is refused
 };
 
 struct ManagerReport {
@@ -49,7 +50,9 @@ struct ManagerReport {
   std::uint64_t bytes_in = 0, bytes_out = 0; // every frame
   std::uint64_t dropped_messages = 0;        // damaged, unknown sender, stale lease
   std::uint64_t components = 0, duplicates = 0;
+  std::uint64_t repaired = 0; // damaged records of an earlier run written again
   std::size_t leaves = 0;
+  std::size_t skipped_leaves = 0;              // finished by an earlier run (resume): not redone
   double seconds = 0, manager_cpu_seconds = 0; // the run's wall time; CPU the manager used in it
   std::int64_t manager_peak_rss_kb = 0;        // of the manager's process, so far
   std::int64_t worker_peak_rss_kb = 0;         // the largest over the workers

@@ -27,26 +27,36 @@ namespace geotandem::runtime {
 
 inline constexpr std::uint16_t kProtocolVersion = 2;
 inline constexpr std::size_t kHeaderSize = 16;
-// Largest message either side accepts (a partial surface travels in one MERGE). Also set as
-// ZMQ_MAXMSGSIZE on both sockets.
+// Largest message either side accepts. Also set as ZMQ_MAXMSGSIZE on both sockets.
 inline constexpr std::size_t kDefaultMaxMessage = std::size_t{1} << 30;
+// Partial surfaces travel in chunks of at most this many bytes, at most kChunkWindow chunks ahead
+// of the receiver's credits; a whole surface is at most kDefaultMaxSurface bytes.
+inline constexpr std::size_t kChunkBytes = std::size_t{1} << 20;
+inline constexpr std::size_t kChunkWindow = 8;
+inline constexpr std::uint64_t kDefaultMaxSurface = std::uint64_t{1} << 34;
 
 enum class MessageKind : std::uint8_t {
   // worker -> manager
-  hello = 1,     // token, pid: the worker is up
-  ask = 2,       // the seed's get_task()
-  done = 3,      // lease, number = milliseconds, box[0] = peak RSS (KiB): EXTRACT, MERGE or final over
-  surface = 4,   // lease, bytes: the worker's surface for its SEND (relayed by the manager)
-  commit = 5,    // lease, entries: components written (and synced) to the worker's shard
-  failed = 6,    // lease, text: the task failed; the worker goes on
-  heartbeat = 7, // both ways
+  hello = 1,         // token, pid: the worker is up
+  ask = 2,           // the seed's get_task()
+  done = 3,          // lease, number = milliseconds, box[0] = peak RSS (KiB), box[1] = 1 when the worker's
+                     // surface is empty after it: EXTRACT, MERGE or final over
+  surface = 4,       // lease, number = total bytes, box[0] = XXH64 of them: the end of the worker's surface for
+                     // its SEND (sent before as surface_chunk; relayed by the manager)
+  commit = 5,        // lease, entries: components written (and synced) to the worker's shard
+  failed = 6,        // lease, text: the task failed; the worker goes on
+  heartbeat = 7,     // both ways
+  surface_chunk = 8, // lease, number = offset, bytes: a piece of the surface of a SEND
+  merge_credit = 9,  // lease, number = chunks of a MERGE consumed: the manager may send that many more
   // manager -> worker
-  setup = 16,    // text: the run's description (JSON: volume, options, store, shard)
-  extract = 17,  // lease, leaf
-  send = 18,     // lease, target: hand your surface over (to the manager, for that worker)
-  merge = 19,    // lease, bytes: merge this surface into yours
-  wait = 20,     // number: milliseconds before asking again
-  finished = 21, // lease, number: 1 = finish and dump the whole surface, then stop; 0 = stop
+  setup = 16,          // text: the run's description (JSON: volume, options, store, shard)
+  extract = 17,        // lease, leaf
+  send = 18,           // lease, target: hand your surface over (to the manager, for that worker)
+  merge = 19,          // lease, number = total bytes, box[0] = XXH64: merge this surface (as merge_chunk) into yours
+  wait = 20,           // number: milliseconds before asking again
+  finished = 21,       // lease, number: 1 = finish and dump the whole surface, then stop; 0 = stop
+  merge_chunk = 22,    // lease, number = offset, bytes: a piece of the surface of a MERGE
+  surface_credit = 23, // lease, number = chunks of a SEND received: the worker may send that many more
 };
 const char* to_string(MessageKind kind);
 

@@ -26,9 +26,10 @@ struct RunSettings {
   double max_error = 0.5;
   double isotropy = 0.4;
   bool extended_time_lag = true;
-  bool dump = true;     // tandem with dumping (off: plain tandem)
-  bool brute = false;   // each leaf by brute force
-  std::int64_t run = 0; // the store's run id recorded with every component
+  bool dump = true;                    // tandem with dumping (off: plain tandem)
+  bool brute = false;                  // each leaf by brute force
+  std::int64_t run = 0;                // the store's run id recorded with every component
+  std::uint64_t chunk_bytes = 1 << 20; // partial surfaces travel in chunks of at most this size
 
   std::string to_json() const;
   // Throws ProtocolError when the text is not a settings object of this version.

@@ -76,6 +76,9 @@ public:
   std::optional<WorkerId> transfer_source(TransferId transfer) const;
   std::size_t unprocessed() const;
   std::size_t leaves_held(WorkerId worker) const;
+  // The leaves in the worker's surface (with those of a MERGE in progress), in tree order.
+  std::vector<tandem::NodeId> held(WorkerId worker) const;
+  std::size_t skipped() const { return skipped_; }
   const ScheduleCounts& counts() const { return counts_; }
   std::size_t live_workers() const { return workers_.size(); }
 
@@ -96,6 +99,7 @@ private:
   Worker& worker(WorkerId id);
   Aggregate claimed(const Worker& w) const; // held plus what is on its way to it
   std::optional<WorkerId> neighbor(WorkerId id);
+  std::optional<WorkerId> any_holder(WorkerId id) const;
   tandem::NodeId unprocessed_leaf(const Worker& w) const;
   void release(const Aggregate& leaves, std::vector<tandem::NodeId>& out);
   Decision assign(Worker& w, Decision d);

@@ -97,6 +97,11 @@ nlohmann::json extract_run_parameters(const volume::Volume& volume, const Extrac
 // Logs and records a warning when a run extracted nothing.
 void warn_if_empty(ExtractResult& result, const ExtractSettings& settings, Logger& log);
 
+// The number of local workers an extraction gets when nobody says: one per core, no more than
+// there are blocks; 0 (this process) for the whole cube as one block or a tree of one leaf, which
+// one process does as fast.
+std::size_t default_worker_count(const volume::Geometry& geometry, std::int64_t block_size);
+
 // The same through the manager/worker runtime (settings.workers local workers; block_size 0 means
 // 64). Called by extract_to_store when settings.workers > 0. Throws InvalidArgument when the
 // volume description or the worker command is missing.

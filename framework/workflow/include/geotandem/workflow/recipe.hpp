@@ -74,6 +74,9 @@ struct ResourceSpec {
 struct ExecutionSpec {
   std::string scheduler = "local"; // local | slurm | lsf
   int workers = 1;
+  // False when the recipe does not say: a local run then gets one worker per core (at most one
+  // per block; see default_worker_count), a cluster scheduler `workers`.
+  bool workers_given = false;
   ResourceSpec resources;
   std::string bind; // where the manager listens: "" (loopback), an interface or an address
 };

@@ -1,0 +1,42 @@
+// The manager's commits to the index (component_committer.hpp).
+#include "component_committer.hpp"
+
+#include <algorithm>
+
+#include "geotandem/store/check.hpp"
+
+namespace geotandem::runtime::detail {
+
+void ComponentCommitter::commit(std::vector<store::IndexEntry> entries) {
+  std::vector<store::IndexEntry> rows;
+  rows.reserve(entries.size());
+  std::uint64_t replacing = 0;
+  for (store::IndexEntry& e : entries) {
+    if (const std::optional<store::ComponentRow> row = store_.find(e.key)) {
+      if (!store::verify_component(store_, *row)) {
+        ++duplicates_;
+        continue;
+      }
+      e.replace = true; // its record is damaged: this one takes its place
+      ++replacing;
+    }
+    rows.push_back(std::move(e));
+  }
+  if (rows.empty()) return;
+  const std::size_t n = store_.commit(rows);
+  // A replaced row counts among the rows written; a key twice in one batch is written once.
+  added_ += n - std::min<std::size_t>(n, replacing);
+  repaired_ += replacing;
+  duplicates_ += rows.size() - n;
+}
+
+std::uint64_t ComponentCommitter::count_damaged(const CancelToken& cancel) const {
+  std::uint64_t damaged = 0;
+  for (const store::ComponentRow& row : store_.query()) {
+    cancel.throw_if_cancelled();
+    if (store::verify_component(store_, row)) ++damaged;
+  }
+  return damaged;
+}
+
+} // namespace geotandem::runtime::detail

@@ -1,0 +1,69 @@
+#pragma once
+// The partial surfaces the manager relays (the route through the manager, protocol.hpp): each SEND
+// arrives in chunks that are acknowledged with credits and assembled under a size cap, checked at
+// its end (total and checksum), and kept until the target worker's MERGE; the MERGE goes out in
+// chunks, at most kChunkWindow ahead of that worker's credits. No sockets here: the manager sends
+// what this object returns. Internal to the runtime.
+#include <cstdint>
+#include <functional>
+#include <map>
+#include <optional>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "geotandem/runtime/schedule.hpp"
+#include "geotandem/runtime/surface_chunks.hpp"
+
+namespace geotandem::runtime::detail {
+
+class SurfaceRelay {
+public:
+  SurfaceRelay(std::uint64_t max_surface, std::size_t chunk_bytes)
+      : max_surface_(max_surface), chunk_bytes_(chunk_bytes) {}
+
+  // A worker starts its SEND.
+  void begin_inbound(const std::string& token);
+  // A chunk of it: nullopt when taken (acknowledge it with a credit), the reason otherwise.
+  std::optional<std::string> chunk_in(const std::string& token, std::uint64_t offset, std::span<const std::byte> bytes);
+  // Its end: the reason it is refused, or nullopt when the surface is whole; `bytes` receives its
+  // size. A whole surface is then kept for its transfer (keep) or dropped (its target died).
+  std::optional<std::string> end_inbound(const std::string& token, std::uint64_t total, std::uint64_t checksum,
+                                         std::uint64_t& bytes);
+  void keep(const std::string& token, TransferId transfer);
+
+  struct Header {
+    std::uint64_t total = 0;
+    std::uint64_t checksum = 0;
+  };
+  // The MERGE of `transfer` to `token` starts: its header; the chunks follow through pump().
+  Header begin_outbound(const std::string& token, TransferId transfer);
+  // `credits` chunks were consumed by the worker (0 at the start): calls `send(offset, piece)` for
+  // each chunk it may send now.
+  void pump(const std::string& token, std::uint64_t credits,
+            const std::function<void(std::uint64_t, std::span<const std::byte>)>& send);
+
+  // The worker is gone: its transfers in and out are dropped.
+  void forget(const std::string& token);
+  // Drops the kept surfaces for which `gone(transfer)` holds.
+  void drop_kept(const std::function<bool(TransferId)>& gone);
+
+private:
+  struct Parcel {
+    std::vector<std::byte> bytes;
+    std::uint64_t checksum = 0;
+  };
+  struct Outbound {
+    Parcel parcel;
+    std::uint64_t offset = 0;
+    std::uint64_t ahead = 0;
+  };
+  std::uint64_t max_surface_;
+  std::size_t chunk_bytes_;
+  std::map<std::string, SurfaceAssembler> inbound_;
+  std::map<std::string, Outbound> outbound_;
+  std::map<std::string, Parcel> whole_; // ended, not yet kept
+  std::map<TransferId, Parcel> kept_;
+};
+
+} // namespace geotandem::runtime::detail

@@ -160,11 +160,12 @@ int main(int argc, char** argv) {
                   1e-3 * static_cast<double>(s.counters.collapses) / (k * simp),
                   static_cast<unsigned long long>(s.peak_triangles), peak_rss_mb());
       const tandem::SimplifyCounters& c = s.counters;
-      std::printf("        collapses %llu, cost evaluations %llu, refused: shape %llu, link %llu, flip %llu "
-                  "(retried %llu), minimiser distrusted %llu, compactions %llu\n",
+      std::printf("        collapses %llu, cost evaluations %llu, refused: shape %llu, link %llu, flip %llu, "
+                  "distance bound %llu (retried %llu), minimiser distrusted %llu, compactions %llu\n",
                   static_cast<unsigned long long>(c.collapses), static_cast<unsigned long long>(c.evaluations),
                   static_cast<unsigned long long>(c.rejected_shape), static_cast<unsigned long long>(c.rejected_link),
-                  static_cast<unsigned long long>(c.rejected_flip), static_cast<unsigned long long>(c.retried),
+                  static_cast<unsigned long long>(c.rejected_flip),
+                  static_cast<unsigned long long>(c.rejected_distance), static_cast<unsigned long long>(c.retried),
                   static_cast<unsigned long long>(c.distrusted),
                   static_cast<unsigned long long>(c.garbage_collections));
     }

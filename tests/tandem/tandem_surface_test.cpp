@@ -131,13 +131,16 @@ TEST(TandemSurface, ExtremeIsotropyValuesStillGiveValidSurfaces) {
 TEST(TandemSurface, IsotropyImprovesTriangleShape) {
   // The isotropy term exists to avoid long skinny triangles (the seed's figure 12: anisotropy
   // falls as alpha grows towards 0.9). Measured on a body large enough for the mean over
-  // triangles to be stable; the effect at 0.4 is small, at 0.7 clear.
+  // triangles to be stable; the effect at 0.4 is small, at 0.7 clear. The seed's algorithm (no E0
+  // guarantee): under the guarantee the isotropic positions are refused more often and alpha has
+  // little room at E0 = 0.2 (measured: 0.347 at alpha 0, 0.360 at 0.7).
   double aniso[3];
   int i = 0;
   for (double alpha : {0.0, 0.4, 0.7}) {
     BodyRun run;
     SimplifyOptions options;
     options.isotropy = alpha;
+    options.guarantee_distance = false;
     options.max_error = 0.2;
     run_body(run, fixtures::Input(fixtures::ellipsoid({22.1, 17.4, 14.8}, {19.0, 14.0, 11.0}), {45, 36, 31}), 0,
              options);

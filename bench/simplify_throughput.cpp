@@ -1,7 +1,8 @@
 // Extraction plus simplification throughput on one core: the tandem with dumping against brute
-// force (extract everything, then simplify once with the same cost), on generated fields.
+// force (extract everything, then simplify once with the same cost), on generated fields; "seed" is
+// the tandem without the E0 guarantee (SimplifyOptions::guarantee_distance off), for its cost.
 //
-//   bench_simplify_throughput [n=256] [fields=blobs,smooth] [E0=0.5] [modes=tandem,brute]
+//   bench_simplify_throughput [n=256] [fields=blobs,smooth] [E0=0.5] [modes=tandem,brute,seed]
 //                             [compaction_min_dead=16384]
 //
 // Per run: input triangles (marching cubes), triangles and components out, CPU seconds of the
@@ -138,6 +139,8 @@ int main(int argc, char** argv) {
       options.axis = 0;
       options.simplify.max_error = e0;
       options.simplify.compaction_min_dead = min_dead;
+      // "seed": the tandem without the E0 guarantee (eps_0 <= E0 only), for its cost.
+      options.simplify.guarantee_distance = mode != "seed";
       CountingSink sink;
       t0 = cpu_seconds();
       const tandem::TandemStats s = tandem::extract_block(volume, cells, options, &sink, nullptr, mode == "brute");

@@ -211,6 +211,9 @@ void WorkingSurface::Engine::simplify(const CancelToken* cancel) {
     }
     try_collapse(e, key);
   }
+  // Storage freed by the collapses is reclaimed here too, not only after a dumping: the tandem
+  // without dumping would otherwise hold as much as brute force.
+  maybe_collect_garbage();
 }
 
 void WorkingSurface::Engine::try_collapse(EH e, double cost) {

@@ -52,8 +52,8 @@ struct SimplifyOptions {
   // bound; measured maxima reach 2.5 to 4 E0), which keeps fewer triangles; for comparisons.
   bool guarantee_distance = true;
   // Storage: removed elements are compacted away (OpenMesh garbage collection, which renumbers
-  // everything) after a dumping when more than this many triangles and two thirds of the storage
-  // are dead. Tests lower it to exercise compaction on small inputs.
+  // everything) after a simplification or a dumping when more than this many triangles and two
+  // thirds of the storage are dead. Tests lower it to exercise compaction on small inputs.
   std::size_t compaction_min_dead = 16384;
 
   // Throws InvalidArgument naming the field when a value is out of range.

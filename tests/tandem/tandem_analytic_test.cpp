@@ -11,8 +11,8 @@
 //   real components of {value >= iso}; nothing is filtered on either side). Independently, the
 //   pairs count the truth's bodies + bubbles + one extra surface per cavity (the shell).
 // - Shape. Bodies inside the cube are closed 2-manifolds of the full-resolution surface's Euler
-//   characteristic, within the documented distance bound of docs/algorithm.md (max <= 3 E0,
-//   RMS <= 0.6 E0) of the full-resolution marching-cubes surface of the same component (same key).
+//   characteristic, within E0 (the guarantee of docs/algorithm.md; RMS <= 0.6 E0) of the
+//   full-resolution marching-cubes surface of the same component (same key).
 // - Measures. Per planted body: enclosed volume (outer minus cavity) within 1 % of full resolution
 //   and within 2 % of the analytic volume; ellipsoid azimuths within 2 degrees of the truth.
 #include <gtest/gtest.h>
@@ -47,18 +47,13 @@
 namespace geotandem::tandem {
 namespace {
 
-// docs/algorithm.md, "Distance to the full-resolution surface": E0 bounds an area-weighted RMS
-// distance to the planes merged into a vertex, not the largest distance; measured maxima reach
-// about 2.5 E0 on curved patches. Documented test bounds: max <= 3 E0, RMS <= 0.6 E0.
+// docs/algorithm.md, "The E0 guarantee": the largest distance to the full-resolution surface is at
+// most E0, bubbles included (before the guarantee, measured maxima reached 2.5 E0 on curved
+// patches and 3.9 E0 on bubbles). RMS bounds as measured.
 constexpr double kE0 = 0.5;
-constexpr double kMaxDistance = 3.0 * kE0;
+constexpr double kMaxDistance = kE0;
 constexpr double kRmsDistance = 0.6 * kE0;
-// Bubbles (at most 7 samples, radius about one voxel) lie far outside the curvature range those
-// bounds are stated for (radius of curvature 4 to 10 voxels). Most 7-sample bubbles become an
-// octahedron within 0.6 voxel of the full-resolution surface, but a few become a 5-vertex
-// bipyramid whose tips, placed where the merged planes and the kept volume put them, lie up to
-// 1.96 voxels (3.9 E0) from it (measured on seed 4 at 128³ and seed 5 at 160 x 160 x 96). Their own bound:
-constexpr double kBubbleMaxDistance = 4.0 * kE0;
+constexpr double kBubbleMaxDistance = kE0;
 constexpr double kBubbleRmsDistance = 0.8 * kE0;
 constexpr double kVolumeToFull = 0.01;
 constexpr double kVolumeToTruth = 0.02;

@@ -231,6 +231,8 @@ void WorkingSurface::Engine::try_collapse(EH e, double cost) {
       collapse(h, r.target, cost, error);
       return;
     }
+    // Retried at the simple positions as after a flip. (Without the retry: 4 % more triangles and
+    // a quarter less time on noisy surfaces, but worse seams between blocks.)
     ++counters_.rejected_distance;
   }
   if (r.retried) return;

@@ -54,7 +54,11 @@ struct VertexRecord {
   double tolerance = 0.0;
   std::uint64_t lattice_id = kNoLatticeId; // while the vertex is an original MC vertex
   std::int32_t component = -1;             // any member of its component's union-find class
-  std::uint8_t border = 0;                 // bit 2 * axis + side: the vertex lies on that face of the cube
+  // Bit 2 * axis + side: the vertex lies on that face of the cube. This is the collapse loop's
+  // constraint hook (Engine::prepare_inputs): c keeps the coordinate of every axis with a bit set,
+  // so one bit holds a vertex on a plane, two on a line, three in place; an edge whose ends carry
+  // both sides of one axis never collapses. Cap or other constrained vertices set these bits.
+  std::uint8_t border = 0;
   // Bumped whenever anything a cost at an edge of v depends on changes: v itself, or a triangle
   // around it (so for c and all its neighbours at each collapse).
   std::uint32_t version = 0;

@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <numbers>
 
 namespace geotandem::tandem::detail {
 
@@ -27,7 +26,7 @@ int CollapseDistance::local(VH v, const TriMesh::Point* points, const VertexReco
 }
 
 double CollapseDistance::tolerance(const TriMesh& mesh, HH h, const Vec3& c, const TriMesh::Point* points,
-                                   const VertexRecord* records) {
+                                   const VertexRecord* records, double limit) {
   const VH a = mesh.from_vertex_handle(h), b = mesh.to_vertex_handle(h);
   const Vec3 pa = to_vec(points[a.idx()]), pb = to_vec(points[b.idx()]);
   const double da = records[a.idx()].tolerance, db = records[b.idx()].tolerance;
@@ -59,11 +58,11 @@ double CollapseDistance::tolerance(const TriMesh& mesh, HH h, const Vec3& c, con
       s = next_outgoing(mesh, s);
     } while (s != start);
   }
-  const double d = projected(c);
+  const double d = projected(c, std::min(simple, limit));
   return d >= 0.0 && d < simple ? d : simple;
 }
 
-double CollapseDistance::projected(const Vec3& c) {
+double CollapseDistance::projected(const Vec3& c, double limit) {
   // The vector area of the patch (the same before and after: it depends on the boundary only).
   Vec3 n{0.0, 0.0, 0.0};
   double scale2 = 0.0;
@@ -94,13 +93,15 @@ double CollapseDistance::projected(const Vec3& c) {
   };
   for (const auto& t : old_triangles_)
     if (!positive(t)) return -1.0;
-  double turn = 0.0;
+  // With every sector (c, p, q) turning by less than pi, the fan's winding number is how many of
+  // them hold the direction (1, 0) (half-open, so that one on a ray counts once).
+  int winding = 0;
   for (const auto& t : new_triangles_) {
     if (!positive(t)) return -1.0;
     const Point2 &p = at(t[1]), &q = at(t[2]);
-    turn += std::atan2(cross2(p.u, p.v, q.u, q.v), p.u * q.u + p.v * q.v);
+    if (-p.v >= 0.0 && q.v > 0.0) ++winding; // cross2(p, (1, 0)) >= 0 and cross2((1, 0), q) > 0
   }
-  if (!(turn < 3.0 * std::numbers::pi)) return -1.0;
+  if (winding != 1) return -1.0;
 
   // The triangle of a triangulation that holds a point, and the point's barycentric weights.
   const auto locate = [&](const std::vector<std::array<int, 3>>& triangles, const Point2& x, double w[3]) {
@@ -118,11 +119,12 @@ double CollapseDistance::projected(const Vec3& c) {
   const auto tol = [this](int i) { return tolerances_[static_cast<std::size_t>(i)]; };
   // Each overlay vertex x asks w_c(x) d_c >= tol_old(x) + |D(x)| - (the new tolerance's other terms).
   double need = 0.0;
-  const auto require = [&need](double wc, double rhs) {
+  // Fails (the projection map is of no use) once d_c would exceed the limit.
+  const auto require = [&need, limit](double wc, double rhs) {
     if (rhs <= 0.0) return true;
     if (!(wc > 1e-9)) return false;
     need = std::max(need, rhs / wc);
-    return true;
+    return need <= limit;
   };
   double w[3];
   for (int i = 0; i < 2; ++i) { // a and b, in the new patch (c is its triangles' first corner)
@@ -139,7 +141,7 @@ double CollapseDistance::projected(const Vec3& c) {
       z += w[k] * at((*t)[static_cast<std::size_t>(k)]).z;
       old += w[k] * tol((*t)[static_cast<std::size_t>(k)]);
     }
-    require(1.0, old + std::fabs(z - at(2).z));
+    if (!require(1.0, old + std::fabs(z - at(2).z))) return -1.0;
   }
   // Crossings of the old interior edges (at a or b) with the new ones (c x): c is the origin.
   const int n_points = static_cast<int>(projected_.size());
@@ -149,6 +151,12 @@ double CollapseDistance::projected(const Vec3& c) {
     for (int x = 3; x < n_points; ++x) {
       if (x == e[1]) continue;
       const Point2& r = at(x);
+      // p and q on opposite sides of the line c x, and c and x on opposite sides of p q (c is the
+      // origin): multiplications only, for the many pairs that do not cross.
+      const double side_p = cross2(r.u, r.v, p.u, p.v), side_q = cross2(r.u, r.v, q.u, q.v);
+      if ((side_p > 0.0 && side_q > 0.0) || (side_p < 0.0 && side_q < 0.0)) continue;
+      const double side_c = cross2(du, dv, -p.u, -p.v), side_x = cross2(du, dv, r.u - p.u, r.v - p.v);
+      if ((side_c > 0.0 && side_x > 0.0) || (side_c < 0.0 && side_x < 0.0)) continue;
       const double denom = cross2(r.u, r.v, du, dv);
       if (std::fabs(denom) <= tiny) continue;              // parallel: the extremes are at the end points
       const double t = cross2(p.u, p.v, du, dv) / denom;   // along c -> x

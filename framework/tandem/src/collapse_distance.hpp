@@ -23,6 +23,8 @@
 //   bound on d_c. Tangential motion is free, which lets a flat or gently curved patch simplify.
 // Collapses at the surface's boundary (cube faces, open block faces) use the simplicial map.
 
+#include <limits>
+
 #include "working_mesh.hpp"
 
 namespace geotandem::tandem::detail {
@@ -32,14 +34,17 @@ namespace geotandem::tandem::detail {
 // surface).
 class CollapseDistance {
 public:
-  double tolerance(const TriMesh& mesh, HH h, const Vec3& c, const TriMesh::Point* points, const VertexRecord* records);
+  // Values above `limit` (E0) are only known to be above it.
+  double tolerance(const TriMesh& mesh, HH h, const Vec3& c, const TriMesh::Point* points, const VertexRecord* records,
+                   double limit = std::numeric_limits<double>::infinity());
 
   // d_c for the simplicial map alone (exposed for tests).
   static double simplicial(const Vec3& a, double da, const Vec3& b, double db, const Vec3& c);
 
 private:
   // d_c for the projection map, or a negative value when the projection is not one to one.
-  double projected(const Vec3& c);
+  // Gives up (negative) as soon as d_c would exceed `limit`.
+  double projected(const Vec3& c, double limit);
 
   // Local numbering: 0 = a, 1 = b, 2 = c, then the link vertices.
   struct Point2 {

@@ -264,7 +264,7 @@ void WorkingSurface::Engine::try_collapse(EH e, double cost) {
 
 double WorkingSurface::Engine::collapse_error(HH h, const Vec3& target) {
   if (!options_.guarantee_distance) return 0.0;
-  return distance_.tolerance(*mesh_, h, target, points_, vrec_);
+  return distance_.tolerance(*mesh_, h, target, points_, vrec_, options_.max_error);
 }
 
 void WorkingSurface::Engine::report_collapse(HH h, const Vec3& target, double cost, double error) {

@@ -16,13 +16,10 @@ double CollapseDistance::simplicial(const Vec3& a, double da, const Vec3& b, dou
   return std::max(da + norm(a - c), db + norm(b - c));
 }
 
-int CollapseDistance::local(VH v, const TriMesh::Point* points, const VertexRecord* records) {
-  for (std::size_t i = 0; i < handles_.size(); ++i)
-    if (handles_[i] == v) return static_cast<int>(i);
-  handles_.push_back(v);
+int CollapseDistance::add(VH v, const TriMesh::Point* points, const VertexRecord* records) {
   points_.push_back(to_vec(points[v.idx()]));
   tolerances_.push_back(records[v.idx()].tolerance);
-  return static_cast<int>(handles_.size() - 1);
+  return static_cast<int>(points_.size() - 1);
 }
 
 double CollapseDistance::tolerance(const TriMesh& mesh, HH h, const Vec3& c, const TriMesh::Point* points,
@@ -32,21 +29,41 @@ double CollapseDistance::tolerance(const TriMesh& mesh, HH h, const Vec3& c, con
   const double da = records[a.idx()].tolerance, db = records[b.idx()].tolerance;
   const double simple = simplicial(pa, da, pb, db, c);
   if (mesh.is_boundary(a) || mesh.is_boundary(b)) return simple;
-  handles_.assign({a, b, VH()});
+  // a and b are interior, so both triangles of ab exist; x and y, opposite ab, are their only
+  // common neighbours (the link condition was checked).
+  const VH x = mesh.to_vertex_handle(mesh.next_halfedge_handle(h));
+  const VH y = mesh.to_vertex_handle(mesh.next_halfedge_handle(mesh.opposite_halfedge_handle(h)));
   points_.assign({pa, pb, c});
   tolerances_.assign({da, db, 0.0});
   old_triangles_.clear();
   new_triangles_.clear();
   old_edges_.clear();
+  int ix = -1, iy = -1;
   for (const VH v : {a, b}) {
     const int iv = v == a ? 0 : 1;
+    // The neighbours in rotation order; the triangle at step i is (v, p_i, p_(i-1)).
+    ring_.clear();
     const HH start = mesh.halfedge_handle(v);
     HH s = start;
     do {
-      const FH f = mesh.face_handle(s);
-      if (!f.is_valid()) return simple;
-      const VH p = mesh.to_vertex_handle(s), q = mesh.to_vertex_handle(mesh.next_halfedge_handle(s));
-      const int ip = local(p, points, records), iq = local(q, points, records);
+      const VH p = mesh.to_vertex_handle(s);
+      int ip;
+      if (p == a) {
+        ip = 0;
+      } else if (p == b) {
+        ip = 1;
+      } else if (p == x) {
+        ip = ix < 0 ? (ix = add(p, points, records)) : ix;
+      } else if (p == y) {
+        ip = iy < 0 ? (iy = add(p, points, records)) : iy;
+      } else {
+        ip = add(p, points, records);
+      }
+      ring_.push_back(ip);
+      s = next_outgoing(mesh, s);
+    } while (s != start);
+    for (std::size_t k = 0; k < ring_.size(); ++k) {
+      const int ip = ring_[k], iq = ring_[k == 0 ? ring_.size() - 1 : k - 1];
       if (iv == 0 || (ip != 0 && iq != 0)) { // each triangle once
         old_triangles_.push_back({iv, ip, iq});
         if (ip > 1 && iq > 1) new_triangles_.push_back({2, ip, iq}); // abx and aby vanish
@@ -55,8 +72,7 @@ double CollapseDistance::tolerance(const TriMesh& mesh, HH h, const Vec3& c, con
         old_edges_.push_back({iv, ip});
       else if (iv == 0)
         old_edges_.push_back({0, 1});
-      s = next_outgoing(mesh, s);
-    } while (s != start);
+    }
   }
   const double d = projected(c, std::min(simple, limit));
   return d >= 0.0 && d < simple ? d : simple;

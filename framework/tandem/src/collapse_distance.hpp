@@ -50,14 +50,14 @@ private:
   struct Point2 {
     double u = 0.0, v = 0.0, z = 0.0;
   };
-  std::vector<VH> handles_;
+  std::vector<int> ring_; // scratch: one vertex's neighbours, as local numbers
   std::vector<Vec3> points_;
   std::vector<double> tolerances_;
   std::vector<Point2> projected_;
   std::vector<std::array<int, 3>> old_triangles_;
   std::vector<std::array<int, 3>> new_triangles_;
   std::vector<std::array<int, 2>> old_edges_; // interior edges of the old patch (at a or b)
-  int local(VH v, const TriMesh::Point* points, const VertexRecord* records);
+  int add(VH v, const TriMesh::Point* points, const VertexRecord* records);
 };
 
 } // namespace geotandem::tandem::detail

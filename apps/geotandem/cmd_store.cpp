@@ -94,6 +94,8 @@ nlohmann::json row_json(const store::ComponentRow& r) {
           {"elongation", s.elongation},
           {"closed", s.closed},
           {"cut_by_border", s.cut_by_border},
+          {"cut_faces", mesh::cut_faces_text(s.cut_faces)},
+          {"cap_area", s.cap_area},
           {"run", r.run ? nlohmann::json(*r.run) : nlohmann::json(nullptr)},
           {"shard", r.location.shard},
           {"offset", r.location.offset},
@@ -115,11 +117,14 @@ void print_table(const std::vector<store::ComponentRow>& rows, std::uint64_t tot
   o << line;
   for (const auto& r : rows) {
     const auto& s = r.stats;
-    const char* kind = s.cut_by_border ? "cut by border" : s.closed ? "closed" : "open";
+    const std::string faces = mesh::cut_faces_text(s.cut_faces);
+    const std::string kind = s.cut_by_border ? "cut " + (faces.empty() ? std::string("by border") : faces)
+                             : s.closed      ? "closed"
+                                             : "open";
     std::snprintf(line, sizeof line, "%20llu %14s %8.2f %6.2f %10llu %10llu  %s\n",
                   static_cast<unsigned long long>(r.key), format_number(s.volume).c_str(), s.azimuth, s.dip,
                   static_cast<unsigned long long>(r.location.vertex_count),
-                  static_cast<unsigned long long>(r.location.triangle_count), kind);
+                  static_cast<unsigned long long>(r.location.triangle_count), kind.c_str());
     o << line;
   }
   o << "# " << rows.size() << " of " << total << " components\n";
@@ -139,8 +144,13 @@ void print_show(const store::ComponentRow& r, const volume::Geometry& g) {
   o << "key:            " << r.key << "\n";
   o << "vertices:       " << r.location.vertex_count << "\n";
   o << "triangles:      " << r.location.triangle_count << "\n";
-  o << "surface:        " << (s.closed ? "closed" : "open") << (s.cut_by_border ? ", cut by the cube border" : "")
-    << "\n";
+  o << "surface:        " << (s.closed ? "closed" : "open");
+  if (s.cut_by_border) {
+    o << ", cut by the cube border";
+    if (s.cut_faces != 0)
+      o << " (faces " << mesh::cut_faces_text(s.cut_faces) << "; caps " << format_number(s.cap_area) << " of the area)";
+  }
+  o << "\n";
   o << "volume:         " << format_number(s.volume) << " " << volume_unit(g) << "\n";
   o << "area:           " << format_number(s.area) << "\n";
   o << "centroid:       " << triple(s.centroid) << "  (x m, y m, z " << z << ")\n";
@@ -172,7 +182,7 @@ struct ShowArgs {
 struct ExportArgs {
   std::string store, format, out;
   Filters filters;
-  bool per_component = false, float32 = false, overwrite = false, skip_damaged = false;
+  bool per_component = false, float32 = false, overwrite = false, skip_damaged = false, no_caps = false;
 };
 
 struct ListArgs {
@@ -238,6 +248,8 @@ void add_export(CLI::App* parent, Context& context, Runner& run) {
   cmd->add_flag("--overwrite", args->overwrite, "replace output files that already exist");
   cmd->add_flag("--skip-damaged", args->skip_damaged,
                 "verify every record first and export the intact ones, listing the damaged keys");
+  cmd->add_flag("--no-caps", args->no_caps,
+                "leave out the caps that close bodies cut by the cube's border (export their open surface)");
   args->filters.add_to(cmd);
   cmd->callback([args, &context, &run] {
     run = [args, &context] {
@@ -247,6 +259,7 @@ void add_export(CLI::App* parent, Context& context, Runner& run) {
       options.ply_float32 = args->float32;
       options.overwrite = args->overwrite;
       options.skip_damaged = args->skip_damaged;
+      options.caps = !args->no_caps;
       auto s = store::ComponentStore::open(args->store);
       auto rows = s.query(args->filters.query());
       auto progress = context.progress();

@@ -12,53 +12,10 @@
 # Usage: install_component_step_test.sh CMAKE BUILD_DIR EXAMPLE_SOURCE_DIR
 set -euo pipefail
 
-if [[ $# -ne 3 ]]; then
-  echo "usage: $0 CMAKE BUILD_DIR EXAMPLE_SOURCE_DIR" >&2
-  exit 2
-fi
-cmake=$1
-build=$2
-example=$3
+name=install_component_step
 plugin=shape_filter
-
-tmp=$(mktemp -d "${TMPDIR:-/tmp}/geotandem-component-step-test.XXXXXX")
-trap 'rm -rf "$tmp"' EXIT
-prefix=$tmp/prefix
-example_build=$tmp/example-build
-log=$tmp/log
-
-fail() {
-  echo "install_component_step: FAIL: $*" >&2
-  exit 1
-}
-step() {
-  local what=$1
-  shift
-  echo "install_component_step: $what"
-  if ! "$@" >"$log" 2>&1; then
-    cat "$log" >&2
-    fail "$what: '$*' exited non-zero"
-  fi
-}
-expect_in() {
-  [[ $1 == *"$2"* ]] || fail "$3: expected to find '$2' in:"$'\n'"$1"
-}
-
-unset GEOTANDEM_PLUGIN_PATH LD_LIBRARY_PATH CMAKE_PREFIX_PATH geotandem_DIR
-
-step "install the build tree into $prefix" "$cmake" --install "$build" --prefix "$prefix"
-geotandem=$prefix/bin/geotandem
-[[ -x $geotandem ]] || fail "no geotandem executable at $geotandem"
-
-generator=()
-if command -v ninja >/dev/null; then generator=(-G Ninja); fi
-step "configure the example against the installed package" "$cmake" -S "$example" -B "$example_build" \
-  "${generator[@]}" -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_PREFIX_PATH="$prefix" -DCMAKE_CXX_FLAGS=-Werror
-grep -q "geotandem_DIR:PATH=$prefix/" "$example_build/CMakeCache.txt" ||
-  fail "find_package(geotandem) did not find the package in $prefix"
-step "build the example" "$cmake" --build "$example_build" -j2
-library=$example_build/geotandem_$plugin.so
-[[ -f $library ]] || fail "the example did not produce $library"
+# shellcheck source=install_common.sh
+source "$(dirname "${BASH_SOURCE[0]}")/install_common.sh"
 step "install the example into the prefix" "$cmake" --install "$example_build" --prefix "$prefix"
 installed=$prefix/lib/geotandem/plugins/geotandem_$plugin.so
 [[ -f $installed ]] || fail "the example did not install to $installed"

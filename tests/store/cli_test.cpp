@@ -93,9 +93,11 @@ TEST_F(StoreCli, ShowPrintsEveryIndexField) {
   auto r = run_geotandem("store show " + store_arg() + " " + std::to_string(row.key) + " --json");
   ASSERT_EQ(r.exit_code, 0) << r.err;
   auto j = nlohmann::json::parse(r.out);
-  for (const char* field :
-       {"key", "vertex_count", "triangle_count", "volume", "area", "centroid", "box_min", "box_max", "obb", "azimuth",
-        "dip", "elongation", "closed", "cut_by_border", "run", "shard", "offset", "length", "checksum"})
+  for (const char* field : {"key",      "vertex_count", "triangle_count", "volume",        "area",
+                            "centroid", "box_min",      "box_max",        "obb",           "azimuth",
+                            "dip",      "elongation",   "closed",         "cut_by_border", "cut_faces",
+                            "cap_area", "run",          "shard",          "offset",        "length",
+                            "checksum"})
     EXPECT_TRUE(j.contains(field)) << field;
   EXPECT_EQ(j["box_max"][2].get<double>(), row.stats.box_max[2]);
   EXPECT_EQ(j["offset"].get<std::uint64_t>(), row.location.offset);

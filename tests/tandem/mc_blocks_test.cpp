@@ -171,6 +171,44 @@ TEST(McBlocks, ReadsOneCrossSectionAtATimeWithASmallSlab) {
   }
 }
 
+// A computed volume's halo sets a floor on the slab: at least 8 halos of sections (with a budget of
+// 3 sections, a halo of 1 gives 8), within 4 budgets (a halo of 3 would ask 24: 12 it is); the
+// layers do not change.
+TEST(McBlocks, SlabsHoldEightHalosOfSectionsWithinFourBudgets) {
+  const auto v = mixed_field({30, 11, 13}, 7);
+  const Box cells{{0, 2, 0}, {29, 9, 12}};
+  const std::int64_t section = 8 * 13;
+  std::vector<Layer> reference;
+  for (const auto& [halo, expected] : {std::pair<std::int64_t, std::int64_t>{0, 3}, {1, 8}, {3, 12}}) {
+    const RecordingVolume recording(*v, {halo, halo, halo});
+    McOptions options{0.0f, 0};
+    options.slab_samples = 3 * section;
+    LayerExtractor x(recording, cells, options);
+    std::vector<Layer> layers;
+    for (Layer layer; x.next(layer);)
+      layers.push_back(layer);
+    const auto& reads = recording.reads();
+    ASSERT_FALSE(reads.empty());
+    EXPECT_EQ(reads.front().size(0), expected) << "halo " << halo;
+    std::int64_t next = cells.lo[0];
+    for (const Box& r : reads) {
+      EXPECT_EQ(r.lo[0], next) << "halo " << halo << ": sections read twice or skipped";
+      next = r.hi[0];
+    }
+    EXPECT_EQ(next, cells.hi[0] + 1);
+    if (reference.empty()) {
+      reference = layers;
+      continue;
+    }
+    ASSERT_EQ(layers.size(), reference.size());
+    for (std::size_t n = 0; n < layers.size(); ++n) {
+      EXPECT_EQ(layers[n].vertex_ids, reference[n].vertex_ids) << "halo " << halo;
+      EXPECT_EQ(layers[n].positions, reference[n].positions) << "halo " << halo;
+      EXPECT_EQ(layers[n].triangles, reference[n].triangles) << "halo " << halo;
+    }
+  }
+}
+
 // With a larger budget the block's samples are read in slabs of consecutive cross-sections, each
 // sample exactly once (a computed volume pays its halo once per slab), in order, never ahead of
 // what the next layer needs by more than one slab; and the layers are the same whatever the slab.

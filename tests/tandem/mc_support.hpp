@@ -124,8 +124,9 @@ inline mesh::SurfaceMesh to_mesh(const IdSurface& s) {
 // A volume that forwards to another and records every box it was asked for.
 class RecordingVolume final : public volume::Volume {
 public:
-  explicit RecordingVolume(const volume::Volume& inner) : inner_(inner) {}
+  explicit RecordingVolume(const volume::Volume& inner, Index3 halo = {0, 0, 0}) : inner_(inner), halo_(halo) {}
   const volume::Geometry& geometry() const override { return inner_.geometry(); }
+  Index3 source_halo() const override { return halo_; } // as a computed volume would declare
   std::string format() const override { return "recording"; }
   std::string source() const override { return "recording(" + inner_.source() + ")"; }
   const std::vector<Box>& reads() const { return reads_; }
@@ -138,6 +139,7 @@ protected:
 
 private:
   const volume::Volume& inner_;
+  Index3 halo_;
   mutable std::vector<Box> reads_;
 };
 

@@ -42,22 +42,35 @@ volume::Geometry small_geometry(const Index3& shape) {
   return g;
 }
 
-std::vector<mesh::Component> run(const volume::Volume& volume, float iso = 0.5f, int axis = 0) {
+std::vector<mesh::Component> run(const volume::Volume& volume, float iso = 0.5f, int axis = 0, bool caps = true) {
   Collect sink;
   TandemOptions options;
   options.iso = iso;
   options.axis = axis;
+  options.caps = caps;
   extract_block(volume, cube_cells(volume.geometry().shape), options, &sink);
   return sink.components;
 }
 
-TEST(AnalyticDegenerate, ConstantCubesHaveNoSurface) {
+TEST(AnalyticDegenerate, ConstantCubesHaveNoSurfaceOrAreOneCappedBody) {
   const Index3 shape{9, 10, 11};
   for (float value : {0.0f, 0.5f, 1.0f}) { // below, exactly at and above the iso value
     SCOPED_TRACE("value " + std::to_string(value));
     const volume::MemoryVolume v(small_geometry(shape), std::vector<float>(990, value));
-    for (int axis = 0; axis < 3; ++axis)
-      EXPECT_TRUE(run(v, 0.5f, axis).empty());
+    for (int axis = 0; axis < 3; ++axis) {
+      EXPECT_TRUE(run(v, 0.5f, axis, false).empty()); // without caps no isosurface at all
+      const auto components = run(v, 0.5f, axis);
+      if (value < 0.5f) {
+        EXPECT_TRUE(components.empty());
+        continue;
+      }
+      // Inside everywhere: the caps make the cube itself one closed body, cut by every face.
+      ASSERT_EQ(components.size(), 1u);
+      EXPECT_TRUE(mesh::check_topology(components[0].surface).is_closed_manifold());
+      EXPECT_NEAR(mesh::enclosed_volume(components[0].surface), 8.0 * 9.0 * 10.0, 1e-9);
+      EXPECT_EQ(components[0].stats.cut_faces, 0x3f);
+      EXPECT_LE(components[0].surface.triangle_count(), 12u * 4u); // flat faces simplify to little
+    }
   }
 }
 
@@ -83,30 +96,49 @@ TEST(AnalyticDegenerate, SingleVoxelAboveIsoIsOneSmallClosedBody) {
     EXPECT_EQ(octahedron.triangle_count(), 8u);
     EXPECT_LE(mesh::hausdorff_distance(s, octahedron).max, kMaxDistance);
   }
-  // The same voxel on a corner of the cube: one open piece, cut by the border.
+  // The same voxel on a corner of the cube: one piece cut by the border, closed by three caps
+  // (the corner of the octahedron: 1/8 of it); without caps, open.
   values.assign(values.size(), 0.0f);
   values[offset(shape, 0, 0, 0)] = 1.0f;
   const volume::MemoryVolume corner(small_geometry(shape), values);
   const auto components = run(corner);
   ASSERT_EQ(components.size(), 1u);
   EXPECT_TRUE(components[0].stats.cut_by_border);
-  EXPECT_FALSE(components[0].stats.closed);
-  EXPECT_TRUE(mesh::check_topology(components[0].surface).is_manifold());
+  EXPECT_EQ(components[0].stats.cut_faces, 0x15); // i-, j-, k-
+  EXPECT_TRUE(components[0].stats.closed);
+  EXPECT_TRUE(mesh::check_topology(components[0].surface).is_closed_manifold());
+  EXPECT_NEAR(mesh::enclosed_volume(components[0].surface), 4.0 / 3.0 * 0.125 / 8.0, 0.02 * 4.0 / 3.0 * 0.125 / 8.0);
+  const auto open = run(corner, 0.5f, 0, false);
+  ASSERT_EQ(open.size(), 1u);
+  EXPECT_TRUE(open[0].stats.cut_by_border);
+  EXPECT_FALSE(open[0].stats.closed);
+  EXPECT_TRUE(mesh::check_topology(open[0].surface).is_manifold());
 }
 
 TEST(AnalyticDegenerate, AllSamplesAboveIsoExceptAHoleGivesOnlyTheHole) {
-  // Everything inside: the cube's faces are not a surface. One outside sample in the middle is a
-  // cavity: one closed surface of negative enclosed volume.
+  // Everything inside: without caps the cube's faces are not a surface (with caps they are one
+  // body, the cube). One outside sample in the middle is a cavity: one closed surface of negative
+  // enclosed volume.
   const Index3 shape{8, 8, 8};
   std::vector<float> values(512, 2.0f);
   const volume::MemoryVolume full(small_geometry(shape), values);
-  EXPECT_TRUE(run(full).empty());
+  EXPECT_TRUE(run(full, 0.5f, 0, false).empty());
   values[offset(shape, 4, 3, 4)] = 0.0f;
   const volume::MemoryVolume holed(small_geometry(shape), values);
-  const auto components = run(holed, 0.5f, 2);
+  auto components = run(holed, 0.5f, 2, false);
   ASSERT_EQ(components.size(), 1u);
   EXPECT_TRUE(mesh::check_topology(components[0].surface).is_closed_manifold());
   EXPECT_LT(mesh::enclosed_volume(components[0].surface), 0.0);
+  // With caps: the cube (positive volume) and the cavity, two closed surfaces.
+  components = run(holed, 0.5f, 2);
+  ASSERT_EQ(components.size(), 2u);
+  double total = 0.0;
+  for (const auto& c : components) {
+    EXPECT_TRUE(mesh::check_topology(c.surface).is_closed_manifold());
+    total += mesh::enclosed_volume(c.surface);
+  }
+  EXPECT_GT(total, 7.0 * 7.0 * 7.0 - 1.0);
+  EXPECT_LT(total, 7.0 * 7.0 * 7.0);
 }
 
 // NaN policy (docs/marching-cubes.md): marching cubes treats a NaN sample as outside. Files go

@@ -12,3 +12,6 @@ geotandem_add_test(tandem_degenerate_test SOURCES tandem_degenerate_test.cpp
 geotandem_add_test(tandem_guarantee_test SOURCES tandem_guarantee_test.cpp
   DEPS geotandem_simplify_fixtures geotandem::synth geotandem::mesh geotandem::volume
   LABELS tandem TIMEOUT 300)
+geotandem_add_test(tandem_caps_test
+  SOURCES tandem_caps_test.cpp ${PROJECT_SOURCE_DIR}/tests/support/voxel_components.cpp
+  DEPS geotandem_simplify_fixtures geotandem::mesh geotandem::volume LABELS tandem TIMEOUT 300)

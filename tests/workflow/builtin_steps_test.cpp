@@ -171,6 +171,27 @@ TEST_F(BuiltinSteps, ChainOfBuiltinStepsThroughTheRegistryMatchesTheLibraryFunct
   EXPECT_EQ(exported.path, "bodies.ply");
   EXPECT_EQ(exported.components, bubbles.after);
   EXPECT_GT(fs::file_size(dir.path() / "bodies.ply"), 100u);
+  // caps: false leaves out the caps of the kept bodies cut by the cube's border, and only those.
+  auto faces_in = [&](const char* name) {
+    std::ifstream obj(dir.path() / name);
+    std::size_t faces = 0;
+    for (std::string line; std::getline(obj, line);)
+      faces += line.rfind("f ", 0) == 0 ? 1 : 0;
+    return faces;
+  };
+  exporter.export_components(store, values_of(exporter, {{"format", "obj"}, {"path", "capped.obj"}}), "kept",
+                             dir.path(), context);
+  exporter.export_components(store, values_of(exporter, {{"format", "obj"}, {"path", "open.obj"}, {"caps", "false"}}),
+                             "kept", dir.path(), context);
+  bool any_cut = false;
+  store::Query kept_query;
+  kept_query.selection = "kept";
+  for (const auto& row : store.query(kept_query))
+    any_cut = any_cut || row.stats.cut_faces != 0;
+  if (any_cut)
+    EXPECT_LT(faces_in("open.obj"), faces_in("capped.obj"));
+  else
+    EXPECT_EQ(faces_in("open.obj"), faces_in("capped.obj"));
   ReportData data;
   data.title = "through the registry";
   std::string report = registry.get("report").write_report(data, values_of(registry.get("report"), {}), dir.path());

@@ -13,6 +13,8 @@
 #include <set>
 #include <sstream>
 
+#include <nlohmann/json.hpp>
+
 #include "e2e_support.hpp"
 #include "geotandem/mesh/measure.hpp"
 
@@ -90,8 +92,24 @@ TEST_P(PlantedBodies, BubbleRemovalKeepsThePlantedBodiesWithTheirAzimuths) {
     EXPECT_TRUE(body->chaotic) << describe(row, body);
     found[body->name].push_back(&row);
   }
-  for (const auto* b : chaotic)
-    EXPECT_TRUE(found.count(b->name)) << b->name << " (" << b->type << ") was not kept";
+  // A chaotic body may be dropped only by the rule itself: when the attribute detected it in
+  // pieces all smaller than the bubble threshold (3 % of the largest body, cut bodies included now
+  // that caps give them a volume). Those are listed on stdout; at most one in four may be.
+  const double threshold = nlohmann::json::parse(store.load_selection("kept").parameters).at("threshold");
+  std::size_t below = 0;
+  for (const auto* b : chaotic) {
+    if (found.count(b->name)) continue;
+    double largest = 0.0;
+    for (const auto& r : rows)
+      if (body_of(bodies, truth, r) == b) largest = std::max(largest, r.stats.volume);
+    EXPECT_LT(largest, threshold) << b->name << " (" << b->type
+                                  << ") was not kept, although a piece of it is above the "
+                                  << "bubble threshold " << threshold;
+    std::cout << "  below the bubble threshold " << threshold << ": " << b->name << ", largest piece " << largest
+              << " of a planted volume " << b->volume << "\n";
+    ++below;
+  }
+  EXPECT_LE(4 * below, chaotic.size()) << below << " chaotic bodies fell below the bubble threshold";
 
   // The K largest components (by area, which also measures the bodies cut by the border) are the K
   // chaotic bodies, one component each.

@@ -193,3 +193,14 @@ TEST_F(Recipes, SegyHeaderBytesComeFromTheInputSection) {
   std::string range = error_of(file_input, {"input.segy.crossline_byte=400"});
   EXPECT_NE(range.find("crossline_byte"), std::string::npos) << range;
 }
+
+TEST_F(Recipes, AttributeFileOfUnknownFormatIsRefusedAtValidation) {
+  // Caught before any work, not after the extraction when the cube is written.
+  std::string e = error_of(replaced("  directory: out\n", "  directory: out\n  attribute: smooth.xyz\n"));
+  EXPECT_NE(e.find("recipe.yaml:17:14: output.attribute: cannot tell the output format from the extension '.xyz'"),
+            std::string::npos)
+      << e;
+  EXPECT_NE(e.find(".nc (netCDF-4)"), std::string::npos) << e;
+  parse_recipe(replaced("  directory: out\n", "  directory: out\n  attribute: smooth.nc\n"), "dir/recipe.yaml",
+               registry);
+}

@@ -10,6 +10,7 @@
 #include <Eigen/Eigenvalues>
 
 #include "geotandem/core/error.hpp"
+#include "geotandem/mesh/caps.hpp"
 #include "geotandem/mesh/quality.hpp"
 #include "stars.hpp"
 #include "vec.hpp"
@@ -21,20 +22,6 @@ using namespace detail;
 namespace {
 
 constexpr double to_deg = 180.0 / std::numbers::pi;
-
-// Index coordinates of marching-cubes vertices on an outer face are exact integers; the tolerance
-// only absorbs surfaces that went through float storage.
-constexpr double plane_tolerance = 1e-6;
-
-// Whether a boundary edge lies on one of the cube's outer sample planes (index 0 or n - 1).
-bool on_outer_plane(const Point& p, const Point& q, const volume::Index3& shape) {
-  for (int a = 0; a < 3; ++a) {
-    const double last = static_cast<double>(shape[a] - 1);
-    if (std::abs(p[a]) <= plane_tolerance && std::abs(q[a]) <= plane_tolerance) return true;
-    if (std::abs(p[a] - last) <= plane_tolerance && std::abs(q[a] - last) <= plane_tolerance) return true;
-  }
-  return false;
-}
 
 // Makes an axis' largest component positive, so that the same body always gets the same axes.
 std::array<double, 3> canonical_sign(const Eigen::Vector3d& v) {
@@ -83,17 +70,29 @@ ComponentStats measure_component(const SurfaceMesh& index_surface, const volume:
 
   // Topology in index space, where the cube's outer planes are exact.
   const VertexStars stars = build_vertex_stars(index_surface);
-  bool closed = true, cut = false;
+  // Cut faces: the planes of cap triangles, and of open borders lying on an outer plane (a
+  // surface extracted without caps).
+  bool closed = true;
+  std::uint8_t cut = 0;
   walk_stars(
       index_surface, stars,
       [&](const EdgeVisit& e) {
         if (e.count != 2) closed = false;
-        if (e.count == 1 && !cut)
-          cut = on_outer_plane(index_surface.points[e.v], index_surface.points[e.w], geometry.shape);
+        if (e.count == 1)
+          cut |= static_cast<std::uint8_t>(outer_planes(index_surface.points[e.v], geometry.shape) &
+                                           outer_planes(index_surface.points[e.w], geometry.shape));
       },
       [](std::uint32_t, std::uint32_t, std::uint32_t) {});
+  std::vector<bool> cap(index_surface.triangles.size(), false);
+  for (std::size_t t = 0; t < cap.size(); ++t) {
+    const int face = cap_face(index_surface, index_surface.triangles[t], geometry.shape);
+    if (face < 0) continue;
+    cap[t] = true;
+    cut |= static_cast<std::uint8_t>(1u << face);
+  }
   stats.closed = closed;
-  stats.cut_by_border = cut;
+  stats.cut_faces = cut;
+  stats.cut_by_border = cut != 0;
 
   const SurfaceMesh world = to_world(index_surface, geometry);
   stats.volume = closed ? enclosed_volume(world) : 0.0;
@@ -112,11 +111,14 @@ ComponentStats measure_component(const SurfaceMesh& index_surface, const volume:
       for (int c = r; c < 3; ++c)
         second(r, c) += w * v[r] * v[c];
   };
-  for (const Triangle& t : world.triangles) {
+  double cap_area = 0.0;
+  for (std::size_t n = 0; n < world.triangles.size(); ++n) {
+    const Triangle& t = world.triangles[n];
     const Point a = world.points[t[0]] - origin, b = world.points[t[1]] - origin, c = world.points[t[2]] - origin;
     const double w = 0.5 * norm(cross(b - a, c - a));
     const Point s = a + b + c;
     area += w;
+    if (cap[n]) cap_area += w;
     first = first + (w / 3.0) * s;
     for (const Point* v : {&a, &b, &c, &s})
       add_outer(*v, w / 12.0);
@@ -134,9 +136,35 @@ ComponentStats measure_component(const SurfaceMesh& index_surface, const volume:
       }
     total = 3.0 * static_cast<double>(world.triangles.size());
   }
+  // A closed surface (a body closed by itself or by caps) is measured as the solid it encloses:
+  // moments of the tetrahedra from the origin to each triangle (divergence theorem). A tetrahedron
+  // (0, a, b, c) of signed volume V has first moment V (a + b + c) / 4 and second moment
+  // V/20 (a a^T + b b^T + c c^T + s s^T), s = a + b + c.
+  if (closed && stats.volume > 0.0) {
+    double solid = 0.0;
+    Point solid_first{};
+    Eigen::Matrix3d solid_second = Eigen::Matrix3d::Zero();
+    for (const Triangle& t : world.triangles) {
+      const Point a = world.points[t[0]] - origin, b = world.points[t[1]] - origin, c = world.points[t[2]] - origin;
+      const double v = dot(a, cross(b, c)) / 6.0;
+      const Point s = a + b + c;
+      solid += v;
+      solid_first = solid_first + (v / 4.0) * s;
+      for (const Point* p : {&a, &b, &c, &s})
+        for (int r = 0; r < 3; ++r)
+          for (int q = r; q < 3; ++q)
+            solid_second(r, q) += v / 20.0 * (*p)[r] * (*p)[q];
+    }
+    if (solid > 0.0) {
+      first = solid_first;
+      second = solid_second;
+      total = solid;
+    }
+  }
   first = (1.0 / total) * first;
   second /= total;
   stats.area = area;
+  stats.cap_area = cap_area;
   const Eigen::Vector3d f(first[0], first[1], first[2]);
   Eigen::Matrix3d covariance = second - f * f.transpose();
   covariance.triangularView<Eigen::StrictlyLower>() = covariance.transpose().triangularView<Eigen::StrictlyLower>();

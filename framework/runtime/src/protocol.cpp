@@ -45,7 +45,8 @@ void put_entry(ByteWriter& w, const store::IndexEntry& e) {
   w.put(s.vertex_count);
   w.put(s.triangle_count);
   w.put(static_cast<std::uint8_t>(s.closed));
-  w.put(static_cast<std::uint8_t>(s.cut_by_border));
+  // Bits 0-5: the cut faces; bit 7: cut by the border.
+  w.put(static_cast<std::uint8_t>(s.cut_faces | (s.cut_by_border ? 0x80u : 0u)));
   w.put(s.volume);
   w.put(s.area);
   put_array(w, s.centroid);
@@ -58,6 +59,7 @@ void put_entry(ByteWriter& w, const store::IndexEntry& e) {
   w.put(s.azimuth);
   w.put(s.dip);
   w.put(s.elongation);
+  w.put(s.cap_area);
   w.put(static_cast<std::uint8_t>(e.run.has_value()));
   w.put(e.run.value_or(0));
 }
@@ -75,7 +77,9 @@ store::IndexEntry get_entry(ByteReader& r) {
   s.vertex_count = r.get<std::uint64_t>();
   s.triangle_count = r.get<std::uint64_t>();
   s.closed = r.get<std::uint8_t>() != 0;
-  s.cut_by_border = r.get<std::uint8_t>() != 0;
+  const auto cut = r.get<std::uint8_t>();
+  s.cut_by_border = cut != 0;
+  s.cut_faces = static_cast<std::uint8_t>(cut & 0x3fu);
   s.volume = r.get<double>();
   s.area = r.get<double>();
   s.centroid = get_array(r);
@@ -88,6 +92,7 @@ store::IndexEntry get_entry(ByteReader& r) {
   s.azimuth = r.get<double>();
   s.dip = r.get<double>();
   s.elongation = r.get<double>();
+  s.cap_area = r.get<double>();
   const bool has_run = r.get<std::uint8_t>() != 0;
   const auto run = r.get<std::int64_t>();
   if (has_run) e.run = run;
@@ -95,7 +100,7 @@ store::IndexEntry get_entry(ByteReader& r) {
 }
 
 // The smallest encoded entry: every fixed field and an empty shard name.
-constexpr std::size_t kMinEntryBytes = 8 + 8 + 5 * 8 + 2 * 8 + 2 + 2 * 8 + 18 * 8 + 3 * 8 + 1 + 8;
+constexpr std::size_t kMinEntryBytes = 8 + 8 + 5 * 8 + 2 * 8 + 2 + 2 * 8 + 18 * 8 + 3 * 8 + 8 + 1 + 8;
 
 } // namespace
 

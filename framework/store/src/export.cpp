@@ -10,6 +10,7 @@
 #include "export_writers.hpp"
 #include "file_io.hpp"
 #include "geotandem/core/error.hpp"
+#include "geotandem/mesh/caps.hpp"
 #include "geotandem/store/check.hpp"
 
 namespace geotandem::store {
@@ -37,8 +38,9 @@ const char* file_extension(ExportFormat format) {
 namespace detail {
 
 SurfaceSource::SurfaceSource(const ComponentStore& store, std::vector<const ComponentRow*> rows,
-                             std::function<void()> on_first_read, std::uint64_t cache_budget)
-    : store_(store), rows_(std::move(rows)), on_first_read_(std::move(on_first_read)), seen_(rows_.size(), false) {
+                             std::function<void()> on_first_read, std::uint64_t cache_budget, bool caps)
+    : store_(store), rows_(std::move(rows)), on_first_read_(std::move(on_first_read)), seen_(rows_.size(), false),
+      caps_(caps) {
   std::uint64_t total = 0;
   for (const auto* row : rows_)
     total += row->location.length;
@@ -50,11 +52,20 @@ const mesh::SurfaceMesh& SurfaceSource::surface(std::size_t i) {
   if (cache_all_ && seen_[i]) return cache_[i];
   auto& target = cache_all_ ? cache_[i] : scratch_;
   target = store_.read(*rows_[i]);
+  if (!caps_) target = mesh::without_world_caps(target, store_.geometry());
   if (!seen_[i]) {
     seen_[i] = true;
     if (on_first_read_) on_first_read_();
   }
   return target;
+}
+
+std::uint64_t SurfaceSource::vertex_count(std::size_t i) {
+  return caps_ ? rows_[i]->location.vertex_count : surface(i).points.size();
+}
+
+std::uint64_t SurfaceSource::triangle_count(std::size_t i) {
+  return caps_ ? rows_[i]->location.triangle_count : surface(i).triangles.size();
 }
 
 } // namespace detail
@@ -68,7 +79,7 @@ void write_file(const ComponentStore& store, const std::vector<const ComponentRo
   {
     std::ofstream out(part, std::ios::binary | std::ios::trunc);
     if (!out) throw IoError("cannot create export file: " + errno_text(errno), {part.string()});
-    SurfaceSource source(store, rows, tick);
+    SurfaceSource source(store, rows, tick, 256ull << 20, options.caps);
     try {
       switch (options.format) {
       case ExportFormat::ply: write_ply(source, out, options); break;

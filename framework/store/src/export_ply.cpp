@@ -11,8 +11,8 @@ namespace geotandem::store::detail {
 void write_ply(SurfaceSource& source, std::ostream& out, const ExportOptions& options) {
   std::uint64_t vertices = 0, faces = 0;
   for (std::size_t i = 0; i < source.size(); ++i) {
-    vertices += source.row(i).location.vertex_count;
-    faces += source.row(i).location.triangle_count;
+    vertices += source.vertex_count(i);
+    faces += source.triangle_count(i);
   }
   const char* type = options.ply_float32 ? "float" : "double";
   out << "ply\nformat binary_little_endian 1.0\ncomment geotandem component store export, world coordinates\n";

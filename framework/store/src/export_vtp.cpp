@@ -26,7 +26,8 @@ void cell_array(std::ostream& out, SurfaceSource& source, const char* type, cons
   for (std::size_t i = 0; i < source.size(); ++i) {
     const auto& row = source.row(i);
     Value value = get(row, i);
-    for (std::uint64_t t = 0; t < row.location.triangle_count; ++t) {
+    const std::uint64_t triangles = source.triangle_count(i);
+    for (std::uint64_t t = 0; t < triangles; ++t) {
       out << (t % 16 == 0 ? "\n         " : " ");
       put_number(out, value);
     }
@@ -49,8 +50,8 @@ double azimuth_of(const ComponentRow& row) {
 void write_vtp(SurfaceSource& source, std::ostream& out, const ExportOptions&) {
   std::uint64_t points = 0, polys = 0;
   for (std::size_t i = 0; i < source.size(); ++i) {
-    points += source.row(i).location.vertex_count;
-    polys += source.row(i).location.triangle_count;
+    points += source.vertex_count(i);
+    polys += source.triangle_count(i);
   }
   out << "<?xml version=\"1.0\"?>\n"
          "<VTKFile type=\"PolyData\" version=\"1.0\" byte_order=\"LittleEndian\" header_type=\"UInt64\">\n"

@@ -18,8 +18,12 @@ namespace geotandem::store::detail {
 class SurfaceSource {
 public:
   SurfaceSource(const ComponentStore& store, std::vector<const ComponentRow*> rows, std::function<void()> on_first_read,
-                std::uint64_t cache_budget = 256ull << 20);
+                std::uint64_t cache_budget = 256ull << 20, bool caps = true);
   std::size_t size() const { return rows_.size(); }
+  // Counts of row i as surface(i) hands it out (from the index, or from the surface when the caps
+  // are left out).
+  std::uint64_t vertex_count(std::size_t i);
+  std::uint64_t triangle_count(std::size_t i);
   const ComponentRow& row(std::size_t i) const { return *rows_[i]; }
   // The surface of row i; the reference stays valid until the next call.
   const mesh::SurfaceMesh& surface(std::size_t i);
@@ -32,6 +36,7 @@ private:
   std::vector<mesh::SurfaceMesh> cache_;
   std::vector<bool> seen_;
   bool cache_all_ = false;
+  bool caps_ = true;
   mesh::SurfaceMesh scratch_;
 };
 

@@ -3,6 +3,7 @@
 #include <variant>
 
 #include "geotandem/core/error.hpp"
+#include "geotandem/mesh/component.hpp"
 #include "record.hpp"
 #include "store_impl.hpp"
 
@@ -18,8 +19,16 @@ constexpr const char* columns =
     " centroid_x, centroid_y, centroid_z, min_x, min_y, min_z, max_x, max_y, max_z,"
     " obb_center_x, obb_center_y, obb_center_z, obb_axis0_x, obb_axis0_y, obb_axis0_z,"
     " obb_axis1_x, obb_axis1_y, obb_axis1_z, obb_axis2_x, obb_axis2_y, obb_axis2_z,"
-    " obb_half0, obb_half1, obb_half2, azimuth, dip, elongation, closed, cut_by_border, run";
-constexpr int column_count = 39;
+    " obb_half0, obb_half1, obb_half2, azimuth, dip, elongation, closed, cut_by_border, run, cut_faces, cap_area";
+constexpr int column_count = 41;
+
+// The columns to select: an index written before caps has no cut_faces and cap_area (read-only
+// stores are not upgraded; see detail::upgrade_cap_columns), so those read as their defaults.
+std::string select_columns(bool cap_columns) {
+  if (cap_columns) return columns;
+  std::string text = columns;
+  return text.substr(0, text.rfind(", cut_faces")) + ", '', 0.0";
+}
 
 void bind_entry(Statement& s, const IndexEntry& e) {
   const auto& st = e.stats;
@@ -54,6 +63,8 @@ void bind_entry(Statement& s, const IndexEntry& e) {
   put(std::int64_t{st.closed});
   put(std::int64_t{st.cut_by_border});
   put(e.run);
+  put(mesh::cut_faces_text(st.cut_faces));
+  put(st.cap_area);
 }
 
 ComponentRow read_row(const Statement& s) {
@@ -91,6 +102,9 @@ ComponentRow read_row(const Statement& s) {
   st.closed = s.column_int(i++) != 0;
   st.cut_by_border = s.column_int(i++) != 0;
   if (!s.column_is_null(i)) row.run = s.column_int(i);
+  ++i;
+  st.cut_faces = mesh::parse_cut_faces(s.column_text(i++));
+  st.cap_area = s.column_double(i++);
   return row;
 }
 
@@ -147,7 +161,7 @@ Filter build_filter(const Query& q) {
   if (q.max_vertices) add("vertex_count <= ?", {to_sql(*q.max_vertices)});
   if (q.min_triangles) add("triangle_count >= ?", {to_sql(*q.min_triangles)});
   if (q.max_triangles) add("triangle_count <= ?", {to_sql(*q.max_triangles)});
-  if (q.closed_only) add("closed = 1", {});
+  if (q.closed_only) add("closed = 1 AND cut_by_border = 0", {});
   if (q.run) add("run = ?", {*q.run});
   if (!q.selection.empty()) terms.push_back("key IN (SELECT key FROM selection_members WHERE selection = ?1)");
   for (std::size_t i = 0; i < terms.size(); ++i)
@@ -249,7 +263,7 @@ std::uint64_t ComponentStore::indexed_end(const std::string& shard) const {
 std::vector<ComponentRow> ComponentStore::query(const Query& q) const {
   check_selection_exists(*impl_->db, q.selection, impl_->dir);
   auto filter = build_filter(q);
-  std::string sql = std::string("SELECT ") + columns + " FROM components" + filter.where + order_by(q);
+  std::string sql = "SELECT " + select_columns(impl_->cap_columns) + " FROM components" + filter.where + order_by(q);
   if (q.limit) sql += " LIMIT " + std::to_string(std::min<std::uint64_t>(*q.limit, INT64_MAX));
   auto s = impl_->db->prepare(sql);
   bind_values(s, filter.values);
@@ -269,7 +283,7 @@ std::uint64_t ComponentStore::count(const Query& q) const {
 }
 
 std::optional<ComponentRow> ComponentStore::find(std::uint64_t key) const {
-  auto s = impl_->db->prepare(std::string("SELECT ") + columns + " FROM components WHERE key = ?");
+  auto s = impl_->db->prepare("SELECT " + select_columns(impl_->cap_columns) + " FROM components WHERE key = ?");
   s.bind(1, to_sql(key));
   if (!s.step()) return std::nullopt;
   return read_row(s);

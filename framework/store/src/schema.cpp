@@ -40,7 +40,8 @@ CREATE TABLE components(
   obb_half0 REAL NOT NULL, obb_half1 REAL NOT NULL, obb_half2 REAL NOT NULL,
   azimuth REAL NOT NULL, dip REAL NOT NULL, elongation REAL NOT NULL,
   closed INTEGER NOT NULL, cut_by_border INTEGER NOT NULL,
-  run INTEGER REFERENCES runs(id));
+  run INTEGER REFERENCES runs(id),
+  cut_faces TEXT NOT NULL DEFAULT '', cap_area REAL NOT NULL DEFAULT 0);
 CREATE INDEX components_volume ON components(volume);
 CREATE INDEX components_azimuth ON components(azimuth);
 CREATE INDEX components_shard ON components(shard, byte_offset);
@@ -70,6 +71,15 @@ void check_schema(Database& db) {
     throw FormatError("the index has schema version " + version + "; this build reads version " +
                           std::to_string(index_schema_version),
                       {db.path()}, "open the store with the geotandem version that wrote it");
+}
+
+bool upgrade_cap_columns(Database& db, bool writable) {
+  auto columns = db.prepare("SELECT count(*) FROM pragma_table_info('components') WHERE name = 'cut_faces'");
+  if (columns.step() && columns.column_int(0) == 1) return true;
+  if (!writable) return false;
+  db.exec("ALTER TABLE components ADD COLUMN cut_faces TEXT NOT NULL DEFAULT ''");
+  db.exec("ALTER TABLE components ADD COLUMN cap_area REAL NOT NULL DEFAULT 0");
+  return true;
 }
 
 } // namespace geotandem::store::detail

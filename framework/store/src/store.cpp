@@ -146,6 +146,7 @@ ComponentStore ComponentStore::open(const std::filesystem::path& dir, OpenMode m
   impl->db = std::make_unique<Database>(index_path(dir).string(), false, !impl->writable, immutable);
   configure_connection(*impl->db, impl->writable);
   check_schema(*impl->db);
+  impl->cap_columns = upgrade_cap_columns(*impl->db, impl->writable);
   return ComponentStore(std::move(impl));
 }
 

@@ -19,6 +19,7 @@ struct ComponentStore::Impl {
   volume::Geometry geometry;
   std::string info_json;
   bool writable = false;
+  bool cap_columns = true; // the index has cut_faces and cap_area (stores from before caps may not)
   std::unique_ptr<detail::Database> db;
   // Shards opened for reading, by writer name; kept open across reads.
   std::map<std::string, detail::FileHandle> shards;
@@ -37,6 +38,9 @@ inline constexpr int index_schema_version = 1;
 // Creates the index tables in a new database; checks the schema of an existing one (FormatError).
 void create_schema(Database& db);
 void check_schema(Database& db);
+// Whether the components table has the cut_faces and cap_area columns; an index from before caps
+// gets them (with defaults '' and 0) when it is open for writing.
+bool upgrade_cap_columns(Database& db, bool writable);
 // Per-connection settings (WAL is persistent; synchronous and foreign keys are not).
 void configure_connection(Database& db, bool writable);
 

@@ -7,8 +7,13 @@ namespace geotandem::tandem::detail {
 
 SlabReader::SlabReader(const volume::Volume& volume, const volume::Box& samples, int axis, std::int64_t slab_samples)
     : volume_(volume), samples_(samples), axis_(axis) {
-  const std::int64_t section = samples.count() / std::max<std::int64_t>(1, samples.size(axis));
-  per_slab_ = std::clamp<std::int64_t>(slab_samples / std::max<std::int64_t>(1, section), 1, samples.size(axis));
+  const std::int64_t section =
+      std::max<std::int64_t>(1, samples.count() / std::max<std::int64_t>(1, samples.size(axis)));
+  // As many sections as the budget holds, but at least 8 halos' worth (a computed volume then pays
+  // its halo at most 1.25 times per slab), as long as that stays within 4 budgets.
+  const std::int64_t by_budget = slab_samples / section;
+  const std::int64_t by_halo = std::min(8 * volume.source_halo()[axis], 4 * slab_samples / section);
+  per_slab_ = std::clamp<std::int64_t>(std::max(by_budget, by_halo), 1, samples.size(axis));
 }
 
 void SlabReader::read(std::int64_t section, std::span<float> out) {

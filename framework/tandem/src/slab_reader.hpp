@@ -7,7 +7,11 @@
 // slabs of T sections, the halo costs (T + 2 halo) / T instead. Sections are asked for in increasing
 // order, so every section is read exactly once and the slab is never read again.
 //
-// Memory: one slab of at most max(slab_samples, one cross-section) samples, plus the copy of the
+// The slab's thickness comes from the budget (slab_samples) and from the volume's halo along the
+// axis (Volume::source_halo, the total halo of an attribute chain): at least 8 halos of sections,
+// so that the halo costs at most (8 + 2) / 8 of the slab, unless that takes more than 4 budgets.
+//
+// Memory: one slab of at most max(4 slab_samples, one cross-section) samples, plus the copy of the
 // section handed out.
 
 #include <cstdint>

@@ -2,6 +2,7 @@
 // volume terms of the triangles around each vertex, the volume plane, and the evaluation itself.
 #include <cmath>
 
+#include "border_rule.hpp"
 #include "surface_engine.hpp"
 
 namespace geotandem::tandem {
@@ -115,9 +116,8 @@ bool WorkingSurface::Engine::prepare_inputs(HH h, CostInputs& in) {
   const VH a = mesh_->from_vertex_handle(h), b = mesh_->to_vertex_handle(h);
   const detail::VertexRecord& ra = vrec(a);
   const detail::VertexRecord& rb = vrec(b);
+  if (!detail::border_allows_collapse(ra.border, rb.border)) return false;
   const unsigned border = ra.border | rb.border;
-  // Both faces of one axis (a cube one voxel thick): c cannot lie on both.
-  if (border & (border >> 1) & 0b010101u) return false;
   in.shape = ra.shape + rb.shape;
   in.weight = ra.weight + rb.weight;
   in.isotropy = ra.isotropy;

@@ -182,6 +182,13 @@ std::unique_ptr<Volume> open_gdal_dataset(GDALDataset* dataset, const std::strin
   return detail::guard_nan(std::move(volume), options);
 }
 
+void check_output_format(const std::string& path) {
+  const std::string ext = detail::lower_extension(path);
+  if (!detail::writer_for(ext))
+    throw InvalidArgument("cannot tell the output format from the extension '" + ext + "'", {path},
+                          "use .nc (netCDF-4), .zarr, .tif (GeoTIFF), .segy or .raw");
+}
+
 void write_volume(const Volume& volume, const std::string& path, const WriteOptions& options, Progress* progress,
                   const CancelToken& cancel) {
   NullProgress silent;
@@ -190,10 +197,8 @@ void write_volume(const Volume& volume, const std::string& path, const WriteOpti
   if (options.chunk < 1) throw InvalidArgument("chunk size must be at least 1", {path});
   // Resolve the writer before touching anything: an unknown extension must not cost the user the
   // file that already sits at `path`.
+  check_output_format(path);
   const detail::Writer writer = detail::writer_for(ext);
-  if (!writer)
-    throw InvalidArgument("cannot tell the output format from the extension '" + ext + "'", {path},
-                          "use .nc (netCDF-4), .zarr, .tif (GeoTIFF), .segy or .raw");
   std::error_code ec;
   // Nothing is written inside a component store but by the store.
   for (auto dir = fs::weakly_canonical(fs::absolute(path, ec), ec).parent_path(); !dir.empty();

@@ -127,7 +127,10 @@ public:
                      param_spec("path", ParamType::text, "",
                                 "file (or directory with per_component), relative to the output directory; "
                                 "empty: bodies.FORMAT"),
-                     param_spec("per_component", ParamType::boolean, "false", "one file per component")}) {}
+                     param_spec("per_component", ParamType::boolean, "false", "one file per component"),
+                     param_spec("caps", ParamType::boolean, "true",
+                                "keep the caps that close bodies cut by the cube's border (false: their open "
+                                "surface)")}) {}
   ExportOutcome export_components(const store::ComponentStore& store, const ParamValues& p, const std::string& current,
                                   const std::filesystem::path& out_dir, StepContext& context) const override {
     store::Query q;
@@ -136,6 +139,7 @@ public:
     store::ExportOptions options;
     options.format = store::parse_export_format(p.at("format").text);
     options.per_component = p.at("per_component").boolean;
+    options.caps = p.at("caps").boolean;
     std::string path = p.at("path").text.empty() ? "bodies." + p.at("format").text : p.at("path").text;
     // A rerun replaces the run's own exports, inside its output directory; a file elsewhere
     // (an absolute path, or ../ leading out) is never replaced.

@@ -9,6 +9,7 @@
 #include "geotandem/core/error.hpp"
 #include "geotandem/synth/synthetic.hpp"
 #include "geotandem/volume/io.hpp"
+#include "shared_input.hpp"
 
 namespace fs = std::filesystem;
 
@@ -181,14 +182,17 @@ ChainVolumes open_chain(const ChainDescription& description, const PluginRegistr
   }
   ChainVolumes out;
   out.input = open_input(description.input);
-  std::map<std::string, std::shared_ptr<const volume::Volume>> volumes{{"input", out.input}};
+  // The attributes read the input through one shared fetch per read of the result (shared_input.hpp).
+  auto shared = std::make_shared<const detail::SharedInput>(out.input);
+  std::map<std::string, std::shared_ptr<const volume::Volume>> volumes{{"input", shared}};
   for (std::size_t n = 0; n < description.steps.size(); ++n) {
     const ChainStep& step = description.steps[n];
     std::vector<std::shared_ptr<const volume::Volume>> inputs;
     for (const auto& name : step.inputs)
       inputs.push_back(volumes.at(name));
     if (n + 1 == description.steps.size())
-      out.result = inputs.front();
+      out.result = inputs.front() == shared ? out.input
+                                            : std::make_shared<const detail::PrefetchingResult>(inputs.front(), shared);
     else
       volumes[step.as] = resolved[n].first->make_attribute(std::move(inputs), resolved[n].second);
   }

@@ -54,6 +54,8 @@ BubbleResult remove_bubbles(store::ComponentStore& store, const BubbleRemoval& r
   std::vector<const store::ComponentRow*> kept;
   for (const auto& r : rows) {
     if (r.stats.triangle_count < rules.min_triangles) continue;
+    // Cut bodies are closed by caps and measured like any other, unless closed_only drops them.
+    if (rules.closed_only && r.stats.cut_by_border) continue;
     bool big =
         r.stats.closed ? r.stats.volume >= threshold : !rules.closed_only && r.stats.area >= sphere_area(threshold);
     if (big) kept.push_back(&r);

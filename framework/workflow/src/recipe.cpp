@@ -7,6 +7,7 @@
 
 #include "geotandem/core/error.hpp"
 #include "geotandem/synth/options.hpp"
+#include "geotandem/volume/io.hpp"
 #include "geotandem/volume/size_guard.hpp"
 #include "geotandem/workflow/suggest.hpp"
 #include "recipe_overrides.hpp"
@@ -95,7 +96,7 @@ ParamValues parse_params(MapReader& m, const std::vector<ParamSpec>& specs, cons
     try {
       values[spec.name] = parse_param(spec, text);
     } catch (const Error& e) {
-      throw error_at(m.file(), at, e.message() + " in " + what, e.hint());
+      throw error_at(m.file(), at, what + ": " + e.message(), e.hint());
     }
   }
   return values;
@@ -114,7 +115,7 @@ void check_step(MapReader& m, const Plugin& plugin, const ParamValues& values, c
         at.reset(m.node(spec.name));
         break;
       }
-    throw error_at(m.file(), at, e.message() + " in " + what, e.hint());
+    throw error_at(m.file(), at, what + ": " + e.message(), e.hint());
   }
 }
 
@@ -220,6 +221,13 @@ void parse_output(MapReader& m, Recipe& r, const std::string& recipe_stem, const
   out.directory = m.text("directory", recipe_stem + "-out");
   out.store = m.text("store", "store");
   out.attribute_file = m.text("attribute", "");
+  if (!out.attribute_file.empty()) {
+    try {
+      volume::check_output_format(out.attribute_file);
+    } catch (const InvalidArgument& e) {
+      throw error_at(m.file(), m.node("attribute"), "output.attribute: " + e.message(), e.hint());
+    }
+  }
   // A synthetic input's shape is known now: an attribute cube the disk cannot hold is refused here.
   if (!out.attribute_file.empty() && r.input.synthetic) {
     try {
@@ -262,6 +270,7 @@ void parse_output(MapReader& m, Recipe& r, const std::string& recipe_stem, const
                          what + " writes " + spec.path + ", like an earlier export: the second would overwrite it",
                          "give each export its own 'path'");
       spec.per_component = step.params.at("per_component").boolean;
+      spec.caps = step.params.at("caps").boolean;
       out.exports.push_back(spec);
       r.finish.push_back(std::move(step));
     }
@@ -355,8 +364,11 @@ nlohmann::json to_json(const Recipe& r) {
   }
   j["output"] = {{"directory", r.output.directory}, {"store", r.output.store}, {"report", r.output.report}};
   for (const auto& e : r.output.exports)
-    j["output"]["exports"].push_back(
-        {{"format", e.format}, {"selection", e.selection}, {"path", e.path}, {"per_component", e.per_component}});
+    j["output"]["exports"].push_back({{"format", e.format},
+                                      {"selection", e.selection},
+                                      {"path", e.path},
+                                      {"per_component", e.per_component},
+                                      {"caps", e.caps}});
   j["execution"] = {{"scheduler", r.execution.scheduler}, {"workers", r.execution.workers}};
   return j;
 }

@@ -36,6 +36,14 @@ std::string sci(double v) {
   return out.str();
 }
 
+// The surface column: closed by itself, closed by caps on the faces that cut it, or open (a store
+// written before caps).
+std::string surface_text(const ReportComponent& c) {
+  if (!c.closed) return "cut by border (open)";
+  if (c.cut_faces.empty() || c.cut_faces == "border") return "closed";
+  return "cut " + c.cut_faces + ", capped";
+}
+
 // "m^2*ms" as a reader writes it: m²·ms.
 std::string pretty_unit(const std::string& unit) {
   std::string out;
@@ -184,7 +192,7 @@ std::string render_report(const ReportData& d) {
     h << "<tr>" << td << rank << "</td>" << td << c.key << "</td>" << td
       << (c.closed ? sci(c.volume) : std::string("&ndash;")) << "</td>" << td << fixed(c.azimuth, 1) << "</td>" << td
       << fixed(c.elongation, 2) << "</td>" << td << c.triangles << "</td><td class=\"l" << (separator ? " sep" : "")
-      << "\">" << (c.closed ? "closed" : "cut by border") << "</td><td class=\"l " << (separator ? "sep " : "")
+      << "\">" << surface_text(c) << "</td><td class=\"l " << (separator ? "sep " : "")
       << (c.kept ? "kept\">kept" : "removed\">removed") << "</td></tr>";
   };
   for (std::size_t n = 0; n < kept_list.size(); ++n)

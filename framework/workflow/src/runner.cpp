@@ -241,6 +241,8 @@ private:
       c.elongation = row.stats.elongation;
       c.triangles = row.stats.triangle_count;
       c.closed = row.stats.closed;
+      c.cut_faces = mesh::cut_faces_text(row.stats.cut_faces);
+      if (c.cut_faces.empty() && row.stats.cut_by_border) c.cut_faces = "border";
       c.kept = selection_.empty() || std::binary_search(kept_keys.begin(), kept_keys.end(), row.key);
       report_.components.push_back(c);
     }

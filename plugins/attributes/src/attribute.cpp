@@ -34,12 +34,11 @@ std::string Attribute::source() const {
 
 Index3 Attribute::total_halo() const {
   Index3 below{0, 0, 0};
-  for (const VolumePtr& input : inputs_)
-    if (const auto* attribute = dynamic_cast<const Attribute*>(input.get())) {
-      Index3 h = attribute->total_halo();
-      for (int a = 0; a < 3; ++a)
-        below[a] = std::max(below[a], h[a]);
-    }
+  for (const VolumePtr& input : inputs_) {
+    const Index3 h = input->source_halo(); // an attribute's total halo; 0 for stored data
+    for (int a = 0; a < 3; ++a)
+      below[a] = std::max(below[a], h[a]);
+  }
   return {halo_[0] + below[0], halo_[1] + below[1], halo_[2] + below[2]};
 }
 

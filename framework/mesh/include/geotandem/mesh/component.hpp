@@ -17,8 +17,13 @@ struct ComponentStats {
   std::uint64_t vertex_count = 0;
   std::uint64_t triangle_count = 0;
   bool closed = false;        // every edge has exactly two triangles (no border)
-  bool cut_by_border = false; // touches the cube's outer faces (then it cannot be closed)
-  double volume = 0.0;        // enclosed volume by the divergence theorem; 0 when not closed
+  bool cut_by_border = false; // the cube's outer faces cut it (cut_faces != 0)
+  // Which outer faces of the cube cut it: bit 2 * axis + side (side 0: index 0, 1: index n - 1),
+  // i.e. i- i+ j- j+ k- k+ for bits 0..5 (cut_faces_text). A cut body is closed by caps on those
+  // planes (docs/caps.md); cap_area is their part of `area`.
+  std::uint8_t cut_faces = 0;
+  double cap_area = 0.0;
+  double volume = 0.0; // enclosed volume by the divergence theorem; 0 when not closed
   double area = 0.0;
   std::array<double, 3> centroid{}; // area-weighted centroid of the surface, world x, y, z
   std::array<double, 3> box_min{};  // axis-aligned bounds in world coordinates
@@ -32,6 +37,11 @@ struct ComponentStats {
   double dip = 0.0;        // of the main axis below the horizontal, [0, 90]
   double elongation = 0.0; // 1 - (second extent / first extent) of the horizontal footprint, [0, 1]
 };
+
+// "i-,k+" for the bits of ComponentStats::cut_faces ("" when none), and back. Parsing throws
+// InvalidArgument on anything else.
+std::string cut_faces_text(std::uint8_t faces);
+std::uint8_t parse_cut_faces(const std::string& text);
 
 // A finished component, in index coordinates (voxel units) as the algorithm works.
 struct Component {

@@ -25,7 +25,7 @@
 
 namespace geotandem::runtime {
 
-inline constexpr std::uint16_t kProtocolVersion = 1;
+inline constexpr std::uint16_t kProtocolVersion = 2;
 inline constexpr std::size_t kHeaderSize = 16;
 // Largest message either side accepts (a partial surface travels in one MERGE). Also set as
 // ZMQ_MAXMSGSIZE on both sockets.

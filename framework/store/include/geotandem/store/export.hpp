@@ -36,6 +36,9 @@ struct ExportOptions {
   // Verify every record first and leave the damaged ones out (listed in ExportSummary::skipped)
   // instead of stopping at the first one.
   bool skip_damaged = false;
+  // Keep the caps that close bodies cut by the cube's border (docs/caps.md). Off: a cut body is
+  // exported as the open surface the isovalue makes, without the triangles on the cube's faces.
+  bool caps = true;
 };
 
 struct ExportSummary {

@@ -33,7 +33,7 @@ struct Query {
   std::optional<WorldBox> box; // components whose bounding box intersects this box
   std::optional<std::uint64_t> min_vertices, max_vertices;
   std::optional<std::uint64_t> min_triangles, max_triangles;
-  bool closed_only = false;        // only closed surfaces (those not cut by the cube border)
+  bool closed_only = false;        // only bodies closed by themselves (not cut by the cube border, so no caps)
   std::string selection;           // only members of this named selection (empty: all components)
   std::optional<std::int64_t> run; // only components produced by this run
   SortKey sort = SortKey::key;

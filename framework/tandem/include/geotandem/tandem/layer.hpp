@@ -23,7 +23,19 @@ struct LatticeIds {
                 static_cast<std::uint64_t>(k)) +
            static_cast<std::uint64_t>(axis);
   }
-  // The start sample and axis of an id.
+  // Cap vertices sit on samples of the cube's outer planes: their ids follow every edge id,
+  //   id = 3 * ni * nj * nk + (i * nj + j) * nk + k,
+  // so they never decide a component's key while it has an edge vertex.
+  std::uint64_t sample_id(std::int64_t i, std::int64_t j, std::int64_t k) const {
+    const auto n = static_cast<std::uint64_t>(shape[0]) * static_cast<std::uint64_t>(shape[1]) *
+                   static_cast<std::uint64_t>(shape[2]);
+    return 3u * n + (id(i, j, k, 0) / 3u);
+  }
+  bool is_sample(std::uint64_t id) const {
+    return id / 3u >= static_cast<std::uint64_t>(shape[0]) * static_cast<std::uint64_t>(shape[1]) *
+                          static_cast<std::uint64_t>(shape[2]);
+  }
+  // The start sample and axis of an edge id.
   volume::Index3 start(std::uint64_t id) const;
   int axis(std::uint64_t id) const { return static_cast<int>(id % 3u); }
 };

@@ -34,8 +34,14 @@ struct McOptions {
   int axis = 0;     // extraction axis (0 = i, 1 = j, 2 = k): the layers are stacked along it
   // Cross-sections are read from the volume in slabs of as many consecutive sections as fit in
   // this many samples (at least one): a computed volume then pays its halo once per slab, not
-  // once per section. Values and surfaces do not depend on it.
+  // once per section; a slab holds at least 8 times the volume's halo along the axis
+  // (Volume::source_halo) when that fits in 4 budgets. Values and surfaces do not depend on it.
   std::int64_t slab_samples = kMcSlabSamples;
+  // Close bodies cut by the cube's border with caps on its outer sample planes (docs/caps.md):
+  // each inside sample on an outer plane becomes a vertex (LatticeIds::sample_id) and each square
+  // of samples on an outer plane contributes the inside part of it, bounded by the same edge
+  // vertices as the body, so the surface is a closed 2-manifold everywhere. Off: open borders.
+  bool caps = true;
 };
 
 // The cells of a whole cube of `shape` samples: [0, n - 1) per axis. A cell (i, j, k) spans the

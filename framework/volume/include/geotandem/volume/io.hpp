@@ -69,6 +69,10 @@ struct WriteOptions {
   bool overwrite = false;
 };
 
+// Throws InvalidArgument (listing the known extensions) when write_volume could not tell the
+// format of `path` from its extension; recipes check their outputs with it before any work.
+void check_output_format(const std::string& path);
+
 // Streams `volume` into a new file, block by block (never the whole cube in memory). The format
 // comes from the extension of `path`; an unknown extension is an InvalidArgument that lists the
 // known ones. An existing file is an error unless options.overwrite.

@@ -42,6 +42,11 @@ public:
   // Format-specific facts in display order (SEG-Y: sample format, byte order, header bytes);
   // empty for formats with nothing to add.
   virtual std::vector<FormatDetail> format_details() const { return {}; }
+  // Samples a read of a box reaches beyond it, per axis and side, in the data this volume is
+  // computed from (down to the stored or generated cube): 0 for stored data; an attribute chain
+  // says its total halo. A hint for caches that fetch a box's sources at once (a volume that does
+  // not know says 0: a cache then fetches too little, and the rest is read directly).
+  virtual Index3 source_halo() const { return {0, 0, 0}; }
 
 protected:
   // Called by read() after the box was checked.

@@ -48,8 +48,11 @@ struct ChainDescription {
 ChainDescription describe_chain(const Recipe& recipe, const PluginRegistry& plugins);
 
 struct ChainVolumes {
-  std::shared_ptr<const volume::Volume> input;  // the cube (a synth::SyntheticCube when synthetic)
-  std::shared_ptr<const volume::Volume> result; // the volume the extraction reads (lazy)
+  std::shared_ptr<const volume::Volume> input; // the cube (a synth::SyntheticCube when synthetic)
+  // The volume the extraction reads (lazy). When attributes are computed, each read of it fetches
+  // the input for the box plus the chain's total halo once, and the attributes share that fetch
+  // (src/shared_input.hpp): a synthetic input is generated once per read, not once per attribute.
+  std::shared_ptr<const volume::Volume> result;
 };
 
 // Opens the input and builds the attribute steps as lazy volumes: nothing is computed and nothing

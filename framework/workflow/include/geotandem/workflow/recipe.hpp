@@ -51,6 +51,7 @@ struct ExportSpec {
   std::string selection; // a selection written by a component step; empty: the last one
   std::string path;      // relative to the output directory
   bool per_component = false;
+  bool caps = true; // keep the caps of bodies cut by the cube's border
 };
 
 struct OutputSpec {

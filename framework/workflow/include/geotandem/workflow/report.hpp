@@ -22,7 +22,8 @@ struct ReportComponent {
   double elongation = 0.0;
   std::uint64_t triangles = 0;
   bool closed = false;
-  bool kept = false; // survives the component steps
+  bool kept = false;     // survives the component steps
+  std::string cut_faces; // faces of the cube that cut it ("i-,k+"; empty: none), closed by caps
 };
 
 // Triangles the 3-D view holds for all bodies together (about 2 MB of page); bodies above their

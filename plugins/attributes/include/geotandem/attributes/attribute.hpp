@@ -57,6 +57,7 @@ public:
   // The halo down the whole chain to the stored data: own halo plus the largest total halo of the
   // inputs (what one box costs in reads of the source cube).
   Index3 total_halo() const;
+  Index3 source_halo() const override { return total_halo(); }
   const std::vector<VolumePtr>& inputs() const { return inputs_; }
 
 protected:

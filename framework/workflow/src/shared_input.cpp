@@ -1,0 +1,61 @@
+#include "shared_input.hpp"
+
+namespace geotandem::workflow::detail {
+
+SharedInput::Fetched& SharedInput::mine() const {
+  std::lock_guard lock(mutex_);
+  return fetched_[std::this_thread::get_id()]; // map nodes stay put: the reference outlives the lock
+}
+
+void SharedInput::fetch(const volume::Box& box) const {
+  Fetched& f = mine();
+  f.box = volume::Box{};
+  f.values.resize(static_cast<std::size_t>(box.count()));
+  input_->read(box, f.values);
+  f.box = box;
+  std::lock_guard lock(mutex_);
+  counts_.fetched += box.count();
+}
+
+void SharedInput::release() const {
+  Fetched& f = mine();
+  f.box = volume::Box{};
+  f.values.clear();
+  f.values.shrink_to_fit();
+}
+
+SharedInput::Counts SharedInput::counts() const {
+  std::lock_guard lock(mutex_);
+  return counts_;
+}
+
+void SharedInput::read_box(const volume::Box& box, std::span<float> out) const {
+  const Fetched& f = mine();
+  if (!f.box.empty() && f.box.contains(box)) {
+    volume::copy_region(f.values.data(), f.box, out.data(), box, box);
+    std::lock_guard lock(mutex_);
+    counts_.served += box.count();
+    return;
+  }
+  input_->read(box, out);
+  std::lock_guard lock(mutex_);
+  counts_.direct += box.count();
+}
+
+PrefetchingResult::PrefetchingResult(std::shared_ptr<const volume::Volume> result,
+                                     std::shared_ptr<const SharedInput> input)
+    : result_(std::move(result)), input_(std::move(input)) {}
+
+void PrefetchingResult::read_box(const volume::Box& box, std::span<float> out) const {
+  const volume::Box wanted = box.grown(result_->source_halo()).intersection(geometry().bounds());
+  input_->fetch(wanted);
+  try {
+    result_->read(box, out);
+  } catch (...) {
+    input_->release();
+    throw;
+  }
+  input_->release();
+}
+
+} // namespace geotandem::workflow::detail

@@ -1,0 +1,83 @@
+#pragma once
+// The input of a fused attribute chain, fetched once per read of the chain's result.
+//
+// Why: the attributes of a chain read the input independently (chaos and envelope each ask for the
+// block plus their own halo), so a generated (synthetic) or decoded (file) input would be produced
+// once per attribute that reads it. SharedInput sits between the input and the attributes;
+// PrefetchingResult wraps the chain's result. A read of box B of the result first fetches
+// B grown by the chain's total halo (clipped to the cube) from the input, once, on the calling
+// thread; every read of the input the attributes make inside that box is then a copy. Reads that
+// fall outside it (a normalise step's percentile sample, an attribute that under-states its halo)
+// go to the input directly. Values never depend on it: the input is box-independent.
+//
+// Memory: per thread reading the result, one fetched box (the block plus the halo), released when
+// the read ends.
+//
+// Thread safety: as the input's; each thread has its own fetched box.
+
+#include <map>
+#include <memory>
+#include <mutex>
+#include <thread>
+#include <vector>
+
+#include "geotandem/volume/volume.hpp"
+
+namespace geotandem::workflow::detail {
+
+class SharedInput final : public volume::Volume {
+public:
+  explicit SharedInput(std::shared_ptr<const volume::Volume> input) : input_(std::move(input)) {}
+
+  const volume::Geometry& geometry() const override { return input_->geometry(); }
+  std::string format() const override { return input_->format(); }
+  std::string source() const override { return input_->source(); }
+  std::vector<volume::FormatDetail> format_details() const override { return input_->format_details(); }
+
+  // Fetches `box` (inside the cube) for the calling thread's next reads; release() drops it.
+  void fetch(const volume::Box& box) const;
+  void release() const;
+
+  struct Counts {
+    std::int64_t fetched = 0; // samples read from the input by fetch()
+    std::int64_t served = 0;  // samples handed out from fetched boxes
+    std::int64_t direct = 0;  // samples read from the input because no fetched box held them
+  };
+  Counts counts() const;
+
+protected:
+  void read_box(const volume::Box& box, std::span<float> out) const override;
+
+private:
+  struct Fetched {
+    volume::Box box{};
+    std::vector<float> values;
+  };
+  Fetched& mine() const;
+
+  std::shared_ptr<const volume::Volume> input_;
+  mutable std::mutex mutex_;
+  mutable std::map<std::thread::id, Fetched> fetched_;
+  mutable Counts counts_;
+};
+
+class PrefetchingResult final : public volume::Volume {
+public:
+  // `result` is computed from `input` (through the attributes); `halo` is result's source_halo().
+  PrefetchingResult(std::shared_ptr<const volume::Volume> result, std::shared_ptr<const SharedInput> input);
+
+  const volume::Geometry& geometry() const override { return result_->geometry(); }
+  std::string format() const override { return result_->format(); }
+  std::string source() const override { return result_->source(); }
+  volume::Index3 source_halo() const override { return result_->source_halo(); }
+  const SharedInput& input() const { return *input_; }
+
+protected:
+  void read_box(const volume::Box& box, std::span<float> out) const override;
+
+private:
+  std::shared_ptr<const volume::Volume> result_;
+  std::shared_ptr<const SharedInput> input_;
+};
+
+} // namespace geotandem::workflow::detail

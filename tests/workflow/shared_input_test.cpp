@@ -1,0 +1,143 @@
+// The fused chain's shared input (framework/workflow/src/shared_input.hpp): every attribute of the
+// catalogue read through open_chain, in the slabs an extraction asks for (leaf blocks of cells,
+// their sections a few at a time, blocks touching the cube's faces and each other), equals the
+// same chain built directly with the attribute library and read as one whole cube, bit for bit;
+// and the input is generated once per read of the result, not once per attribute reading it.
+
+#include <gtest/gtest.h>
+
+#include <cstring>
+
+#include "geotandem/attributes/catalog.hpp"
+#include "geotandem/builtin/register.hpp"
+#include "geotandem/synth/synthetic.hpp"
+#include "geotandem/workflow/chain.hpp"
+#include "shared_input.hpp"
+
+using namespace geotandem;
+using namespace geotandem::workflow;
+
+namespace {
+
+// chaos, envelope -> normalise, rms, semblance: every attribute, all feeding the extraction.
+std::string recipe_text(const std::string& normalise_method) {
+  return R"(version: 1
+input:
+  synthetic: {kind: seismic, shape: [44, 40, 52], seed: 5, snr: 3}
+steps:
+  - step: chaos
+    input: input
+    sigma_t_across: 2
+  - step: envelope
+    input: input
+    half_length: 8
+  - step: normalise
+    as: bright
+    input: envelope
+    method: )" +
+         normalise_method + R"(
+  - step: product
+    as: facies
+    inputs: [chaos, bright]
+  - step: rms
+    input: input
+    window: 5
+  - step: semblance
+    input: input
+  - step: product
+    as: coherent
+    inputs: [rms, semblance]
+  - step: product
+    as: result
+    inputs: [facies, coherent]
+  - step: extract
+    input: result
+    iso: 0.2
+output:
+  directory: out
+)";
+}
+
+std::shared_ptr<const volume::Volume> oracle(const std::string& normalise_method) {
+  synth::SeismicOptions o;
+  o.shape = {44, 40, 52};
+  o.seed = 5;
+  o.snr = 3;
+  std::shared_ptr<const volume::Volume> cube = synth::make_seismic(o);
+  using attributes::make_attribute;
+  auto chaos = make_attribute("chaos", {cube}, {{"sigma_t_across", 2.0}});
+  auto envelope = make_attribute("envelope", {cube}, {{"half_length", std::int64_t{8}}});
+  auto bright = make_attribute("normalise", {envelope}, {{"method", normalise_method}});
+  auto facies = make_attribute("product", {chaos, bright});
+  auto rms = make_attribute("rms", {cube}, {{"window", std::int64_t{5}}});
+  auto semblance = make_attribute("semblance", {cube});
+  auto coherent = make_attribute("product", {rms, semblance});
+  return make_attribute("product", {facies, coherent});
+}
+
+// The sample boxes an extraction reads: leaf blocks of `leaf` cells along i and j (whole along k),
+// each read in slabs of `sections` cross-sections along i, as tandem's SlabReader does.
+std::vector<volume::Box> slab_boxes(const volume::Index3& shape, std::int64_t leaf, std::int64_t sections) {
+  std::vector<volume::Box> boxes;
+  for (std::int64_t i0 = 0; i0 < shape[0] - 1; i0 += leaf)
+    for (std::int64_t j0 = 0; j0 < shape[1] - 1; j0 += leaf) {
+      const std::int64_t i1 = std::min(i0 + leaf, shape[0] - 1) + 1, j1 = std::min(j0 + leaf, shape[1] - 1) + 1;
+      for (std::int64_t s = i0; s < i1; s += sections)
+        boxes.push_back({{s, j0, 0}, {std::min(s + sections, i1), j1, shape[2]}});
+    }
+  return boxes;
+}
+
+class SharedInputs : public ::testing::TestWithParam<std::string> {
+protected:
+  void SetUp() override { builtin::register_builtins(registry); }
+  PluginRegistry registry;
+};
+
+} // namespace
+
+TEST_P(SharedInputs, SlabsOfTheFusedChainEqualTheWholeCubeBitForBit) {
+  const Recipe recipe = parse_recipe(recipe_text(GetParam()), "shared.yaml", registry);
+  const ChainVolumes chain = open_chain(describe_chain(recipe, registry), registry);
+  const auto want_volume = oracle(GetParam());
+  const volume::Index3 shape = want_volume->geometry().shape;
+  const std::vector<float> whole = want_volume->read(want_volume->geometry().bounds());
+  double magnitude = 0.0;
+  for (float v : whole)
+    magnitude += std::abs(v);
+  ASSERT_GT(magnitude, 0.0) << "a cube of zeros would prove nothing";
+  for (const auto& [leaf, sections] : {std::pair<std::int64_t, std::int64_t>{16, 5}, {13, 1}, {43, 44}}) {
+    for (const volume::Box& box : slab_boxes(shape, leaf, sections)) {
+      const std::vector<float> got = chain.result->read(box);
+      std::vector<float> cut(box.count());
+      volume::copy_region(whole.data(), want_volume->geometry().bounds(), cut.data(), box, box);
+      ASSERT_EQ(0, std::memcmp(got.data(), cut.data(), cut.size() * sizeof(float)))
+          << "normalise " << GetParam() << ", leaves of " << leaf << ", slab " << box.to_string();
+    }
+  }
+}
+
+TEST_P(SharedInputs, TheInputIsFetchedOncePerReadOfTheResult) {
+  const Recipe recipe = parse_recipe(recipe_text(GetParam()), "shared.yaml", registry);
+  const ChainVolumes chain = open_chain(describe_chain(recipe, registry), registry);
+  const auto* prefetching = dynamic_cast<const detail::PrefetchingResult*>(chain.result.get());
+  ASSERT_NE(prefetching, nullptr) << "the chain's result does not share its input";
+  const volume::Index3 halo = chain.result->source_halo();
+  EXPECT_GT(halo[0], 0);
+  EXPECT_GT(halo[2], 8); // envelope's half length at least
+  if (GetParam() == "percentile") chain.result->read(volume::Box{{0, 0, 0}, {1, 1, 1}}); // the scale's sample
+  const auto before = prefetching->input().counts();
+  std::int64_t grown = 0, read = 0;
+  for (const volume::Box& box : slab_boxes(chain.result->geometry().shape, 16, 6)) {
+    chain.result->read(box);
+    grown += box.grown(halo).intersection(chain.result->geometry().bounds()).count();
+    read += box.count();
+  }
+  const auto after = prefetching->input().counts();
+  // One fetch of box + halo per read; every attribute (four read the input) served from it.
+  EXPECT_EQ(after.fetched - before.fetched, grown);
+  EXPECT_EQ(after.direct, before.direct) << "an attribute read the input outside the fetched box";
+  EXPECT_GT(after.served - before.served, 3 * read);
+}
+
+INSTANTIATE_TEST_SUITE_P(Normalise, SharedInputs, ::testing::Values("percentile", "fixed"));

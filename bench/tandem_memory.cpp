@@ -4,7 +4,9 @@
 // sweep). Each route runs in a forked child so that peak RSS figures (VmHWM) do not mix.
 //
 //   bench_tandem_memory [N=512] [--svg PATH=tandem_memory.svg] [--e0 X=0.5] [--axis A=0]
-//                       [--modes brute,tandem,tandem-dump] [--seed S=1]
+//                       [--modes brute,tandem,tandem-dump] [--seed S=1] [--no-guarantee]
+//
+// --no-guarantee: without the E0 guarantee (SimplifyOptions::guarantee_distance), for its cost.
 //
 // The cube is the procedural analytic synthetic cube of N^3 samples (make_analytic: thousands of
 // planted geobodies and tiny bubbles, docs/synthetic.md), computed cross-section by cross-section
@@ -288,12 +290,16 @@ int main(int argc, char** argv) {
       options.axis = std::atoi(argv[++a]);
     } else if (arg == "--modes" && has_value) {
       modes = split(argv[++a]);
+    } else if (arg == "--no-guarantee") {
+      options.simplify.guarantee_distance = false; // the seed's algorithm: eps_0 <= E0 only
     } else if (arg == "--seed" && has_value) {
       cube.seed = std::strtoull(argv[++a], nullptr, 10);
     } else if (!arg.empty() && arg[0] != '-') {
       n = std::atoll(arg.c_str());
     } else {
-      std::fprintf(stderr, "usage: %s [N=512] [--svg PATH] [--e0 X] [--axis A] [--modes LIST] [--seed S]\n", argv[0]);
+      std::fprintf(stderr,
+                   "usage: %s [N=512] [--svg PATH] [--e0 X] [--axis A] [--modes LIST] [--seed S] [--no-guarantee]\n",
+                   argv[0]);
       return 2;
     }
   }

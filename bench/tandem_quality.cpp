@@ -7,6 +7,7 @@
 // extended time lag; without it the bench says so.
 //
 //   bench_tandem_quality [N=128] [--svg PATH=tandem_quality.svg] [--e0 X=0.5] [--seed S=1]
+//                        [--no-guarantee]   (without the E0 guarantee, for comparison)
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
@@ -168,6 +169,7 @@ int main(int argc, char** argv) {
   std::int64_t n = 128;
   std::string svg_path = "tandem_quality.svg";
   double e0 = 0.5;
+  bool guarantee = true;
   synth::AnalyticOptions cube_options;
   for (int a = 1; a < argc; ++a) {
     const std::string arg = argv[a];
@@ -176,12 +178,14 @@ int main(int argc, char** argv) {
       svg_path = argv[++a];
     } else if (arg == "--e0" && has_value) {
       e0 = std::atof(argv[++a]);
+    } else if (arg == "--no-guarantee") {
+      guarantee = false; // the seed's algorithm: eps_0 <= E0 only
     } else if (arg == "--seed" && has_value) {
       cube_options.seed = std::strtoull(argv[++a], nullptr, 10);
     } else if (!arg.empty() && arg[0] != '-') {
       n = std::atoll(arg.c_str());
     } else {
-      std::fprintf(stderr, "usage: %s [N=128] [--svg PATH] [--e0 X] [--seed S]\n", argv[0]);
+      std::fprintf(stderr, "usage: %s [N=128] [--svg PATH] [--e0 X] [--seed S] [--no-guarantee]\n", argv[0]);
       return 2;
     }
   }
@@ -215,6 +219,7 @@ int main(int argc, char** argv) {
       options.iso = iso;
       options.simplify.max_error = e0;
       options.simplify.isotropy = alpha;
+      options.simplify.guarantee_distance = guarantee;
       {
         Collect sink(bubble_threshold);
         tandem::extract_block(*cube, cells, options, &sink);

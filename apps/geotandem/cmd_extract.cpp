@@ -57,7 +57,8 @@ void add_extract_command(CLI::App& app, Context& context, Runner& run) {
   cmd->add_option("--iso", a->iso, "isovalue: samples >= ISO are inside a body")->required()->type_name("NUMBER");
   cmd->add_option("--out", a->out, "the component store directory (created; resumed if it holds this cube)")
       ->required();
-  cmd->add_option("--max-error", a->max_error, "E0: largest shape error a collapse may make, in voxels")
+  cmd->add_option("--max-error", a->max_error,
+                  "E0, in voxels: the simplified surface stays within E0 of the full-resolution one (guaranteed)")
       ->capture_default_str()
       ->type_name("NUMBER");
   cmd->add_option("--isotropy", a->isotropy, "alpha in [0, 1]: weight of triangle shape against fidelity")

@@ -2,6 +2,7 @@
 set(TANDEM_SIMPLIFY_SOURCES
   src/attali_cost.cpp
   src/collapse_ops.cpp
+  src/collapse_distance.cpp
   src/component_table.cpp
   src/region.cpp
   src/surface_engine.cpp

@@ -146,11 +146,14 @@ double anisotropy_near_face(const mesh::SurfaceMesh& s, double band) {
 
 TEST(TandemConstraints, ExtendedTimeLagGivesBetterTrianglesAtBlockFaces) {
   // The seed's figure 9: freezing only the face vertices lets long, thin triangles reach the face.
+  // The seed's algorithm (no E0 guarantee): the guarantee keeps short triangles near the face
+  // either way, which hides the effect (measured: 0.60 with the lag against 0.54 frozen).
   double with_lag = 0.0, frozen = 0.0;
   const fixtures::Input input = ball();
   for (bool extended : {true, false}) {
     SimplifyOptions options;
     options.extended_time_lag = extended;
+    options.guarantee_distance = false;
     BlockRun run;
     run_block(run, input, kBlock, 2, options);
     const double a = anisotropy_near_face(run.surface->snapshot(), 3.0);

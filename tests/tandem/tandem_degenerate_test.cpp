@@ -29,8 +29,8 @@ namespace {
 using Collect = fixtures::CollectingSink;
 using Index3 = volume::Index3;
 
-// The distance bound of docs/algorithm.md at the default E0 (0.5 voxel): max <= 3 E0.
-constexpr double kMaxDistance = 3.0 * 0.5;
+// The E0 guarantee of docs/algorithm.md at the default E0 (0.5 voxel): max <= E0.
+constexpr double kMaxDistance = 0.5;
 
 std::size_t offset(const Index3& shape, std::int64_t i, std::int64_t j, std::int64_t k) {
   return static_cast<std::size_t>((i * shape[1] + j) * shape[2] + k);

@@ -147,7 +147,7 @@ TEST(TandemSerialize, DamagedRecordsAreRefused) {
 
   std::vector<std::byte> version = good;
   set_u32(version, 8, kSurfaceWireVersion + 1);
-  expect_refused(version, "format version 2, this build reads 1");
+  expect_refused(version, "format version 3, this build reads 2");
 
   std::vector<std::byte> magic = good;
   magic[0] = std::byte{'X'};
@@ -155,8 +155,8 @@ TEST(TandemSerialize, DamagedRecordsAreRefused) {
 
   // A consistent checksum over a payload that lies: the decoder still refuses it. The count of
   // components follows the geometry (121 bytes), axis (4), options (25), region (cube 48, count 8,
-  // one block 48), front, last rank (16), origin (24) and counters (104).
-  const std::size_t components_at = kSurfaceWireHeaderSize + 121 + 4 + 25 + 48 + 8 + 48 + 16 + 24 + 104;
+  // one block 48), front, last rank (16), origin (24) and counters (112).
+  const std::size_t components_at = kSurfaceWireHeaderSize + 121 + 4 + 25 + 48 + 8 + 48 + 16 + 24 + 112;
   std::vector<std::byte> lying = good;
   set_u64(lying, components_at, std::uint64_t{1} << 40);
   fix_checksum(lying);

@@ -18,12 +18,9 @@ namespace {
 
 using fixtures::CollectingSink;
 
-// The documented slack of the distance bound (docs/algorithm.md): E0 bounds the root of the
-// area-weighted mean squared distance from c to the planes of the original triangles merged into
-// it, not the largest distance between the surfaces. On curved patches c sits above the surface
-// (the planes fan out), so measured maxima reach about 2.5 E0 where the radius of curvature is 4
-// to 10 voxels, and RMS distances about 0.6 E0.
-constexpr double kDistanceSlack = 2.0; // times E0: max distance <= 3 E0
+// The E0 guarantee (docs/algorithm.md): the largest distance between the simplified and the
+// full-resolution surfaces is at most E0 (no slack); RMS distances about 0.6 E0 at most.
+constexpr double kDistanceSlack = 0.0; // times E0: max distance <= E0
 constexpr double kRmsFactor = 0.6;     // rms distance <= 0.6 E0
 
 struct BodyRun {
@@ -58,7 +55,8 @@ void expect_faithful(const mesh::SurfaceMesh& simplified, const mesh::SurfaceMes
   EXPECT_EQ(topo.components, full_topo.components);
   const double v = mesh::enclosed_volume(simplified), v_full = mesh::enclosed_volume(full);
   EXPECT_NEAR(v / v_full, 1.0, 0.01) << "volume " << v << " vs full resolution " << v_full;
-  const mesh::DistanceStats d = mesh::hausdorff_distance(simplified, full);
+  const mesh::DistanceStats d = mesh::hausdorff_distance(simplified, full, 8);
+  EXPECT_LE(d.max, (1.0 + kDistanceSlack) * e0); // the E0 guarantee
   EXPECT_LE(d.rms, kRmsFactor * e0);
   EXPECT_LT(static_cast<double>(simplified.triangle_count()), max_ratio * static_cast<double>(full.triangle_count()))
       << simplified.triangle_count() << " of " << full.triangle_count();
@@ -131,13 +129,16 @@ TEST(TandemSurface, ExtremeIsotropyValuesStillGiveValidSurfaces) {
 TEST(TandemSurface, IsotropyImprovesTriangleShape) {
   // The isotropy term exists to avoid long skinny triangles (the seed's figure 12: anisotropy
   // falls as alpha grows towards 0.9). Measured on a body large enough for the mean over
-  // triangles to be stable; the effect at 0.4 is small, at 0.7 clear.
+  // triangles to be stable; the effect at 0.4 is small, at 0.7 clear. The seed's algorithm (no E0
+  // guarantee): under the guarantee the isotropic positions are refused more often and alpha has
+  // little room at E0 = 0.2 (measured: 0.347 at alpha 0, 0.360 at 0.7).
   double aniso[3];
   int i = 0;
   for (double alpha : {0.0, 0.4, 0.7}) {
     BodyRun run;
     SimplifyOptions options;
     options.isotropy = alpha;
+    options.guarantee_distance = false;
     options.max_error = 0.2;
     run_body(run, fixtures::Input(fixtures::ellipsoid({22.1, 17.4, 14.8}, {19.0, 14.0, 11.0}), {45, 36, 31}), 0,
              options);

@@ -211,6 +211,9 @@ void WorkingSurface::Engine::simplify(const CancelToken* cancel) {
     }
     try_collapse(e, key);
   }
+  // Storage freed by the collapses is reclaimed here too, not only after a dumping: the tandem
+  // without dumping would otherwise hold as much as brute force.
+  maybe_collect_garbage();
 }
 
 void WorkingSurface::Engine::try_collapse(EH e, double cost) {
@@ -220,11 +223,18 @@ void WorkingSurface::Engine::try_collapse(EH e, double cost) {
     ++counters_.rejected_link;
     return;
   }
-  if (detail::collapse_keeps_shape(*mesh_, h, r.target, points_)) {
-    collapse(h, r.target, cost);
-    return;
+  if (!detail::collapse_keeps_shape(*mesh_, h, r.target, points_)) {
+    ++counters_.rejected_flip;
+  } else {
+    const double error = collapse_error(h, r.target);
+    if (error <= options_.max_error) {
+      collapse(h, r.target, cost, error);
+      return;
+    }
+    // Retried at the simple positions as after a flip. (Without the retry: 4 % more triangles and
+    // a quarter less time on noisy surfaces, but worse seams between blocks.)
+    ++counters_.rejected_distance;
   }
-  ++counters_.rejected_flip;
   if (r.retried) return;
   // One more chance at the simple positions (volume-preserving when asked) that keep every
   // triangle's shape.
@@ -243,6 +253,7 @@ void WorkingSurface::Engine::try_collapse(EH e, double cost) {
     const Candidate& o = options[k];
     if (!(o.shape_error <= options_.max_error)) continue;
     if (!detail::collapse_keeps_shape(*mesh_, h, o.position, points_)) continue;
+    if (!(collapse_error(h, o.position) <= options_.max_error)) continue;
     ++counters_.retried;
     r.target = o.position;
     r.retried = true;
@@ -251,7 +262,12 @@ void WorkingSurface::Engine::try_collapse(EH e, double cost) {
   }
 }
 
-void WorkingSurface::Engine::report_collapse(HH h, const Vec3& target, double cost) {
+double WorkingSurface::Engine::collapse_error(HH h, const Vec3& target) {
+  if (!options_.guarantee_distance) return 0.0;
+  return distance_.tolerance(*mesh_, h, target, points_, vrec_, options_.max_error);
+}
+
+void WorkingSurface::Engine::report_collapse(HH h, const Vec3& target, double cost, double error) {
   const EdgeGeometry g = geometry_of(h);
   CollapseEvent ev;
   ev.a = g.a;
@@ -263,6 +279,7 @@ void WorkingSurface::Engine::report_collapse(HH h, const Vec3& target, double co
   ev.front = front_;
   ev.open_face_distance = region_.distance_to_open_faces(g.midpoint());
   ev.cost = cost;
+  ev.distance_bound = error;
   CostInputs in;
   if (prepare_inputs(h, in)) ev.shape_error = cost_.at(cost_.prepare(in), target).shape_error;
   // The invariants of the time lag and the extended time lag, checked on every collapse in debug.
@@ -271,14 +288,15 @@ void WorkingSurface::Engine::report_collapse(HH h, const Vec3& target, double co
   assert(!options_.extended_time_lag || ev.open_face_distance > ev.rad);
   assert(options_.extended_time_lag || (!region_.on_open_face(g.a) && !region_.on_open_face(g.b)));
   assert(ev.shape_error <= options_.max_error);
+  assert(ev.distance_bound <= options_.max_error);
   if (observer_) observer_->on_collapse(ev);
 }
 
-void WorkingSurface::Engine::collapse(HH h, const Vec3& target, double cost) {
+void WorkingSurface::Engine::collapse(HH h, const Vec3& target, double cost, double error) {
 #ifdef NDEBUG
-  if (observer_) report_collapse(h, target, cost);
+  if (observer_) report_collapse(h, target, cost, error);
 #else
-  report_collapse(h, target, cost);
+  report_collapse(h, target, cost, error);
 #endif
   const VH a = mesh_->from_vertex_handle(h), b = mesh_->to_vertex_handle(h);
   const EdgeGeometry g = geometry_of(h);
@@ -329,6 +347,7 @@ void WorkingSurface::Engine::collapse(HH h, const Vec3& target, double cost) {
   rb.weight += ra.weight;
   rb.height = g.height();
   rb.rad = g.rad();
+  rb.tolerance = error;
   rb.lattice_id = detail::kNoLatticeId;
   rb.border |= ra.border;
   ra.alive = false;

@@ -16,6 +16,7 @@
 
 #include "attali_cost.hpp"
 #include "bucket_queue.hpp"
+#include "collapse_distance.hpp"
 #include "collapse_ops.hpp"
 #include "component_table.hpp"
 #include "constraints.hpp"
@@ -105,8 +106,10 @@ private:
   void volume_plane(HH h, detail::CostInputs& in) const;
   bool evaluate(HH h, detail::Candidate& out);
   void try_collapse(EH e, double cost);
-  void collapse(HH h, const detail::Vec3& target, double cost);
-  void report_collapse(HH h, const detail::Vec3& target, double cost);
+  // The distance bound the triangles around c would get (the E0 guarantee, collapse_distance.hpp).
+  double collapse_error(HH h, const detail::Vec3& target);
+  void collapse(HH h, const detail::Vec3& target, double cost, double error);
+  void report_collapse(HH h, const detail::Vec3& target, double cost, double error);
 
   // Puts the edge ab back in its queue with `record`'s state, key and candidate (surface_state.cpp).
   void restore_edge(VH a, VH b, const detail::EdgeRecord& record, std::size_t index);
@@ -149,6 +152,7 @@ private:
   detail::IdMap previous_ids_; // ids of the last layer: the next one may repeat them
   detail::IdMap current_ids_;
   detail::VertexMarks marks_;
+  detail::CollapseDistance distance_;
   std::vector<std::int32_t> local_index_;            // scratch for dumping
   std::vector<std::int32_t> isolated_;               // vertices of the last layer that no triangle uses yet
   std::vector<std::array<double, 3>> new_positions_; // scratch: the vertices a layer creates

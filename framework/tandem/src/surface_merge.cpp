@@ -19,7 +19,8 @@ namespace {
 
 bool same_options(const SimplifyOptions& a, const SimplifyOptions& b) {
   return a.max_error == b.max_error && a.isotropy == b.isotropy && a.time_lag == b.time_lag &&
-         a.extended_time_lag == b.extended_time_lag && a.preserve_volume == b.preserve_volume;
+         a.extended_time_lag == b.extended_time_lag && a.preserve_volume == b.preserve_volume &&
+         a.guarantee_distance == b.guarantee_distance;
 }
 
 std::string where(const Region& a, const Region& b) {

@@ -62,15 +62,15 @@ volume::Box get_box(Reader& r) {
 
 void put_counters(Writer& w, const SimplifyCounters& c) {
   for (std::uint64_t v : {c.input_triangles, c.collapses, c.evaluations, c.rejected_shape, c.rejected_link,
-                          c.rejected_flip, c.rejected_border, c.retried, c.distrusted, c.blocked_by_faces,
-                          c.components_dumped, c.triangles_dumped, c.garbage_collections})
+                          c.rejected_flip, c.rejected_border, c.rejected_distance, c.retried, c.distrusted,
+                          c.blocked_by_faces, c.components_dumped, c.triangles_dumped, c.garbage_collections})
     w.put(v);
 }
 SimplifyCounters get_counters(Reader& r) {
   SimplifyCounters c;
   for (std::uint64_t* v : {&c.input_triangles, &c.collapses, &c.evaluations, &c.rejected_shape, &c.rejected_link,
-                           &c.rejected_flip, &c.rejected_border, &c.retried, &c.distrusted, &c.blocked_by_faces,
-                           &c.components_dumped, &c.triangles_dumped, &c.garbage_collections})
+                           &c.rejected_flip, &c.rejected_border, &c.rejected_distance, &c.retried, &c.distrusted,
+                           &c.blocked_by_faces, &c.components_dumped, &c.triangles_dumped, &c.garbage_collections})
     *v = r.get<std::uint64_t>();
   return c;
 }
@@ -89,7 +89,7 @@ detail::Isotropy get_isotropy(Reader& r) {
 }
 
 // Bytes per item, for the count checks.
-constexpr std::size_t kVertexBytes = 31 * 8 + 8 + 4 + 1 + 4;
+constexpr std::size_t kVertexBytes = 32 * 8 + 8 + 4 + 1 + 4;
 constexpr std::size_t kFaceBytes = 3 * 4 + 9 * 8;
 constexpr std::size_t kEdgeBytes = 4 + 4 + 1 + 1 + 4 + 8 + 3 * 8;
 
@@ -108,7 +108,7 @@ void encode(Writer& w, const detail::SurfaceState& s) {
   w.put(s.options.max_error);
   w.put(s.options.isotropy);
   w.put(static_cast<std::uint8_t>((s.options.time_lag ? 1u : 0u) | (s.options.extended_time_lag ? 2u : 0u) |
-                                  (s.options.preserve_volume ? 4u : 0u)));
+                                  (s.options.preserve_volume ? 4u : 0u) | (s.options.guarantee_distance ? 8u : 0u)));
   w.put(static_cast<std::uint64_t>(s.options.compaction_min_dead));
   // Region.
   put_box(w, s.region.cube());
@@ -139,6 +139,7 @@ void encode(Writer& w, const detail::SurfaceState& s) {
     w.put(v.normal_sum);
     w.put(v.height);
     w.put(v.rad);
+    w.put(v.tolerance);
     w.put(v.lattice_id);
     w.put(static_cast<std::int32_t>(v.component));
     w.put(v.border);
@@ -196,6 +197,7 @@ detail::SurfaceState decode(Reader& r) {
   s.options.time_lag = (flags & 1u) != 0;
   s.options.extended_time_lag = (flags & 2u) != 0;
   s.options.preserve_volume = (flags & 4u) != 0;
+  s.options.guarantee_distance = (flags & 8u) != 0;
   s.options.compaction_min_dead = static_cast<std::size_t>(r.get<std::uint64_t>());
 
   const volume::Box cube = get_box(r);
@@ -233,6 +235,10 @@ detail::SurfaceState decode(Reader& r) {
     v.normal_sum = r.vec();
     v.height = r.get<double>();
     v.rad = r.get<double>();
+    v.tolerance = r.get<double>();
+    if (!(v.tolerance >= 0.0 && v.tolerance <= s.options.max_error))
+      throw DataError("working-surface record: vertex " + std::to_string(i) + " has distance bound " +
+                      std::to_string(v.tolerance) + ", outside [0, E0]");
     v.lattice_id = r.get<std::uint64_t>();
     v.component = r.get<std::int32_t>();
     v.border = r.get<std::uint8_t>();

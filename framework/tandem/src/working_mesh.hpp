@@ -47,11 +47,18 @@ struct VertexRecord {
   Vec3 cross_sum{0.0, 0.0, 0.0};
   Vec3 link_sum{0.0, 0.0, 0.0};
   Vec3 normal_sum{0.0, 0.0, 0.0};
-  double height = 0.0;                     // time lag: rank at birth, then means
-  double rad = 1.0;                        // time lag radius
+  double height = 0.0; // time lag: rank at birth, then means
+  double rad = 1.0;    // time lag radius
+  // The E0 guarantee (collapse_distance.hpp): the distance bound at v, interpolated linearly over
+  // the triangles. 0 for an original marching-cubes vertex.
+  double tolerance = 0.0;
   std::uint64_t lattice_id = kNoLatticeId; // while the vertex is an original MC vertex
   std::int32_t component = -1;             // any member of its component's union-find class
-  std::uint8_t border = 0;                 // bit 2 * axis + side: the vertex lies on that face of the cube
+  // Bit 2 * axis + side: the vertex lies on that face of the cube. This is the collapse loop's
+  // constraint hook (Engine::prepare_inputs): c keeps the coordinate of every axis with a bit set,
+  // so one bit holds a vertex on a plane, two on a line, three in place; an edge whose ends carry
+  // both sides of one axis never collapses. Cap or other constrained vertices set these bits.
+  std::uint8_t border = 0;
   // Bumped whenever anything a cost at an edge of v depends on changes: v itself, or a triangle
   // around it (so for c and all its neighbours at each collapse).
   std::uint32_t version = 0;

@@ -52,7 +52,8 @@ std::vector<ParamSpec> make_extract_params() {
   return {
       detail::param_spec("iso", ParamType::real, std::nullopt, "isovalue: samples >= iso are inside a body"),
       detail::param_spec("max_error", ParamType::real, number_text(d.max_error),
-                         "E0, the largest shape error a collapse may make, in voxels", 1e-6, 100.0),
+                         "E0, in voxels: the simplified surface stays within E0 of the full-resolution one", 1e-6,
+                         100.0),
       detail::param_spec("isotropy", ParamType::real, number_text(d.isotropy),
                          "alpha, weight of triangle shape against surface fidelity", 0.0, 1.0),
       detail::param_spec("axis", ParamType::choice, std::string(1, "ijk"[d.axis]),

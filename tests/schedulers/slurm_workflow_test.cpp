@@ -45,7 +45,14 @@ TEST_F(SlurmRun, TwoWorkerJobsGiveTheComponentsOfTheInProcessRun) {
 
 TEST_F(SlurmRun, AScancelledWorkerJobIsReplacedAndTheRunCompletes) {
   const std::string out = dir.file("scancel"), log = dir.file("scancel.log");
-  const pid_t manager = spawn_geotandem(cluster_args(out, "slurm", 2), log);
+  // A larger cube than the reference's default, so that the run outlasts the cancel on a busy
+  // machine (at 96x96x64 it sometimes finished first under load); the reference is made at the same size.
+  auto args = cluster_args(out, "slurm", 2);
+  args.insert(args.end(), {"--set", "input.synthetic.shape=[112,112,80]"});
+  auto local = cluster_args(dir.file("local-large"), "local", 1);
+  local.insert(local.end(), {"--set", "input.synthetic.shape=[112,112,80]"});
+  ASSERT_EQ(run_geotandem("-q" + shell_args(local)).exit_code, 0);
+  const pid_t manager = spawn_geotandem(args, log);
   ASSERT_TRUE(wait_for_text(log, "joined; 1 connected", manager, 300)) << read_text(log);
   const std::string job = job_of_first_worker(read_text(log));
   ASSERT_FALSE(job.empty()) << read_text(log);
@@ -57,7 +64,7 @@ TEST_F(SlurmRun, AScancelledWorkerJobIsReplacedAndTheRunCompletes) {
       text.find("silent") == std::string::npos)
     GTEST_SKIP() << "the run finished before the job was cancelled (a very fast machine):\n" << text;
   EXPECT_GE(submitted_jobs(text).size(), 3u) << "a replacement job should have been submitted:\n" << text;
-  expect_same_components(reference + "/store", out + "/store");
+  expect_same_components(dir.file("local-large") + "/store", out + "/store");
 }
 
 // The state squeue reports for a job ("RUNNING", "CANCELLED", ...).

@@ -4,8 +4,10 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstdlib>
 #include <fstream>
+#include <thread>
 
 #include "e2e_support.hpp"
 
@@ -52,4 +54,20 @@ TEST(WorkflowExecution, CustomAttributeRecipeRunsWithTheExamplePlugin) {
   EXPECT_GT(store.size(), 0u);
   EXPECT_NE(store.runs().front().parameters.find("avg_abs_amplitude"), std::string::npos);
   EXPECT_TRUE(fs::exists(out / "bodies.ply"));
+}
+
+// The quickstart says no `workers`: a cube of several blocks gets one local worker per core (at
+// most one per block), and the report states the workers it really used, not the recipe's default.
+TEST(WorkflowExecution, ReportStatesTheWorkersTheDefaultGave) {
+  ScratchDir dir;
+  fs::path out = dir.path() / "out";
+  auto run = run_workflow(workflow_recipe("quickstart.yaml"), out,
+                          {"input.synthetic.shape=[64, 64, 48]", "steps.extract.block_size=16"});
+  ASSERT_EQ(run.command.exit_code, 0) << run.command.err;
+  std::ifstream in(out / "report.html");
+  std::string report((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const unsigned cores = std::max(1u, std::thread::hardware_concurrency());
+  const std::string expected = cores >= 2 ? std::to_string(std::min(cores, 48u)) + " local worker processes"
+                                          : std::string("local, in this process");
+  EXPECT_NE(report.find(expected), std::string::npos) << "expected '" << expected << "'";
 }

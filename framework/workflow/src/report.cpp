@@ -81,11 +81,11 @@ std::string describe_input(const nlohmann::json& recipe) {
   return s.str();
 }
 
-std::string describe_execution(const nlohmann::json& recipe) {
+std::string describe_execution(const nlohmann::json& recipe, long long used) {
   if (!recipe.is_object() || !recipe.contains("execution")) return "";
   const auto& ex = recipe["execution"];
   std::string scheduler = ex.value("scheduler", "local");
-  int workers = ex.value("workers", 1);
+  long long workers = used >= 0 ? used : ex.value("workers", 1);
   if (scheduler == "local" && workers <= 1) return "local, in this process";
   if (scheduler == "local") return std::to_string(workers) + " local worker processes";
   return std::to_string(workers) + " worker(s) as <b>" + escape(scheduler) + "</b> jobs";
@@ -121,7 +121,7 @@ std::string render_report(const ReportData& d) {
   if (d.bubble_threshold > 0)
     h << "<dt>bubble threshold</dt><dd>" << sci(d.bubble_threshold) << " " << escape(unit)
       << " (components below it were removed)</dd>";
-  if (std::string execution = describe_execution(d.recipe); !execution.empty())
+  if (std::string execution = describe_execution(d.recipe, d.extract_workers); !execution.empty())
     h << "<dt>execution</dt><dd>" << execution << "</dd>";
   h << "</dl>\n";
 

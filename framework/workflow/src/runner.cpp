@@ -170,7 +170,9 @@ private:
           ex.workers_given || cluster || !step.params.count("block_size")
               ? static_cast<std::size_t>(ex.workers)
               : default_worker_count(volumes_.result->geometry(), step.params.at("block_size").integer);
-      if ((cluster || workers >= 2) && !settings_.worker_command.empty()) {
+      const bool with_workers = (cluster || workers >= 2) && !settings_.worker_command.empty();
+      report_.extract_workers = with_workers ? static_cast<long long>(workers) : 0;
+      if (with_workers) {
         description["workers"] = workers; // the extract step hands the chain to that many workers
         description["worker_command"] = settings_.worker_command;
         description["scheduler"] = ex.scheduler;

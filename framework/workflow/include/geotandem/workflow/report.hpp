@@ -65,7 +65,10 @@ struct ReportData {
   std::string title;
   std::string recipe_path;
   nlohmann::json recipe; // canonical recipe
-  std::string started;   // ISO 8601
+  // The workers the extraction of this run used (0: in this process); -1 when this run did not
+  // extract (a rerun after it): the report then describes the recipe's execution section.
+  long long extract_workers = -1;
+  std::string started; // ISO 8601
   double total_seconds = 0.0;
   std::int64_t peak_rss_kb = 0;
   std::string volume_unit = "m^3";

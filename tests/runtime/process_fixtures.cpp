@@ -20,9 +20,7 @@ extern char** environ;
 
 namespace geotandem::testing {
 
-pid_t spawn_geotandem(const std::vector<std::string>& args, const std::string& log_path) {
-  std::vector<std::string> argv{GEOTANDEM_BINARY};
-  argv.insert(argv.end(), args.begin(), args.end());
+pid_t spawn_logged(std::vector<std::string> argv, const std::string& log_path) {
   std::vector<char*> raw;
   for (auto& a : argv)
     raw.push_back(a.data());
@@ -32,10 +30,16 @@ pid_t spawn_geotandem(const std::vector<std::string>& args, const std::string& l
   posix_spawn_file_actions_addopen(&actions, 1, log_path.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
   posix_spawn_file_actions_adddup2(&actions, 1, 2);
   pid_t pid = 0;
-  const int rc = posix_spawn(&pid, raw[0], &actions, nullptr, raw.data(), environ);
+  const int rc = posix_spawnp(&pid, raw[0], &actions, nullptr, raw.data(), environ);
   posix_spawn_file_actions_destroy(&actions);
   if (rc != 0) throw std::runtime_error("cannot start " + argv[0]);
   return pid;
+}
+
+pid_t spawn_geotandem(const std::vector<std::string>& args, const std::string& log_path) {
+  std::vector<std::string> argv{GEOTANDEM_BINARY};
+  argv.insert(argv.end(), args.begin(), args.end());
+  return spawn_logged(std::move(argv), log_path);
 }
 
 int wait_exit(pid_t pid, double timeout_s) {

@@ -10,7 +10,10 @@
 
 namespace geotandem::testing {
 
-// `geotandem ARGS...` started with posix_spawn, stdout and stderr to `log_path`.
+// Starts `argv` (argv[0] found on PATH unless it holds a slash) in the background with
+// posix_spawn, its stdout and stderr to `log_path`. Throws when it cannot be started.
+pid_t spawn_logged(std::vector<std::string> argv, const std::string& log_path);
+// `geotandem ARGS...` through spawn_logged.
 pid_t spawn_geotandem(const std::vector<std::string>& args, const std::string& log_path);
 // Waits for the process; its exit code, 128 + signal when killed, -1 after `timeout_s` (then it is
 // SIGKILLed).

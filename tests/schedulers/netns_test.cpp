@@ -3,8 +3,6 @@
 // the LSF stand-ins submitted into the other namespace, and the run gives the components of the
 // in-process run. A worker with a wrong key, and one without CURVE, are refused and logged.
 // Needs root and `ip netns`; skips with a message when namespaces cannot be made.
-#include <fcntl.h>
-#include <spawn.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
@@ -12,8 +10,6 @@
 #include <zmq.h>
 
 #include "cluster_run.hpp"
-
-extern char** environ;
 
 namespace geotandem::testing {
 namespace {
@@ -28,19 +24,7 @@ int sh(const std::string& command) {
 // `ip netns exec NS ARGV...` in the background, stdout and stderr to `log`.
 pid_t spawn_in(const std::string& ns, std::vector<std::string> argv, const std::string& log) {
   argv.insert(argv.begin(), {"ip", "netns", "exec", ns});
-  std::vector<char*> raw;
-  for (auto& a : argv)
-    raw.push_back(a.data());
-  raw.push_back(nullptr);
-  posix_spawn_file_actions_t actions;
-  posix_spawn_file_actions_init(&actions);
-  posix_spawn_file_actions_addopen(&actions, 1, log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-  posix_spawn_file_actions_adddup2(&actions, 1, 2);
-  pid_t pid = 0;
-  const int rc = posix_spawnp(&pid, "ip", &actions, nullptr, raw.data(), environ);
-  posix_spawn_file_actions_destroy(&actions);
-  if (rc != 0) throw std::runtime_error("cannot start ip netns exec");
-  return pid;
+  return spawn_logged(std::move(argv), log);
 }
 
 struct TwoHosts : ::testing::Test {

@@ -37,7 +37,8 @@ std::vector<Case> cases() {
   return {{"i-", {6.0, 36.0, 28.0}, 0x01},       {"i+", {73.0, 36.0, 28.0}, 0x02},
           {"j-", {40.0, 4.0, 28.0}, 0x04},       {"j+", {40.0, 67.0, 28.0}, 0x08},
           {"k-", {40.0, 36.0, 3.0}, 0x10},       {"k+", {40.0, 36.0, 52.5}, 0x20},
-          {"edge i-j-", {6.0, 4.0, 28.0}, 0x05}, {"corner i+j-k+", {70.0, 5.0, 50.0}, 0x26}};
+          {"edge i-j-", {6.0, 4.0, 28.0}, 0x05}, {"corner i+j-k+", {70.0, 5.0, 50.0}, 0x26},
+          {"deep corner i+j-k+", {73.0, 4.0, 52.5}, 0x26}};
 }
 
 // An ellipsoid of semi-axes 20, 10 and 8 voxels, its long axis turned 35 degrees from i towards j:

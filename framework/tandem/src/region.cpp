@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <tuple>
 #include <utility>
 
 #include "geotandem/core/error.hpp"
@@ -40,14 +41,18 @@ void other_axes(int axis, int& u, int& v) {
 
 } // namespace
 
-double OpenFace::distance(const std::array<double, 3>& p) const {
+double OpenFace::distance_squared(const std::array<double, 3>& p) const {
   int u = 0, v = 0;
   other_axes(axis, u, v);
   const double dn = p[static_cast<std::size_t>(axis)] - plane;
   const double pu = p[static_cast<std::size_t>(u)], pv = p[static_cast<std::size_t>(v)];
   const double du = pu < lo[0] ? lo[0] - pu : (pu > hi[0] ? pu - hi[0] : 0.0);
   const double dv = pv < lo[1] ? lo[1] - pv : (pv > hi[1] ? pv - hi[1] : 0.0);
-  return std::sqrt(dn * dn + du * du + dv * dv);
+  return dn * dn + du * du + dv * dv;
+}
+
+double OpenFace::distance(const std::array<double, 3>& p) const {
+  return std::sqrt(distance_squared(p));
 }
 
 Region::Region(const volume::Box& cube_cells, std::vector<volume::Box> blocks)
@@ -98,13 +103,52 @@ void Region::compute_open_faces() {
       }
     }
   }
+  coalesce_open_faces();
+}
+
+// A region of many leaves (a worker's surface after many extractions) has one open rectangle per
+// leaf face; every placed edge asks its distance to them. Rectangles of one plane that share a
+// whole edge are joined: the set of points, and so every distance, is exactly the same.
+void Region::coalesce_open_faces() {
+  auto join_along = [this](int along) {
+    const int across = 1 - along;
+    std::sort(open_faces_.begin(), open_faces_.end(), [across, along](const OpenFace& a, const OpenFace& b) {
+      return std::tie(a.axis, a.plane, a.lo[across], a.hi[across], a.lo[along]) <
+             std::tie(b.axis, b.plane, b.lo[across], b.hi[across], b.lo[along]);
+    });
+    std::vector<OpenFace> joined;
+    joined.reserve(open_faces_.size());
+    for (const OpenFace& f : open_faces_) {
+      if (!joined.empty()) {
+        OpenFace& last = joined.back();
+        if (last.axis == f.axis && last.plane == f.plane && last.lo[across] == f.lo[across] &&
+            last.hi[across] == f.hi[across] && last.hi[along] == f.lo[along]) {
+          last.hi[along] = f.hi[along];
+          continue;
+        }
+      }
+      joined.push_back(f);
+    }
+    open_faces_.swap(joined);
+  };
+  for (int pass = 0; pass < 2; ++pass) {
+    const std::size_t before = open_faces_.size();
+    join_along(0);
+    join_along(1);
+    if (open_faces_.size() == before) break;
+  }
 }
 
 double Region::distance_to_open_faces(const std::array<double, 3>& p) const {
+  // Squared distances, and a face whose plane alone is farther than the best so far is skipped;
+  // the square root of the least is the least of the square roots.
   double best = std::numeric_limits<double>::infinity();
-  for (const OpenFace& f : open_faces_)
-    best = std::min(best, f.distance(p));
-  return best;
+  for (const OpenFace& f : open_faces_) {
+    const double dn = p[static_cast<std::size_t>(f.axis)] - f.plane;
+    if (dn * dn >= best) continue;
+    best = std::min(best, f.distance_squared(p));
+  }
+  return std::sqrt(best);
 }
 
 bool Region::contains(const std::array<double, 3>& p) const {

@@ -24,8 +24,9 @@ struct OpenFace {
   std::array<double, 2> lo{0.0, 0.0};
   std::array<double, 2> hi{0.0, 0.0};
 
-  // Euclidean distance from p to the rectangle.
+  // Euclidean distance from p to the rectangle, and its square.
   double distance(const std::array<double, 3>& p) const;
+  double distance_squared(const std::array<double, 3>& p) const;
   bool operator==(const OpenFace&) const = default;
 };
 
@@ -70,6 +71,7 @@ public:
 
 private:
   void compute_open_faces();
+  void coalesce_open_faces();
 
   volume::Box cube_{};
   std::vector<volume::Box> blocks_;

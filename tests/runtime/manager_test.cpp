@@ -206,12 +206,14 @@ TEST(Manager, SurfacesInSmallChunksUnderCreditsGiveTheSameComponents) {
   run.options.workers = 2;
   run.options.settings.chunk_bytes = 256;
   LocalLauncher launcher;
-  Manager manager(run.options, *run.store, &launcher, Logger::null(), run.progress, run.cancel);
+  std::ostringstream text;
+  Logger log(text, LogLevel::debug);
+  Manager manager(run.options, *run.store, &launcher, log, run.progress, run.cancel);
   ManagerReport report;
-  ASSERT_NO_THROW(report = manager.run());
+  ASSERT_NO_THROW(report = manager.run()) << text.str();
   EXPECT_GT(report.largest_surface, 256u * kChunkWindow) << "no surface needed more than one window of credits";
-  EXPECT_EQ(report.dropped_messages, 0u);
-  EXPECT_EQ(report.deaths, 0u);
+  EXPECT_EQ(report.dropped_messages, 0u) << text.str();
+  EXPECT_EQ(report.deaths, 0u) << text.str();
   const auto expected = testing::components_of(run.dir.file("ref"), false);
   const auto got = testing::components_of(run.dir.file("store"), true);
   ASSERT_EQ(got.size(), expected.size());

@@ -49,8 +49,8 @@ struct Manager::Impl {
   detail::ComponentCommitter committer{store};
   std::string run_prefix = random_hex(6);
   std::size_t token_count = 0;
-  std::set<std::string> allowed, dead;
-  std::map<std::string, Peer> peers; // by token
+  std::set<std::string> allowed, dead, departed; // departed: told FINISHED after its work, a subset of dead
+  std::map<std::string, Peer> peers;             // by token
   tandem::BlockTree tree;
   Schedule schedule{tree};
   detail::FinishedBlocks finished{store.directory(), tree};
@@ -180,6 +180,7 @@ struct Manager::Impl {
     schedule.leave(it->second.id);
     relay.forget(token);
     dead.insert(token);
+    departed.insert(token);
     peers.erase(it);
   }
 
@@ -217,7 +218,9 @@ struct Manager::Impl {
       Message f;
       f.kind = MessageKind::finished;
       send(token, f);
-      ++report.dropped_messages;
+      // A worker told FINISHED may still have had a heartbeat on its way: that is not a dropped
+      // message. One declared dead that speaks again is.
+      if (!departed.count(token)) ++report.dropped_messages;
       return;
     }
     if (!allowed.count(token)) return drop("from an unknown sender (not a token this manager issued)");
@@ -235,6 +238,7 @@ struct Manager::Impl {
         f.kind = MessageKind::finished;
         send(token, f);
         dead.insert(token);
+        departed.insert(token);
         return;
       }
       Peer p{.id = next_worker++, .token = token, .pid = m.number, .heard = Clock::now()};

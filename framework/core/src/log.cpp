@@ -2,6 +2,7 @@
 
 #include <ostream>
 #include <sstream>
+#include <string>
 
 #include "geotandem/core/error.hpp"
 
@@ -22,8 +23,12 @@ Logger::Logger(std::ostream& out, LogLevel level) : out_(&out), level_(level) {}
 void Logger::log(LogLevel level, std::string_view message) {
   if (!enabled(level) || level == LogLevel::quiet) return;
   static constexpr const char* tags[] = {"debug", "info", "warning", "error"};
+  // One write per line: std::cerr is unbuffered, and piecewise writes from a manager and its
+  // workers sharing a terminal interleaved ("geotandem: geotandem: info: ...").
+  std::string line = "geotandem: ";
+  line.append(tags[static_cast<int>(level)]).append(": ").append(message).append("\n");
   std::lock_guard lock(mutex_);
-  *out_ << "geotandem: " << tags[static_cast<int>(level)] << ": " << message << '\n';
+  out_->write(line.data(), static_cast<std::streamsize>(line.size()));
   out_->flush();
 }
 

@@ -26,8 +26,19 @@ void LocalLauncher::launch(const std::vector<std::string>& argv, const std::stri
   for (const std::string& a : argv)
     args.push_back(const_cast<char*>(a.c_str()));
   args.push_back(nullptr);
+  // The worker learns its manager's pid, so that it ends with it (worker.cpp, PR_SET_PDEATHSIG)
+  // rather than writing to the store for a heartbeat timeout after a SIGKILL of the manager.
+  std::vector<std::string> env_text{std::string(manager_pid_variable) + "=" + std::to_string(::getpid())};
+  for (char** e = environ; e && *e; ++e)
+    if (std::strncmp(*e, manager_pid_variable, std::strlen(manager_pid_variable)) != 0 ||
+        (*e)[std::strlen(manager_pid_variable)] != '=')
+      env_text.emplace_back(*e);
+  std::vector<char*> env;
+  for (std::string& e : env_text)
+    env.push_back(e.data());
+  env.push_back(nullptr);
   pid_t pid = 0;
-  const int rc = posix_spawn(&pid, argv[0].c_str(), nullptr, nullptr, args.data(), environ);
+  const int rc = posix_spawn(&pid, argv[0].c_str(), nullptr, nullptr, args.data(), env.data());
   if (rc != 0)
     throw IoError("cannot start worker " + argv[0] + ": " + std::strerror(rc), {.file = argv[0], .worker = token},
                   "check that the geotandem executable exists and is executable");

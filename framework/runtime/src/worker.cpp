@@ -1,15 +1,19 @@
 // The worker's task loop (worker.hpp).
 #include "geotandem/runtime/worker.hpp"
 
+#include <sys/prctl.h>
 #include <sys/resource.h>
 #include <unistd.h>
 
+#include <csignal>
+#include <cstdlib>
 #include <functional>
 #include <optional>
 #include <thread>
 #include <utility>
 
 #include "geotandem/core/error.hpp"
+#include "geotandem/runtime/launcher.hpp"
 #include "geotandem/runtime/surface_chunks.hpp"
 #include "geotandem/store/shard.hpp"
 #include "geotandem/tandem/marching_cubes.hpp"
@@ -305,8 +309,28 @@ private:
 
 } // namespace
 
+namespace {
+
+// A local worker ends with its manager: SIGTERM (a cancel, as Ctrl-C) when the parent dies, and
+// at once when it is already gone. Without it an orphan kept writing its shard until the
+// heartbeat timeout after a SIGKILL of the manager.
+void end_with_local_manager(Logger& log, const std::string& token) {
+  const char* text = std::getenv(manager_pid_variable);
+  if (!text || !*text) return;
+  const long manager = std::strtol(text, nullptr, 10);
+  if (manager <= 0) return;
+  ::prctl(PR_SET_PDEATHSIG, SIGTERM);
+  if (::getppid() != static_cast<pid_t>(manager)) {
+    log.warning("worker " + token + ": its manager (pid " + std::to_string(manager) + ") is already gone");
+    throw Cancelled();
+  }
+}
+
+} // namespace
+
 int run_worker(const WorkerOptions& options, const VolumeFactory& factory, Logger& log, const CancelToken& cancel) {
   store::validate_writer_name(options.token);
+  end_with_local_manager(log, options.token);
   Worker worker(options, factory, log, cancel);
   return worker.run();
 }

@@ -24,6 +24,11 @@ public:
   virtual void stop_all(double grace_seconds) = 0;
 };
 
+// Set by LocalLauncher in each worker's environment: the manager's process id. A worker that
+// finds it asks the kernel to end it when its parent dies (local workers only; a scheduler's job
+// has the scheduler's daemon as its parent).
+inline constexpr const char* manager_pid_variable = "GEOTANDEM_MANAGER_PID";
+
 class LocalLauncher final : public Launcher {
 public:
   LocalLauncher() = default;

@@ -22,13 +22,26 @@ std::optional<double> seconds_in(const char* name) {
   return v;
 }
 
+double margin_for(double walltime) {
+  return seconds_in(walltime_margin_variable).value_or(std::clamp(walltime * 0.05, 60.0, 600.0));
+}
+
+double used_seconds() {
+  return std::chrono::duration<double>(Clock::now() - process_start).count();
+}
+
 } // namespace
+
+bool walltime_nearly_over() {
+  const std::optional<double> walltime = seconds_in(walltime_variable);
+  return walltime && used_seconds() + margin_for(*walltime) / 2 >= *walltime;
+}
 
 std::string walltime_exhausted() {
   const std::optional<double> walltime = seconds_in(walltime_variable);
   if (!walltime) return {};
-  const double margin = seconds_in(walltime_margin_variable).value_or(std::clamp(*walltime * 0.05, 60.0, 600.0));
-  const double used = std::chrono::duration<double>(Clock::now() - process_start).count();
+  const double margin = margin_for(*walltime);
+  const double used = used_seconds();
   if (used + margin < *walltime) return {};
   return std::to_string(static_cast<long long>(std::max(0.0, *walltime - used))) + " s left of its " +
          std::to_string(static_cast<long long>(*walltime)) + " s walltime (it stops " +

@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <cstdlib>
 #include <optional>
 
@@ -30,6 +31,13 @@ double used_seconds() {
   return std::chrono::duration<double>(Clock::now() - process_start).count();
 }
 
+// Whole seconds, or tenths under 10 s (tests use walltimes of a few seconds).
+std::string seconds_text(double s) {
+  if (s >= 10) return std::to_string(static_cast<long long>(s));
+  const long long tenths = std::llround(s * 10);
+  return std::to_string(tenths / 10) + "." + std::to_string(tenths % 10);
+}
+
 } // namespace
 
 bool walltime_nearly_over() {
@@ -43,9 +51,8 @@ std::string walltime_exhausted() {
   const double margin = margin_for(*walltime);
   const double used = used_seconds();
   if (used + margin < *walltime) return {};
-  return std::to_string(static_cast<long long>(std::max(0.0, *walltime - used))) + " s left of its " +
-         std::to_string(static_cast<long long>(*walltime)) + " s walltime (it stops " +
-         std::to_string(static_cast<long long>(margin)) + " s before)";
+  return seconds_text(std::max(0.0, *walltime - used)) + " s left of its " + seconds_text(*walltime) +
+         " s walltime (it stops " + seconds_text(margin) + " s before)";
 }
 
 } // namespace geotandem::runtime::detail

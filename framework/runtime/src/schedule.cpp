@@ -195,6 +195,10 @@ Decision Schedule::next_retiring(WorkerId id, Worker& w) {
       ++counts_.handback;
       return send_to(id, w, *v);
     }
+    // Nobody to take it, and it holds the whole surface: it finishes the run itself rather than
+    // have everything re-done.
+    if (transfers_.empty() && w.held.size() == tree_.leaves().size() - skipped_)
+      return assign(w, {.kind = TaskKind::finished, .final = true});
     if (awaited_ > 0) return assign(w, {.kind = TaskKind::wait}); // a successor is on its way
   }
   // Nothing held, or nobody to take it: it stops (the transport makes it leave; what it still

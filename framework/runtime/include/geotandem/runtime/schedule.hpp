@@ -18,8 +18,9 @@
 // their way to it go to another worker, it MERGEs those already given to it, SENDs what it holds
 // to a live worker that is not retiring (a restricted-adjacent one if there is one, else the one
 // claiming most leaves: merging surfaces that do not touch is valid, the region becomes their
-// union), and is then told FINISHED. With no such worker it WAITs while one is expected
-// (expect_joins), otherwise it is told FINISHED holding its leaves (they are re-done).
+// union), and is then told FINISHED. With no such worker it gets the final FINISHED if it holds the
+// whole surface, else WAITs while one is expected (expect_joins), else is told FINISHED holding its
+// leaves (they are re-done).
 // A dead or departed worker's leaves, and those of every surface addressed to it or not yet
 // received from it, become unprocessed again: they are re-done from the volume.
 #include <cstdint>

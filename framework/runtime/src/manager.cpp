@@ -152,6 +152,7 @@ struct Manager::Impl {
   void retire(Peer& p, const std::string& why) {
     if (!schedule.retiring(p.id)) {
       schedule.retire(p.id);
+      ++report.retirements;
       log.info("worker " + p.token + " retires (" + why + "); it hands back its surface of " +
                std::to_string(schedule.leaves_held(p.id)) + " block(s)");
       std::size_t staying = workers_to_come();
@@ -165,9 +166,11 @@ struct Manager::Impl {
   void decide(Peer& p) {
     schedule.expect_joins(workers_to_come());
     const Decision d = schedule.next(p.id);
-    if (d.kind == TaskKind::send && schedule.retiring(p.id))
+    if (d.kind == TaskKind::send && schedule.retiring(p.id)) {
+      report.handed_back += schedule.transfer_leaves(d.transfer);
       log.info("worker " + p.token + " hands its surface of " + std::to_string(schedule.transfer_leaves(d.transfer)) +
                " block(s) to worker " + token_of(d.target));
+    }
     if (d.kind == TaskKind::finished && !d.final && schedule.leaves_held(p.id) > 0) {
       const std::size_t n = schedule.leaves_held(p.id);
       log.warning("worker " + p.token + " retires with no worker to take its surface: " + std::to_string(n) +

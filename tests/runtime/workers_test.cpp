@@ -214,18 +214,26 @@ std::vector<long> numbers_after(const std::string& text, const std::string& labe
   return out;
 }
 
-// Workers whose jobs have a walltime of 2.2 s and stop 2 s before it retire after their first
-// tasks (their clock starts with the process): each tells the manager, hands its surface to
-// another worker (a replacement is launched when it retires) and leaves. The run ends with the
-// components of the in-process run, and far fewer blocks are extracted twice than the retiring
-// workers held (all of which a plain exit would have had re-done from the volume).
+// Workers whose jobs have a short walltime retire after their first tasks (their clock starts
+// with the process): each tells the manager, hands its surface to another worker (a replacement is
+// launched when it retires) and leaves. The run ends with the components of the in-process run,
+// and fewer blocks are extracted twice than the retiring workers held (all of which a plain exit
+// would have had re-done from the volume). The walltime scales with a plain 2-worker run of the
+// same cube (T): a worker retires T/4 after it starts and may wait max(2 s, 2T) for a successor,
+// so the test means the same on a fast machine, a loaded one and under a sanitizer.
 TEST(Workers, WorkersNearTheirWalltimeHandBackTheirSurfaces) {
   Fixture f;
+  const auto t0 = std::chrono::steady_clock::now();
+  const pid_t plain = spawn_geotandem(f.extract_args("plain", 2), f.dir.file("plain.log"));
+  ASSERT_EQ(wait_exit(plain, 600), 0) << read_text(f.dir.file("plain.log"));
+  const double run_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  const double margin_s = 2 * std::max(2.0, 2 * run_s), walltime_s = margin_s + run_s / 4;
   const std::string log = f.dir.file("walltime.log");
   {
-    const ScopedEnv walltime("GEOTANDEM_WALLTIME_SECONDS", "2.2"), margin("GEOTANDEM_WALLTIME_MARGIN_SECONDS", "2");
+    const ScopedEnv walltime("GEOTANDEM_WALLTIME_SECONDS", std::to_string(walltime_s)),
+        margin("GEOTANDEM_WALLTIME_MARGIN_SECONDS", std::to_string(margin_s));
     const pid_t manager = spawn_geotandem(f.extract_args("walltime", 2), log);
-    ASSERT_EQ(wait_exit(manager, 600), 0) << read_text(log);
+    ASSERT_EQ(wait_exit(manager, 900), 0) << read_text(log);
   }
   f.expect_same("walltime");
   const std::string text = read_text(log);

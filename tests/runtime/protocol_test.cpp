@@ -57,7 +57,7 @@ TEST(Protocol, EveryFieldSurvivesARoundTrip) {
   EXPECT_EQ(d.entries[0].run, std::optional<std::int64_t>(2));
   EXPECT_FALSE(d.entries[1].run.has_value());
   for (MessageKind k : {MessageKind::hello, MessageKind::ask, MessageKind::heartbeat, MessageKind::wait,
-                        MessageKind::finished, MessageKind::merge}) {
+                        MessageKind::finished, MessageKind::merge, MessageKind::retire}) {
     Message x;
     x.kind = k;
     EXPECT_EQ(decode(encode(x)).kind, k) << to_string(k);
@@ -71,6 +71,24 @@ void expect_refused(std::span<const std::byte> frame, const std::string& what, s
   } catch (const ProtocolError& e) {
     EXPECT_FALSE(std::string(e.what()).empty());
   }
+}
+
+// RETIRE came with version 3: a version-2 peer's frame is refused by its version, and the kind
+// after RETIRE is still unknown.
+TEST(Protocol, RetireIsAVersion3KindWithItsReason) {
+  Message r;
+  r.kind = MessageKind::retire;
+  r.text = "40 s left of its 600 s walltime";
+  const Message d = decode(encode(r));
+  EXPECT_EQ(d.kind, MessageKind::retire);
+  EXPECT_EQ(d.text, r.text);
+  EXPECT_STREQ(to_string(MessageKind::retire), "RETIRE");
+  auto old = encode(r);
+  old[4] = std::byte{2};
+  expect_refused(old, "a version-2 RETIRE");
+  Message next;
+  next.kind = static_cast<MessageKind>(11);
+  expect_refused(encode(next), "kind 11");
 }
 
 TEST(Protocol, DamagedFramesAreRefusedWithAReason) {

@@ -195,6 +195,76 @@ TEST(Workers, ManagerKilledThenRerunGivesTheSameComponentsOnce) {
   f.expect_same("resume", false);
 }
 
+// Sets an environment variable for the processes started while it lives (the test is single-threaded
+// when it starts them).
+class ScopedEnv {
+public:
+  ScopedEnv(const char* name, const std::string& value) : name_(name) { setenv(name, value.c_str(), 1); }
+  ~ScopedEnv() { unsetenv(name_); }
+  ScopedEnv(const ScopedEnv&) = delete;
+  ScopedEnv& operator=(const ScopedEnv&) = delete;
+
+private:
+  const char* name_;
+};
+
+// Every number after `label` in `text`.
+std::vector<long> numbers_after(const std::string& text, const std::string& label) {
+  std::vector<long> out;
+  for (std::size_t at = text.find(label); at != std::string::npos; at = text.find(label, at + 1))
+    out.push_back(std::strtol(text.c_str() + at + label.size(), nullptr, 10));
+  return out;
+}
+
+// Workers whose jobs have a short walltime retire after their first tasks (their clock starts
+// with the process): each tells the manager, hands its surface to another worker (a replacement is
+// launched when it retires) and leaves. The run ends with the components of the in-process run,
+// and fewer blocks are extracted twice than the retiring workers held (all of which a plain exit
+// would have had re-done from the volume). The walltime scales with a plain 2-worker run of the
+// same cube (T): a worker retires T/4 after it starts and may wait max(2 s, 2T) for a successor,
+// so the test means the same on a fast machine, a loaded one and under a sanitizer.
+TEST(Workers, WorkersNearTheirWalltimeHandBackTheirSurfaces) {
+  Fixture f;
+  const auto t0 = std::chrono::steady_clock::now();
+  const pid_t plain = spawn_geotandem(f.extract_args("plain", 2), f.dir.file("plain.log"));
+  ASSERT_EQ(wait_exit(plain, 600), 0) << read_text(f.dir.file("plain.log"));
+  const double run_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  const double margin_s = 2 * std::max(2.0, 2 * run_s), walltime_s = margin_s + run_s / 4;
+  const std::string log = f.dir.file("walltime.log");
+  {
+    const ScopedEnv walltime("GEOTANDEM_WALLTIME_SECONDS", std::to_string(walltime_s)),
+        margin("GEOTANDEM_WALLTIME_MARGIN_SECONDS", std::to_string(margin_s));
+    const pid_t manager = spawn_geotandem(f.extract_args("walltime", 2), log);
+    ASSERT_EQ(wait_exit(manager, 900), 0) << read_text(log);
+  }
+  f.expect_same("walltime");
+  const std::string text = read_text(log);
+  const std::vector<long> held = numbers_after(text, "it hands back its surface of ");
+  ASSERT_GE(held.size(), 2u) << "workers should retire several times: " << text;
+  EXPECT_NE(text.find("near its walltime, retires"), std::string::npos) << text;
+  const std::vector<long> handed = numbers_after(text, " hands its surface of ");
+  ASSERT_FALSE(handed.empty()) << "no retiring worker handed its surface over: " << text;
+  for (long n : handed)
+    EXPECT_GT(n, 0) << text;
+  // Re-extracted blocks: the EXTRACTs beyond one per block, all of them re-done after a give-up
+  // or an exit ("will be re-done"), far fewer than the blocks the retiring workers held.
+  const long extracted = number_after(text, "tasks {\"extract\":");
+  const std::size_t listening = text.find("manager listening on ");
+  const long blocks = listening == std::string::npos ? -1 : number_after(text.substr(listening), "; ");
+  ASSERT_GT(blocks, 0) << text;
+  ASSERT_GE(extracted, blocks) << text;
+  long redone = 0, held_at_retirement = 0;
+  const std::string redo = " block(s) will be re-done";
+  for (std::size_t at = text.find(redo); at != std::string::npos; at = text.find(redo, at + 1)) {
+    const std::size_t start = text.find_last_not_of("0123456789", at - 1) + 1;
+    redone += std::strtol(text.c_str() + start, nullptr, 10);
+  }
+  for (long n : held)
+    held_at_retirement += n;
+  EXPECT_EQ(extracted - blocks, redone) << text;
+  EXPECT_LT(extracted - blocks, held_at_retirement) << text;
+}
+
 TEST(Workers, InterruptStopsTheWorkersAndLeavesAValidStore) {
   Fixture f;
   const std::string log = f.dir.file("int.log");

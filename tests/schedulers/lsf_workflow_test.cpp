@@ -45,6 +45,24 @@ TEST_F(LsfRun, ABkilledWorkerJobIsReplacedAndTheRunCompletes) {
   expect_same_components(reference + "/store", out + "/store");
 }
 
+// Worker jobs with a 5 s walltime (execution.resources.walltime, which the launcher exports to them
+// as GEOTANDEM_WALLTIME_SECONDS) and a margin of 3 s retire 2 s after they start: each hands its
+// surface to another worker and a replacement job is submitted as it retires; the run ends with the
+// components of the in-process run.
+TEST_F(LsfRun, WorkerJobsNearTheirWalltimeHandBackTheirSurfacesAndAreReplaced) {
+  EnvGuard margin{"GEOTANDEM_WALLTIME_MARGIN_SECONDS", "3"};
+  const std::string out = dir.file("walltime");
+  auto args = cluster_args(out, "lsf", 2);
+  args.insert(args.end(), {"--set", "execution.resources.walltime=00:00:05"});
+  const auto r = run_geotandem(shell_args(args));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  if (r.err.find(" retires (") == std::string::npos)
+    GTEST_SKIP() << "the run finished before a worker reached its walltime (a very fast machine):\n" << r.err;
+  EXPECT_NE(r.err.find(" hands its surface of "), std::string::npos) << r.err;
+  EXPECT_GE(submitted_jobs(r.err).size(), 3u) << "a replacement job should have been submitted:\n" << r.err;
+  expect_same_components(reference + "/store", out + "/store");
+}
+
 // Every worker job killed as soon as it is submitted: three are replaced, the fourth ends the run
 // with an error naming the job and the limit (exit 1, not 70).
 TEST_F(LsfRun, PastTheReplacementLimitTheRunStopsWithAClearError) {

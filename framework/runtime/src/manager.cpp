@@ -137,8 +137,46 @@ struct Manager::Impl {
     }
   }
 
+  // Workers launched that have not said HELLO yet (nor ended).
+  std::size_t workers_to_come() const { return allowed.size() - peers.size() - dead.size(); }
+
+  std::string token_of(WorkerId id) const {
+    for (const auto& [token, p] : peers)
+      if (p.id == id) return token;
+    return "?";
+  }
+
+  // RETIRE: the worker is near its walltime. It gets no more EXTRACT and hands its surface to
+  // another worker (Schedule); a replacement with a fresh walltime is launched now, so that it can
+  // take the surface. Not counted against max_restarts: a retiring worker loses nothing.
+  void retire(Peer& p, const std::string& why) {
+    if (!schedule.retiring(p.id)) {
+      schedule.retire(p.id);
+      ++report.retirements;
+      log.info("worker " + p.token + " retires (" + why + "); it hands back its surface of " +
+               std::to_string(schedule.leaves_held(p.id)) + " block(s)");
+      std::size_t staying = workers_to_come();
+      for (const auto& [token, q] : peers)
+        staying += schedule.retiring(q.id) ? 0 : 1;
+      if (launcher && !schedule.complete() && staying < std::max<std::size_t>(options.workers, 1)) launch_one();
+    }
+    decide(p);
+  }
+
   void decide(Peer& p) {
+    schedule.expect_joins(workers_to_come());
     const Decision d = schedule.next(p.id);
+    if (d.kind == TaskKind::send && schedule.retiring(p.id)) {
+      report.handed_back += schedule.transfer_leaves(d.transfer);
+      log.info("worker " + p.token + " hands its surface of " + std::to_string(schedule.transfer_leaves(d.transfer)) +
+               " block(s) to worker " + token_of(d.target));
+    }
+    if (d.kind == TaskKind::finished && !d.final && schedule.leaves_held(p.id) > 0) {
+      const std::size_t n = schedule.leaves_held(p.id);
+      log.warning("worker " + p.token + " retires with no worker to take its surface: " + std::to_string(n) +
+                  " block(s) will be re-done from the volume");
+      report.redone_leaves += n;
+    }
     Message m = detail::task_message(d, tree);
     if (d.kind == TaskKind::extract) m.lease.attempt = ++attempts[d.leaf];
     const bool busy = d.kind != TaskKind::wait && (d.kind != TaskKind::finished || d.final);
@@ -264,6 +302,12 @@ struct Manager::Impl {
         return kill_peer(token, "asked again without finishing its task");
       }
       return decide(p);
+    case MessageKind::retire:
+      if (p.task) {
+        drop("RETIRE from worker " + token + " while it has a task (" + task_text(p) + ")");
+        return kill_peer(token, "retired without finishing its task");
+      }
+      return retire(p, m.text);
     case MessageKind::failed:
       if (!p.task && m.lease == Lease{}) // SETUP failed: every worker would fail the same way
         detail::throw_worker_failure(static_cast<int>(m.number), "could not start: " + m.text, token,

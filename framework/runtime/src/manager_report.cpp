@@ -14,6 +14,7 @@ std::string ManagerReport::to_json() const {
       {"skipped_leaves", skipped_leaves},
       {"tasks", {{"extract", extract}, {"send", send}, {"merge", merge}, {"finish", finish}}},
       {"redone_leaves", redone_leaves},
+      {"retirements", {{"workers", retirements}, {"handed_back_leaves", handed_back}}},
       {"seconds",
        {{"total", seconds}, {"extract", seconds_extract}, {"merge", seconds_merge}, {"finish", seconds_finish}}},
       {"bytes",

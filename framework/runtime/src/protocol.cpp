@@ -19,7 +19,7 @@ using detail::ByteWriter;
 constexpr char kMagic[4] = {'G', 'T', 'R', 'T'};
 
 bool known(std::uint8_t k) {
-  return (k >= 1 && k <= 9) || (k >= 16 && k <= 23);
+  return (k >= 1 && k <= 10) || (k >= 16 && k <= 23);
 }
 
 void put_array(ByteWriter& w, const std::array<double, 3>& a) {
@@ -115,6 +115,7 @@ const char* to_string(MessageKind kind) {
   case MessageKind::heartbeat: return "HEARTBEAT";
   case MessageKind::surface_chunk: return "SURFACE-CHUNK";
   case MessageKind::merge_credit: return "MERGE-CREDIT";
+  case MessageKind::retire: return "RETIRE";
   case MessageKind::merge_chunk: return "MERGE-CHUNK";
   case MessageKind::surface_credit: return "SURFACE-CREDIT";
   case MessageKind::setup: return "SETUP";

@@ -65,7 +65,7 @@ std::optional<WorkerId> Schedule::neighbor(WorkerId id) {
   std::optional<WorkerId> best;
   std::size_t best_size = 0;
   for (const auto& [other, w] : workers_) {
-    if (other == id) continue;
+    if (other == id || w.retiring) continue;
     const Aggregate theirs = claimed(w);
     // The smaller side travels: a worker does not send to a smaller neighbour (that one sends to
     // it when it asks), so large aggregates stay put and their workers go on extracting.
@@ -86,7 +86,7 @@ std::optional<WorkerId> Schedule::any_holder(WorkerId id) const {
   std::optional<WorkerId> best;
   std::size_t best_size = 0;
   for (const auto& [other, w] : workers_) {
-    if (other == id) continue;
+    if (other == id || w.retiring) continue;
     const std::size_t theirs = claimed(w).size();
     if (theirs > 0 && theirs >= mine && theirs > best_size) {
       best = other;
@@ -125,11 +125,93 @@ Decision Schedule::assign(Worker& w, Decision d) {
   return d;
 }
 
+Decision Schedule::send_to(WorkerId id, Worker& w, WorkerId target) {
+  const TransferId t = next_transfer_++;
+  transfers_.emplace(t, Transfer{.from = id, .to = target, .leaves = w.held});
+  worker(target).incoming.push_back(t);
+  w.held.clear();
+  return assign(w, {.kind = TaskKind::send, .target = target, .transfer = t});
+}
+
+// Who takes over `leaves` from the retiring worker `id`: a live worker that is not retiring, the
+// restricted-adjacent one claiming most leaves first, else the one claiming most (adjacent or
+// not, as any_holder), else any.
+std::optional<WorkerId> Schedule::successor(const Aggregate& leaves, WorkerId id) {
+  std::optional<WorkerId> best;
+  std::size_t best_rank = 0;
+  for (const auto& [other, w] : workers_) {
+    if (other == id || w.retiring) continue;
+    const Aggregate theirs = claimed(w);
+    const bool adjacent = !theirs.empty() && !leaves.empty() && leaves.adjacent(theirs);
+    const std::size_t rank = 1 + theirs.size() + (adjacent ? tree_.size() : 0);
+    if (rank > best_rank) {
+      best = other;
+      best_rank = rank;
+    }
+  }
+  return best;
+}
+
+bool Schedule::retiring(WorkerId id) const {
+  auto it = workers_.find(id);
+  return it != workers_.end() && it->second.retiring;
+}
+
+void Schedule::retire(WorkerId id) {
+  worker(id).retiring = true;
+  redirect_incoming(id);
+}
+
+// The surfaces on their way to a retiring worker (not yet being merged) go to its successor; the
+// manager keeps their bytes by transfer, so only the target changes.
+void Schedule::redirect_incoming(WorkerId id) {
+  Worker& w = worker(id);
+  for (auto it = w.incoming.begin(); it != w.incoming.end();) {
+    Transfer& tr = transfers_.at(*it);
+    const std::optional<WorkerId> v = tr.merging ? std::nullopt : successor(tr.leaves, id);
+    if (!v) {
+      ++it;
+      continue;
+    }
+    tr.to = *v;
+    worker(*v).incoming.push_back(*it);
+    it = w.incoming.erase(it);
+  }
+}
+
+Decision Schedule::next_retiring(WorkerId id, Worker& w) {
+  redirect_incoming(id); // a successor may have joined since
+  for (TransferId t : w.incoming) {
+    Transfer& tr = transfers_.at(t);
+    if (tr.arrived && !tr.merging) { // nobody else to take it: merged here, then handed back
+      tr.merging = true;
+      w.held.add(tr.leaves);
+      return assign(w, {.kind = TaskKind::merge, .transfer = t});
+    }
+  }
+  if (!w.incoming.empty()) return assign(w, {.kind = TaskKind::wait});
+  if (!w.held.empty()) {
+    if (const std::optional<WorkerId> v = successor(w.held, id)) {
+      ++counts_.handback;
+      return send_to(id, w, *v);
+    }
+    // Nobody to take it, and it holds the whole surface: it finishes the run itself rather than
+    // have everything re-done.
+    if (transfers_.empty() && w.held.size() == tree_.leaves().size() - skipped_)
+      return assign(w, {.kind = TaskKind::finished, .final = true});
+    if (awaited_ > 0) return assign(w, {.kind = TaskKind::wait}); // a successor is on its way
+  }
+  // Nothing held, or nobody to take it: it stops (the transport makes it leave; what it still
+  // holds is re-done from the volume).
+  return assign(w, {.kind = TaskKind::finished});
+}
+
 Decision Schedule::next(WorkerId id) {
   started_ = true;
   Worker& w = worker(id);
   if (w.task) throw std::logic_error("schedule: worker " + std::to_string(id) + " asked while busy");
   if (complete_) return assign(w, {.kind = TaskKind::finished});
+  if (w.retiring) return next_retiring(id, w);
 
   // 1. has_waiting_surface
   for (TransferId t : w.incoming) {
@@ -143,16 +225,8 @@ Decision Schedule::next(WorkerId id) {
   if (!w.incoming.empty()) return assign(w, {.kind = TaskKind::wait});
 
   // 2. has_neighbor_worker
-  if (!w.held.empty()) {
-    if (const std::optional<WorkerId> v = neighbor(id)) {
-      const TransferId t = next_transfer_++;
-      Transfer tr{.from = id, .to = *v, .leaves = w.held};
-      transfers_.emplace(t, std::move(tr));
-      worker(*v).incoming.push_back(t);
-      w.held.clear();
-      return assign(w, {.kind = TaskKind::send, .target = *v, .transfer = t});
-    }
-  }
+  if (!w.held.empty())
+    if (const std::optional<WorkerId> v = neighbor(id)) return send_to(id, w, *v);
 
   // 3. has_unprocessed_block
   const NodeId leaf = unprocessed_leaf(w);
@@ -162,15 +236,8 @@ Decision Schedule::next(WorkerId id) {
     return assign(w, {.kind = TaskKind::extract, .leaf = leaf});
   }
 
-  if (skipped_ > 0 && !w.held.empty() && unprocessed() == 0) {
-    if (const std::optional<WorkerId> v = any_holder(id)) {
-      const TransferId t = next_transfer_++;
-      transfers_.emplace(t, Transfer{.from = id, .to = *v, .leaves = w.held});
-      worker(*v).incoming.push_back(t);
-      w.held.clear();
-      return assign(w, {.kind = TaskKind::send, .target = *v, .transfer = t});
-    }
-  }
+  if (skipped_ > 0 && !w.held.empty() && unprocessed() == 0)
+    if (const std::optional<WorkerId> v = any_holder(id)) return send_to(id, w, *v);
 
   if (skipped_ == tree_.leaves().size()) { // a resumed run with nothing left to do
     complete_ = true;
@@ -248,6 +315,11 @@ std::optional<WorkerId> Schedule::transfer_source(TransferId t) const {
   auto it = transfers_.find(t);
   if (it == transfers_.end()) return std::nullopt;
   return it->second.from;
+}
+
+std::size_t Schedule::transfer_leaves(TransferId t) const {
+  auto it = transfers_.find(t);
+  return it == transfers_.end() ? 0 : it->second.leaves.size();
 }
 
 std::size_t Schedule::unprocessed() const {

@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <cstdlib>
 #include <optional>
 
@@ -22,17 +23,36 @@ std::optional<double> seconds_in(const char* name) {
   return v;
 }
 
+double margin_for(double walltime) {
+  return seconds_in(walltime_margin_variable).value_or(std::clamp(walltime * 0.05, 60.0, 600.0));
+}
+
+double used_seconds() {
+  return std::chrono::duration<double>(Clock::now() - process_start).count();
+}
+
+// Whole seconds, or tenths under 10 s (tests use walltimes of a few seconds).
+std::string seconds_text(double s) {
+  if (s >= 10) return std::to_string(static_cast<long long>(s));
+  const long long tenths = std::llround(s * 10);
+  return std::to_string(tenths / 10) + "." + std::to_string(tenths % 10);
+}
+
 } // namespace
+
+bool walltime_nearly_over() {
+  const std::optional<double> walltime = seconds_in(walltime_variable);
+  return walltime && used_seconds() + margin_for(*walltime) / 2 >= *walltime;
+}
 
 std::string walltime_exhausted() {
   const std::optional<double> walltime = seconds_in(walltime_variable);
   if (!walltime) return {};
-  const double margin = seconds_in(walltime_margin_variable).value_or(std::clamp(*walltime * 0.05, 60.0, 600.0));
-  const double used = std::chrono::duration<double>(Clock::now() - process_start).count();
+  const double margin = margin_for(*walltime);
+  const double used = used_seconds();
   if (used + margin < *walltime) return {};
-  return std::to_string(static_cast<long long>(std::max(0.0, *walltime - used))) + " s left of its " +
-         std::to_string(static_cast<long long>(*walltime)) + " s walltime (it stops " +
-         std::to_string(static_cast<long long>(margin)) + " s before)";
+  return seconds_text(std::max(0.0, *walltime - used)) + " s left of its " + seconds_text(*walltime) +
+         " s walltime (it stops " + seconds_text(margin) + " s before)";
 }
 
 } // namespace geotandem::runtime::detail

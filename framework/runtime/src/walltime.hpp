@@ -1,9 +1,11 @@
 #pragma once
-// A worker near the end of its job's walltime stops taking tasks: it finishes the task in hand and
-// leaves, so that the scheduler never kills it in the middle of one; the manager re-assigns what
-// it held and starts a replacement job (with a fresh walltime). The walltime comes from the job's
-// environment: GEOTANDEM_WALLTIME_SECONDS, which the scheduler launcher exports when the run asks
-// for one (execution.resources.walltime), counted from the worker's start.
+// A worker near the end of its job's walltime stops taking tasks: it finishes the task in hand,
+// tells the manager it retires (RETIRE), hands its surface to another worker when told to (SEND)
+// and leaves when told FINISHED, so that the scheduler never kills it in the middle of a task; the
+// manager starts a replacement job (with a fresh walltime). A retiring worker still waiting for
+// someone to take its surface when half the margin is left leaves anyway (its leaves are re-done). The walltime comes
+// from the job's environment: GEOTANDEM_WALLTIME_SECONDS, which the scheduler launcher exports when the run asks for
+// one (execution.resources.walltime), counted from the worker's start.
 #include <string>
 
 namespace geotandem::runtime::detail {
@@ -16,5 +18,7 @@ inline constexpr const char* walltime_margin_variable = "GEOTANDEM_WALLTIME_MARG
 // Empty while the worker may take another task; otherwise why it must stop ("2 s left of its
 // 60 s walltime ..."). Without a walltime in the environment: always empty.
 std::string walltime_exhausted();
+// True once less than half the margin is left: a retiring worker stops waiting and leaves.
+bool walltime_nearly_over();
 
 } // namespace geotandem::runtime::detail

@@ -116,12 +116,24 @@ private:
         log_.warning("worker " + options_.token + ": unexpected " + to_string(m.kind) + " dropped");
         return false;
       }
-      // Near the walltime: leave after a task (never right after SETUP: every worker does some
-      // work); the manager re-assigns what it held.
-      if (const std::string why = m.kind == MessageKind::setup ? std::string() : detail::walltime_exhausted();
-          !why.empty()) {
-        log_.warning("worker " + options_.token + ": near its walltime, stops taking tasks: " + why);
-        return true;
+      if (retiring_) {
+        // Nobody took its surface in time: it leaves before the scheduler kills it (the manager
+        // re-does what it holds).
+        if (m.kind == MessageKind::wait && detail::walltime_nearly_over()) {
+          log_.warning("worker " + options_.token + ": no worker took its surface before its walltime; it leaves");
+          return true;
+        }
+      } else if (const std::string why = m.kind == MessageKind::setup ? std::string() : detail::walltime_exhausted();
+                 !why.empty()) {
+        // Near the walltime (never right after SETUP: every worker does some work): it takes no
+        // more EXTRACT and hands back what it holds when the manager says where.
+        log_.warning("worker " + options_.token + ": near its walltime, retires: " + why);
+        retiring_ = true;
+        Message r;
+        r.kind = MessageKind::retire;
+        r.text = why;
+        link_.send(r); // asks for its next task, as ASK does
+        return false;
       }
       ask();
       return false;
@@ -304,7 +316,8 @@ private:
   std::optional<store::ShardWriter> writer_;
   std::optional<ShardSink> sink_;
   std::unique_ptr<tandem::WorkingSurface> surface_;
-  Lease task_lease_; // of the task in progress (mid-task COMMITs carry it)
+  Lease task_lease_;      // of the task in progress (mid-task COMMITs carry it)
+  bool retiring_ = false; // near its walltime: RETIRE sent
 };
 
 } // namespace

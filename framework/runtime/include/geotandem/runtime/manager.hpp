@@ -44,6 +44,8 @@ struct ManagerReport {
   std::size_t restarts = 0;
   std::uint64_t extract = 0, send = 0, merge = 0, finish = 0; // tasks completed
   std::uint64_t redone_leaves = 0;
+  std::size_t retirements = 0;   // workers that retired near their walltime
+  std::uint64_t handed_back = 0; // leaves in the surfaces they handed to other workers
   double seconds_extract = 0, seconds_merge = 0, seconds_finish = 0; // summed over workers
   std::uint64_t surface_bytes = 0;                                   // partial surfaces relayed
   std::uint64_t largest_surface = 0;

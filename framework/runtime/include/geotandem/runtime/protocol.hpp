@@ -25,7 +25,8 @@
 
 namespace geotandem::runtime {
 
-inline constexpr std::uint16_t kProtocolVersion = 2;
+// 3: RETIRE (a worker near its walltime hands back its surface).
+inline constexpr std::uint16_t kProtocolVersion = 3;
 inline constexpr std::size_t kHeaderSize = 16;
 // Largest message either side accepts. Also set as ZMQ_MAXMSGSIZE on both sockets.
 inline constexpr std::size_t kDefaultMaxMessage = std::size_t{1} << 30;
@@ -48,6 +49,8 @@ enum class MessageKind : std::uint8_t {
   heartbeat = 7,     // both ways
   surface_chunk = 8, // lease, number = offset, bytes: a piece of the surface of a SEND
   merge_credit = 9,  // lease, number = chunks of a MERGE consumed: the manager may send that many more
+  retire = 10,       // text = why: like ASK, from a worker near its walltime; it takes no EXTRACT any more,
+                     // hands its surface to another worker (SEND) and is then told FINISHED
   // manager -> worker
   setup = 16,          // text: the run's description (JSON: volume, options, store, shard)
   extract = 17,        // lease, leaf

@@ -14,6 +14,13 @@
 //   4. FINISHED: the final one when it holds every leaf and nothing is on its way (it finishes the
 //      whole surface and dumps it); then to everyone. Until the run is complete an idle worker gets
 //      WAIT instead of the seed's FINISHED, so that it can redo the blocks of a worker that dies.
+// A retiring worker (near its walltime) gets no EXTRACT and receives no surface: the surfaces on
+// their way to it go to another worker, it MERGEs those already given to it, SENDs what it holds
+// to a live worker that is not retiring (a restricted-adjacent one if there is one, else the one
+// claiming most leaves: merging surfaces that do not touch is valid, the region becomes their
+// union), and is then told FINISHED. With no such worker it gets the final FINISHED if it holds the
+// whole surface, else WAITs while one is expected (expect_joins), else is told FINISHED holding its
+// leaves (they are re-done).
 // A dead or departed worker's leaves, and those of every surface addressed to it or not yet
 // received from it, become unprocessed again: they are re-done from the volume.
 #include <cstdint>
@@ -43,6 +50,7 @@ struct Decision {
 struct ScheduleCounts {
   std::uint64_t extract = 0, send = 0, merge = 0, wait = 0, finished = 0;
   std::uint64_t redone_leaves = 0; // leaves made unprocessed again by a worker's death
+  std::uint64_t handback = 0;      // SENDs of retiring workers (counted in send too)
 };
 
 class Schedule {
@@ -65,17 +73,25 @@ public:
   // The surface of the sender's SEND reached the manager; the sender is idle again. Returns false
   // when the transfer's target died meanwhile (the bytes are dropped: its leaves are re-done).
   bool arrived(WorkerId sender, TransferId transfer);
+  // The worker is near its walltime: from now on it only hands back what it holds (see above).
+  void retire(WorkerId worker);
+  // Workers launched that have not joined yet: a retiring worker with nobody to hand its surface
+  // to waits for them rather than have its leaves re-done.
+  void expect_joins(std::size_t workers) { awaited_ = workers; }
   // The worker died or left; returns the leaves that became unprocessed again.
   std::vector<tandem::NodeId> leave(WorkerId worker);
 
   bool complete() const { return complete_; }
   bool knows(WorkerId worker) const { return workers_.count(worker) != 0; }
   bool busy(WorkerId worker) const;
+  bool retiring(WorkerId worker) const;
   // The worker a transfer goes to and comes from; nullopt when it is no longer pending.
   std::optional<WorkerId> transfer_target(TransferId transfer) const;
   std::optional<WorkerId> transfer_source(TransferId transfer) const;
   std::size_t unprocessed() const;
   std::size_t leaves_held(WorkerId worker) const;
+  // The leaves a pending transfer carries (0 when it is no longer pending).
+  std::size_t transfer_leaves(TransferId transfer) const;
   // The leaves in the worker's surface (with those of a MERGE in progress), in tree order.
   std::vector<tandem::NodeId> held(WorkerId worker) const;
   std::size_t skipped() const { return skipped_; }
@@ -88,6 +104,7 @@ private:
     Aggregate held; // leaves in its surface (and the leaf it extracts)
     std::vector<TransferId> incoming;
     std::optional<Decision> task; // in progress
+    bool retiring = false;
   };
   struct Transfer {
     WorkerId from = 0, to = 0;
@@ -100,6 +117,10 @@ private:
   Aggregate claimed(const Worker& w) const; // held plus what is on its way to it
   std::optional<WorkerId> neighbor(WorkerId id);
   std::optional<WorkerId> any_holder(WorkerId id) const;
+  std::optional<WorkerId> successor(const Aggregate& leaves, WorkerId id);
+  void redirect_incoming(WorkerId id);
+  Decision next_retiring(WorkerId id, Worker& w);
+  Decision send_to(WorkerId id, Worker& w, WorkerId target);
   tandem::NodeId unprocessed_leaf(const Worker& w) const;
   void release(const Aggregate& leaves, std::vector<tandem::NodeId>& out);
   Decision assign(Worker& w, Decision d);
@@ -112,6 +133,7 @@ private:
   bool started_ = false;
   bool complete_ = false;
   std::size_t skipped_ = 0;
+  std::size_t awaited_ = 0;
   ScheduleCounts counts_;
 };
 

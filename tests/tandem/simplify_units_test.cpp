@@ -1,5 +1,5 @@
-// Unit tests of the simplifier's pieces: regions and open faces, the Attali cost, the indexed heap,
-// the id map, the component table.
+// Unit tests of the simplifier's pieces: the Attali cost, the indexed heap, the id map, the
+// component table (regions and open faces: region_test.cpp).
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -23,116 +23,6 @@ using detail::operator+;
 using detail::operator-;
 using detail::operator*;
 using volume::Box;
-
-// ------------------------------------------------------------------------------------- regions
-
-TEST(Region, InteriorBlockHasSixOpenFacesCornerBlockThree) {
-  const Box cube{{0, 0, 0}, {30, 30, 30}};
-  const Region inner = Region::block(cube, Box{{10, 10, 10}, {20, 20, 20}});
-  EXPECT_EQ(inner.open_faces().size(), 6u);
-  // Centre of the block: 5 voxels from every face.
-  EXPECT_DOUBLE_EQ(inner.distance_to_open_faces({15, 15, 15}), 5.0);
-  EXPECT_DOUBLE_EQ(inner.distance_to_open_faces({11, 15, 15}), 1.0);
-  EXPECT_TRUE(inner.on_open_face({10, 12, 13}));
-  EXPECT_TRUE(inner.ball_clear({15, 15, 15}, 4.9));
-  EXPECT_FALSE(inner.ball_clear({15, 15, 15}, 5.0));
-
-  const Region corner = Region::block(cube, Box{{0, 0, 0}, {10, 10, 10}});
-  EXPECT_EQ(corner.open_faces().size(), 3u);
-  // Near the cube's own faces nothing is open: only the faces at 10 count.
-  EXPECT_DOUBLE_EQ(corner.distance_to_open_faces({0, 0, 0}), 10.0);
-  EXPECT_DOUBLE_EQ(corner.distance_to_open_faces({1, 2, 7}), 3.0);
-
-  const Region whole = Region::block(cube, cube);
-  EXPECT_TRUE(whole.open_faces().empty());
-  EXPECT_EQ(whole.distance_to_open_faces({15, 15, 15}), std::numeric_limits<double>::infinity());
-}
-
-TEST(Region, MergedBrothersLoseTheirCommonFace) {
-  const Box cube{{0, 0, 0}, {40, 20, 20}};
-  const Region left = Region::block(cube, Box{{0, 0, 0}, {20, 20, 20}});
-  const Region right = Region::block(cube, Box{{20, 0, 0}, {40, 20, 20}});
-  EXPECT_EQ(left.open_faces().size(), 1u);
-  EXPECT_TRUE(left.on_open_face({20, 5, 5}));
-  const Region both = left.merged_with(right);
-  EXPECT_TRUE(both.open_faces().empty());
-  EXPECT_FALSE(both.on_open_face({20, 5, 5}));
-  EXPECT_THROW(left.merged_with(left), InvalidArgument);
-}
-
-// A worker's region after many extractions: a staircase of leaves. Its open faces are joined
-// into few rectangles, and its distances equal the distance to the open boundary cut into unit
-// squares (an oracle that knows nothing of rectangles).
-TEST(Region, ManyLeavesJoinTheirOpenFacesAndKeepEveryDistance) {
-  const Box cube{{0, 0, 0}, {24, 24, 12}};
-  std::vector<Box> leaves;
-  for (std::int64_t i = 0; i < 6; ++i)
-    for (std::int64_t j = 0; j < 6; ++j)
-      for (std::int64_t k = 0; k < 3; ++k)
-        if (i + j + k < 7 && (i + 2 * j) % 5 != 3)
-          leaves.push_back(Box{{4 * i, 4 * j, 4 * k}, {4 * i + 4, 4 * j + 4, 4 * k + 4}});
-  const Region region(cube, leaves);
-  // Unit squares of every leaf face that is neither on the cube's boundary nor covered by a leaf.
-  auto inside = [&](double x, double y, double z) {
-    for (const Box& b : leaves)
-      if (x > b.lo[0] && x < b.hi[0] && y > b.lo[1] && y < b.hi[1] && z > b.lo[2] && z < b.hi[2]) return true;
-    return false;
-  };
-  std::vector<OpenFace> squares;
-  for (const Box& b : leaves)
-    for (int axis = 0; axis < 3; ++axis) {
-      const int u = axis == 0 ? 1 : 0, v = axis == 2 ? 1 : 2;
-      for (int side = 0; side < 2; ++side) {
-        const std::int64_t plane = side == 0 ? b.lo[axis] : b.hi[axis];
-        if (plane == cube.lo[axis] || plane == cube.hi[axis]) continue;
-        for (std::int64_t a = b.lo[u]; a < b.hi[u]; ++a)
-          for (std::int64_t c = b.lo[v]; c < b.hi[v]; ++c) {
-            std::array<double, 3> beyond{};
-            beyond[static_cast<std::size_t>(axis)] = static_cast<double>(plane) + (side == 0 ? -0.5 : 0.5);
-            beyond[static_cast<std::size_t>(u)] = static_cast<double>(a) + 0.5;
-            beyond[static_cast<std::size_t>(v)] = static_cast<double>(c) + 0.5;
-            if (inside(beyond[0], beyond[1], beyond[2])) continue;
-            squares.push_back(OpenFace{axis, static_cast<double>(plane), {double(a), double(c)}, {a + 1.0, c + 1.0}});
-          }
-      }
-    }
-  ASSERT_GT(squares.size(), 100u);
-  EXPECT_LT(region.open_faces().size() * 4, squares.size()) << "open faces are joined";
-  std::mt19937 random(7);
-  std::uniform_real_distribution<double> coordinate(-2.0, 26.0);
-  for (int n = 0; n < 2000; ++n) {
-    const std::array<double, 3> p{coordinate(random), coordinate(random), coordinate(random) / 2.0};
-    double oracle = std::numeric_limits<double>::infinity();
-    for (const OpenFace& f : squares)
-      oracle = std::min(oracle, f.distance(p));
-    EXPECT_EQ(region.distance_to_open_faces(p), oracle) << p[0] << " " << p[1] << " " << p[2];
-  }
-}
-
-TEST(Region, LShapedRegionKeepsOnlyTheUncoveredPartOfAFace) {
-  // Three quarters of a 2 x 2 x 1 arrangement of blocks in a cube of 40 x 40 x 20 cells.
-  const Box cube{{0, 0, 0}, {40, 40, 20}};
-  const Region l(cube, {Box{{0, 0, 0}, {20, 20, 20}}, Box{{20, 0, 0}, {40, 20, 20}}, Box{{0, 20, 0}, {20, 40, 20}}});
-  // The missing quarter [20,40] x [20,40] is bounded by two open faces: x = 20 for y in [20, 40]
-  // and y = 20 for x in [20, 40].
-  ASSERT_EQ(l.open_faces().size(), 2u);
-  EXPECT_TRUE(l.on_open_face({20, 30, 10}));
-  EXPECT_TRUE(l.on_open_face({30, 20, 10}));
-  EXPECT_FALSE(l.on_open_face({20, 10, 10})); // the face between the first two blocks is interior
-  EXPECT_FALSE(l.on_open_face({10, 20, 10}));
-  // From the inner corner region, the nearest open face is the concave corner's edge.
-  EXPECT_NEAR(l.distance_to_open_faces({17, 17, 10}), std::sqrt(18.0), 1e-12);
-  EXPECT_DOUBLE_EQ(l.distance_to_open_faces({5, 5, 10}), std::sqrt(15.0 * 15.0 * 2.0));
-  EXPECT_TRUE(l.contains({5, 35, 3}));
-  EXPECT_FALSE(l.contains({35, 35, 3}));
-}
-
-TEST(Region, RejectsBlocksOutsideTheCubeOrOverlapping) {
-  const Box cube{{0, 0, 0}, {10, 10, 10}};
-  EXPECT_THROW(Region::block(cube, Box{{0, 0, 0}, {11, 5, 5}}), InvalidArgument);
-  EXPECT_THROW(Region::block(cube, Box{{3, 3, 3}, {3, 5, 5}}), InvalidArgument);
-  EXPECT_THROW(Region(cube, {Box{{0, 0, 0}, {6, 10, 10}}, Box{{5, 0, 0}, {10, 10, 10}}}), InvalidArgument);
-}
 
 // ------------------------------------------------------------------------------------- cost
 

@@ -11,7 +11,18 @@ void ComponentCommitter::commit(std::vector<store::IndexEntry> entries) {
   std::vector<store::IndexEntry> rows;
   rows.reserve(entries.size());
   std::uint64_t replacing = 0;
+  // One lookup for the batch: a key is rarely there already (a retried task, a resumed run).
+  std::vector<std::uint64_t> keys;
+  keys.reserve(entries.size());
+  for (const store::IndexEntry& e : entries)
+    keys.push_back(e.key);
+  std::vector<std::uint64_t> present = store_.present(keys);
+  std::sort(present.begin(), present.end());
   for (store::IndexEntry& e : entries) {
+    if (!std::binary_search(present.begin(), present.end(), e.key)) {
+      rows.push_back(std::move(e));
+      continue;
+    }
     if (const std::optional<store::ComponentRow> row = store_.find(e.key)) {
       if (!store::verify_component(store_, *row)) {
         ++duplicates_;

@@ -8,6 +8,7 @@
 #include <set>
 #include <thread>
 
+#include "commit_queue.hpp"
 #include "component_committer.hpp"
 #include "finished_blocks.hpp"
 #include "geotandem/core/error.hpp"
@@ -54,6 +55,7 @@ struct Manager::Impl {
   tandem::BlockTree tree;
   Schedule schedule{tree};
   detail::FinishedBlocks finished{store.directory(), tree};
+  detail::CommitQueue commits{committer}; // after what its thread uses
   detail::SurfaceRelay relay{options.max_surface, static_cast<std::size_t>(options.settings.chunk_bytes)};
   std::map<tandem::NodeId, std::uint32_t> attempts;
   std::uint64_t next_task = 1;
@@ -243,7 +245,7 @@ struct Manager::Impl {
       const std::vector<tandem::NodeId> leaves = schedule.held(p.id);
       log.debug("worker " + p.token + ": surface empty after " + task_text(p) + "; " + std::to_string(leaves.size()) +
                 " leaves finished");
-      finished.record(leaves);
+      commits.then([this, leaves] { finished.record(leaves); }); // once their COMMITs are in the index
     }
     const bool final = p.task->kind == TaskKind::finished;
     p.task.reset();
@@ -322,7 +324,7 @@ struct Manager::Impl {
       return drop(std::string(to_string(m.kind)) + " from worker " + token + " with a stale lease (task " +
                   std::to_string(m.lease.task) + ", attempt " + std::to_string(m.lease.attempt) + ")");
     switch (m.kind) {
-    case MessageKind::commit: committer.commit(std::move(m.entries)); return;
+    case MessageKind::commit: commits.commit(std::move(m.entries)); return;
     case MessageKind::surface_chunk: {
       if (p.task->kind != TaskKind::send) return drop("a surface chunk from worker " + token + " outside a SEND");
       if (const std::optional<std::string> why = relay.chunk_in(token, m.number, m.bytes)) {
@@ -430,6 +432,7 @@ struct Manager::Impl {
             [this](const std::string& token, std::span<const std::byte> body) { handle(token, body); },
             [this](const std::string& why) { drop(why); });
         heartbeats();
+        commits.rethrow_failure();
         if (schedule.complete()) {
           if (!completed) completed = Clock::now();
           // Each is told FINISHED when it asks (or says HELLO, if it starts late).
@@ -447,6 +450,11 @@ struct Manager::Impl {
     } catch (...) {
       stop_workers();
       progress.end();
+      try {
+        commits.drain(); // what the workers committed stays committed
+      } catch (const std::exception& e) {
+        log.error(std::string("the index could not take the last commits: ") + e.what());
+      }
       throw;
     }
     // Workers told FINISHED exit by themselves; those still running after a grace are stopped.
@@ -456,6 +464,7 @@ struct Manager::Impl {
       std::this_thread::sleep_for(std::chrono::milliseconds(10));
     stop_workers();
     progress.end();
+    commits.drain();
     report.manager_cpu_seconds = cpu_seconds() - cpu_at_start;
     report.components = committer.added();
     report.duplicates = committer.duplicates();

@@ -222,14 +222,17 @@ Decision Schedule::next(WorkerId id) {
       return assign(w, {.kind = TaskKind::merge, .transfer = t});
     }
   }
-  if (!w.incoming.empty()) return assign(w, {.kind = TaskKind::wait});
+  // A surface still on its way is not waiting yet: its target does not send its own away (it is
+  // the target), but it extracts meanwhile rather than idle; it waits only with nothing to extract.
+  const bool expecting = !w.incoming.empty();
 
   // 2. has_neighbor_worker
-  if (!w.held.empty())
+  if (!w.held.empty() && !expecting)
     if (const std::optional<WorkerId> v = neighbor(id)) return send_to(id, w, *v);
 
   // 3. has_unprocessed_block
   const NodeId leaf = unprocessed_leaf(w);
+  if (expecting && leaf == kNoNode) return assign(w, {.kind = TaskKind::wait});
   if (leaf != kNoNode) {
     unprocessed_[static_cast<std::size_t>(leaf)] = 0;
     w.held.add(leaf);

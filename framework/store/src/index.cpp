@@ -247,6 +247,18 @@ bool ComponentStore::contains(std::uint64_t key) const {
   return s.step();
 }
 
+std::vector<std::uint64_t> ComponentStore::present(const std::vector<std::uint64_t>& keys) const {
+  std::vector<std::uint64_t> out;
+  if (keys.empty()) return out;
+  auto s = impl_->db->prepare("SELECT 1 FROM components WHERE key = ?");
+  for (std::uint64_t key : keys) {
+    s.reset();
+    s.bind(1, to_sql(key));
+    if (s.step()) out.push_back(key);
+  }
+  return out;
+}
+
 std::uint64_t ComponentStore::size() const {
   auto s = impl_->db->prepare("SELECT count(*) FROM components");
   s.step();

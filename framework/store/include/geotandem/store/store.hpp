@@ -128,6 +128,9 @@ public:
   std::size_t commit(const IndexEntry& entry) { return commit(std::vector<IndexEntry>{entry}); }
 
   bool contains(std::uint64_t key) const;
+  // The keys among `keys` already in the index, in the order given (one statement for all: the
+  // manager checks each batch its workers commit).
+  std::vector<std::uint64_t> present(const std::vector<std::uint64_t>& keys) const;
   std::uint64_t size() const;
   // The end of the last indexed record of a shard (0 when the shard has none).
   std::uint64_t indexed_end(const std::string& shard) const;

@@ -1,0 +1,80 @@
+// The manager's index writes on their own thread (commit_queue.hpp).
+#include "commit_queue.hpp"
+
+#include <utility>
+
+namespace geotandem::runtime::detail {
+
+CommitQueue::CommitQueue(ComponentCommitter& committer) : committer_(committer), thread_([this] { loop(); }) {}
+
+CommitQueue::~CommitQueue() {
+  {
+    std::lock_guard lock(mutex_);
+    stop_ = true;
+  }
+  wake_.notify_all();
+  thread_.join();
+}
+
+void CommitQueue::commit(std::vector<store::IndexEntry> entries) {
+  {
+    std::lock_guard lock(mutex_);
+    queue_.emplace_back(std::move(entries));
+  }
+  wake_.notify_one();
+}
+
+void CommitQueue::then(std::function<void()> action) {
+  {
+    std::lock_guard lock(mutex_);
+    queue_.emplace_back(std::move(action));
+  }
+  wake_.notify_one();
+}
+
+void CommitQueue::rethrow_failure() {
+  std::lock_guard lock(mutex_);
+  if (failure_) std::rethrow_exception(failure_);
+}
+
+void CommitQueue::drain() {
+  {
+    std::unique_lock lock(mutex_);
+    idle_.wait(lock, [this] { return (queue_.empty() && !busy_) || failure_; });
+  }
+  rethrow_failure();
+}
+
+void CommitQueue::loop() {
+  std::unique_lock lock(mutex_);
+  for (;;) {
+    wake_.wait(lock, [this] { return stop_ || !queue_.empty(); });
+    if (queue_.empty() || failure_) {
+      // Stopped with nothing left, or a failure: what is queued after a failure is not done (the
+      // leaves recorded after a failed commit would claim components the index does not have).
+      queue_.clear();
+      idle_.notify_all();
+      if (stop_) return;
+      continue;
+    }
+    Work work = std::move(queue_.front());
+    queue_.pop_front();
+    busy_ = true;
+    lock.unlock();
+    std::exception_ptr failed;
+    try {
+      if (auto* entries = std::get_if<std::vector<store::IndexEntry>>(&work))
+        committer_.commit(std::move(*entries));
+      else
+        std::get<std::function<void()>>(work)();
+    } catch (...) {
+      failed = std::current_exception();
+    }
+    lock.lock();
+    busy_ = false;
+    if (failed && !failure_) failure_ = failed;
+    if (queue_.empty() || failure_) idle_.notify_all();
+  }
+}
+
+} // namespace geotandem::runtime::detail

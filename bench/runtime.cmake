@@ -5,3 +5,11 @@ add_executable(bench_runtime_speedup ${CMAKE_CURRENT_SOURCE_DIR}/runtime_speedup
 target_link_libraries(bench_runtime_speedup PRIVATE geotandem::runtime geotandem::synth geotandem::store)
 geotandem_target_defaults(bench_runtime_speedup)
 add_dependencies(bench_runtime_speedup geotandem)
+
+# bench_surface_route: a partial surface from worker to worker, directly or through the manager
+# (store and forward, as the runtime does), with the runtime's messages over TCP; time per surface
+# and CPU of each process. Run it as
+#   build/release/bin/bench_surface_route 1,4,16 16
+add_executable(bench_surface_route ${CMAKE_CURRENT_SOURCE_DIR}/surface_route.cpp)
+target_link_libraries(bench_surface_route PRIVATE geotandem::runtime cppzmq)
+geotandem_target_defaults(bench_surface_route)

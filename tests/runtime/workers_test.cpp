@@ -11,6 +11,9 @@
 #include <random>
 #include <thread>
 
+#include <nlohmann/json.hpp>
+
+#include "geotandem/store/store.hpp"
 #include "process_fixtures.hpp"
 #include "scratch.hpp"
 
@@ -61,6 +64,15 @@ TEST(Workers, OneTwoAndFourWorkersGiveTheComponentsOfTheInProcessRun) {
     const pid_t pid = spawn_geotandem(f.extract_args(out, workers), f.dir.file(out + ".log"));
     ASSERT_EQ(wait_exit(pid, 300), 0) << read_text(f.dir.file(out + ".log"));
     f.expect_same(out);
+    // The run's totals come back with the final surface: as many marching-cubes triangles as the
+    // in-process run, and collapses counted (not the zeros of a report that lost them).
+    const auto stats = [&](const std::string& name) {
+      const auto runs = store::ComponentStore::open(f.dir.file(name)).runs();
+      return nlohmann::json::parse(runs.back().statistics);
+    };
+    const nlohmann::json got = stats(out), ref = stats("ref");
+    EXPECT_EQ(got.at("input_triangles").get<std::uint64_t>(), ref.at("input_triangles").get<std::uint64_t>()) << out;
+    EXPECT_GT(got.at("collapses").get<std::uint64_t>(), got.at("input_triangles").get<std::uint64_t>() / 4) << out;
   }
 }
 

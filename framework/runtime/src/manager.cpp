@@ -236,7 +236,11 @@ struct Manager::Impl {
     switch (p.task->kind) {
     case TaskKind::extract: ++report.extract, report.seconds_extract += s, advance(); break;
     case TaskKind::merge: ++report.merge, report.seconds_merge += s; break;
-    case TaskKind::finished: ++report.finish, report.seconds_finish += s, advance(); break;
+    case TaskKind::finished:
+      ++report.finish, report.seconds_finish += s, advance();
+      report.input_triangles = static_cast<std::uint64_t>(m.box[2]);
+      report.collapses = static_cast<std::uint64_t>(m.box[3]);
+      break;
     default: break;
     }
     ++p.tasks;
@@ -428,7 +432,8 @@ struct Manager::Impl {
       for (;;) {
         cancel.throw_if_cancelled();
         socket.receive(
-            std::chrono::milliseconds(100),
+            // Once the run is complete it only waits for workers to leave: it looks more often.
+            std::chrono::milliseconds(completed ? 5 : 100),
             [this](const std::string& token, std::span<const std::byte> body) { handle(token, body); },
             [this](const std::string& why) { drop(why); });
         heartbeats();

@@ -24,7 +24,9 @@ std::string ManagerReport::to_json() const {
       {"duplicates", duplicates},
       {"repaired", repaired},
       {"manager", {{"cpu_seconds", manager_cpu_seconds}, {"peak_rss_kb", manager_peak_rss_kb}}},
-      {"worker_peak_rss_kb", worker_peak_rss_kb}};
+      {"worker_peak_rss_kb", worker_peak_rss_kb},
+      {"input_triangles", input_triangles},
+      {"collapses", collapses}};
   return j.dump();
 }
 

@@ -193,6 +193,8 @@ private:
     // 1: this worker's surface holds nothing after the task; every component of its leaves is in
     // the COMMIT above, so the manager may record the leaves as finished (resume).
     d.box[1] = !surface_ || surface_->component_count() == 0 ? 1 : 0;
+    d.box[2] = static_cast<std::int64_t>(totals_.input_triangles);
+    d.box[3] = static_cast<std::int64_t>(totals_.collapses);
     link_.send(d);
   }
 
@@ -299,6 +301,7 @@ private:
       if (region.blocks().size() != 1 || !(region.blocks().front() == cube))
         surface_->set_region(tandem::Region::block(cube, cube));
       surface_->finish(&cancel_);
+      totals_ = surface_->counters();
     }
     surface_.reset();
     report(m, start);
@@ -316,8 +319,9 @@ private:
   std::optional<store::ShardWriter> writer_;
   std::optional<ShardSink> sink_;
   std::unique_ptr<tandem::WorkingSurface> surface_;
-  Lease task_lease_;      // of the task in progress (mid-task COMMITs carry it)
-  bool retiring_ = false; // near its walltime: RETIRE sent
+  Lease task_lease_;                // of the task in progress (mid-task COMMITs carry it)
+  bool retiring_ = false;           // near its walltime: RETIRE sent
+  tandem::SimplifyCounters totals_; // of the whole surface, once finished
 };
 
 } // namespace

@@ -58,6 +58,9 @@ struct ManagerReport {
   double seconds = 0, manager_cpu_seconds = 0; // the run's wall time; CPU the manager used in it
   std::int64_t manager_peak_rss_kb = 0;        // of the manager's process, so far
   std::int64_t worker_peak_rss_kb = 0;         // the largest over the workers
+  // Of the whole surface, as the final worker reports it (totals travel with the partial surfaces):
+  // marching-cubes triangles and collapses of every leaf extracted in this run.
+  std::uint64_t input_triangles = 0, collapses = 0;
 
   std::string to_json() const;
 };

@@ -176,7 +176,7 @@ ExtractResult extract_to_store(const volume::Volume& volume, store::ComponentSto
   store::LocalSinkOptions sink_options;
   sink_options.run = result.run;
   store::LocalSink sink(store, sink_options);
-  log.info("extracting in this process (--workers 0)");
+  log.info("extracting in this process, on one core");
 
   // One block (block_size 0), or the block tree: leaves one after the other, brothers merged
   // bottom-up, each partial surface through its wire form as the runtime will ship it.

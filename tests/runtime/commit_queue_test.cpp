@@ -37,12 +37,18 @@ Batch write(store::ShardWriter& writer, const volume::Geometry& g, std::uint64_t
   return b;
 }
 
-TEST(CommitQueue, AnActionRunsAfterTheCommitsQueuedBeforeIt) {
+// A store, a worker's shard writer, and the manager's committer.
+struct Stores {
   ScratchDir dir;
-  const volume::Geometry g = store::testing::test_geometry();
-  auto store = store::ComponentStore::create(dir.path() / "store", g);
-  store::ShardWriter writer(dir.path() / "store", "w1", g);
-  ComponentCommitter committer(store);
+  volume::Geometry g = store::testing::test_geometry();
+  store::ComponentStore store = store::ComponentStore::create(dir.path() / "store", g);
+  store::ShardWriter writer{dir.path() / "store", "w1", g};
+  ComponentCommitter committer{store};
+};
+
+TEST(CommitQueue, AnActionRunsAfterTheCommitsQueuedBeforeIt) {
+  Stores f;
+  auto& [dir, g, store, writer, committer] = f;
   CommitQueue queue(committer);
   std::atomic<std::size_t> seen{0};
   std::vector<std::uint64_t> all;
@@ -68,11 +74,8 @@ TEST(CommitQueue, AnActionRunsAfterTheCommitsQueuedBeforeIt) {
 }
 
 TEST(CommitQueue, NothingQueuedAfterAFailedCommitIsDone) {
-  ScratchDir dir;
-  const volume::Geometry g = store::testing::test_geometry();
-  auto store = store::ComponentStore::create(dir.path() / "store", g);
-  store::ShardWriter writer(dir.path() / "store", "w1", g);
-  ComponentCommitter committer(store);
+  Stores f;
+  auto& [dir, g, store, writer, committer] = f;
   CommitQueue queue(committer);
   Batch good = write(writer, g, 1, 5);
   Batch bad = write(writer, g, 100, 5);
@@ -92,11 +95,8 @@ TEST(CommitQueue, NothingQueuedAfterAFailedCommitIsDone) {
 }
 
 TEST(CommitQueue, WhatIsQueuedIsCommittedWhenTheManagerStopsWithoutDraining) {
-  ScratchDir dir;
-  const volume::Geometry g = store::testing::test_geometry();
-  auto store = store::ComponentStore::create(dir.path() / "store", g);
-  store::ShardWriter writer(dir.path() / "store", "w1", g);
-  ComponentCommitter committer(store);
+  Stores f;
+  auto& [dir, g, store, writer, committer] = f;
   std::vector<std::uint64_t> all;
   {
     CommitQueue queue(committer);

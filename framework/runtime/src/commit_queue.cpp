@@ -37,6 +37,11 @@ void CommitQueue::rethrow_failure() {
   if (failure_) std::rethrow_exception(failure_);
 }
 
+bool CommitQueue::failed() {
+  std::lock_guard lock(mutex_);
+  return failure_ != nullptr;
+}
+
 void CommitQueue::drain() {
   {
     std::unique_lock lock(mutex_);

@@ -30,6 +30,7 @@ public:
   void then(std::function<void()> action);
   // Throws the first failure of the queue's thread, if any (then nothing more was done).
   void rethrow_failure();
+  bool failed();
   // Waits until everything queued is done, then rethrow_failure().
   void drain();
 

@@ -455,10 +455,11 @@ struct Manager::Impl {
     } catch (...) {
       stop_workers();
       progress.end();
+      const bool failed_before = commits.failed(); // then that failure is what goes up
       try {
         commits.drain(); // what the workers committed stays committed
       } catch (const std::exception& e) {
-        log.error(std::string("the index could not take the last commits: ") + e.what());
+        if (!failed_before) log.error(std::string("the index could not take the last commits: ") + e.what());
       }
       throw;
     }

@@ -1,0 +1,128 @@
+#pragma once
+// The manager's state (manager.hpp): the members the event loop (manager.cpp) and the message
+// handling (manager_tasks.cpp) share. Internal to the runtime.
+#include "geotandem/runtime/manager.hpp"
+
+#include <algorithm>
+#include <map>
+#include <set>
+
+#include "commit_queue.hpp"
+#include "component_committer.hpp"
+#include "finished_blocks.hpp"
+#include "geotandem/core/error.hpp"
+#include "geotandem/runtime/schedule.hpp"
+#include "geotandem/tandem/marching_cubes.hpp"
+#include "manager_socket.hpp"
+#include "manager_support.hpp"
+#include "surface_relay.hpp"
+#include "worker_failure.hpp"
+
+namespace geotandem::runtime {
+
+using detail::Clock;
+using detail::cpu_seconds;
+using detail::peak_rss_kb;
+using detail::random_hex;
+using detail::since;
+
+struct Manager::Impl {
+  struct Peer {
+    WorkerId id = 0;
+    std::string token;
+    std::uint64_t pid = 0;
+    Clock::time_point heard;
+    Lease lease; // of the task in progress
+    std::optional<Decision> task;
+    Clock::time_point task_start;
+    std::uint64_t tasks = 0;
+  };
+
+  ManagerOptions options;
+  store::ComponentStore& store;
+  Launcher* launcher;
+  Logger& log;
+  Progress& progress;
+  const CancelToken& cancel;
+  detail::ManagerSocket socket;
+  const std::string& endpoint = socket.endpoint();
+  detail::ComponentCommitter committer{store};
+  std::string run_prefix = random_hex(6);
+  std::size_t token_count = 0;
+  std::set<std::string> allowed, dead, departed; // departed: told FINISHED after its work, a subset of dead
+  std::map<std::string, Peer> peers;             // by token
+  tandem::BlockTree tree;
+  Schedule schedule{tree};
+  detail::FinishedBlocks finished{store.directory(), tree};
+  detail::CommitQueue commits{committer}; // after what its thread uses
+  detail::SurfaceRelay relay{options.max_surface, static_cast<std::size_t>(options.settings.chunk_bytes)};
+  std::map<tandem::NodeId, std::uint32_t> attempts;
+  std::uint64_t next_task = 1;
+  WorkerId next_worker = 1;
+  ManagerReport report;
+  Clock::time_point start = Clock::now(), last_beat = Clock::now();
+  double cpu_at_start = cpu_seconds();
+  std::uint64_t progress_done = 0;
+
+  Impl(ManagerOptions o, store::ComponentStore& s, Launcher* l, Logger& lg, Progress& p, const CancelToken& c)
+      : options(std::move(o)), store(s), launcher(l), log(lg), progress(p), cancel(c),
+        socket(options.bind, options.max_message, s.directory().string() + ".keys", lg),
+        tree(tandem::cube_cells(s.geometry().shape), std::max<std::int64_t>(options.settings.block_size, 8)) {
+    report.leaves = tree.leaves().size();
+  }
+
+  void skip_finished_leaves();
+
+  std::string new_token() {
+    std::string t = "w" + run_prefix + "-" + std::to_string(++token_count);
+    allowed.insert(t);
+    return t;
+  }
+
+  void launch_one();
+
+  bool send(const std::string& token, const Message& m) { return socket.send(token, encode(m)); }
+
+  void drop(const std::string& why) {
+    ++report.dropped_messages;
+    if (report.dropped_messages <= 20) log.warning("dropped a message: " + why);
+    if (report.dropped_messages == 20) log.warning("further dropped messages are not logged");
+  }
+
+  std::string task_text(const Peer& p) const {
+    if (!p.task) return "no task";
+    std::string t = to_string(p.task->kind);
+    if (p.task->kind == TaskKind::extract) t += " of " + tree.describe(p.task->leaf);
+    return t;
+  }
+
+  void kill_peer(const std::string& token, const std::string& why);
+
+  // Workers launched that have not said HELLO yet (nor ended).
+  std::size_t workers_to_come() const { return allowed.size() - peers.size() - dead.size(); }
+
+  std::string token_of(WorkerId id) const {
+    for (const auto& [token, p] : peers)
+      if (p.id == id) return token;
+    return "?";
+  }
+
+  void retire(Peer& p, const std::string& why);
+  void decide(Peer& p);
+  void pump(Peer& p, std::uint64_t credits);
+  void depart(const std::string& token);
+
+  // The bar counts blocks extracted and the final pass; a re-done block does not move it twice.
+  void advance() {
+    if (progress_done < report.leaves + 1) progress.advance();
+    ++progress_done;
+  }
+
+  void task_done(Peer& p, const Message& m);
+  void handle(const std::string& token, std::span<const std::byte> frame);
+  void heartbeats();
+  void stop_workers();
+  ManagerReport run();
+};
+
+} // namespace geotandem::runtime

@@ -1,0 +1,223 @@
+// The manager's handling of its workers' messages (manager.hpp): HELLO, ASK, the results of tasks,
+// the chunks of partial surfaces, and the decisions that answer them (Schedule).
+#include "manager_impl.hpp"
+
+namespace geotandem::runtime {
+
+// RETIRE: the worker is near its walltime. It gets no more EXTRACT and hands its surface to
+// another worker (Schedule); a replacement with a fresh walltime is launched now, so that it can
+// take the surface. Not counted against max_restarts: a retiring worker loses nothing.
+void Manager::Impl::retire(Peer& p, const std::string& why) {
+  if (!schedule.retiring(p.id)) {
+    schedule.retire(p.id);
+    ++report.retirements;
+    log.info("worker " + p.token + " retires (" + why + "); it hands back its surface of " +
+             std::to_string(schedule.leaves_held(p.id)) + " block(s)");
+    std::size_t staying = workers_to_come();
+    for (const auto& [token, q] : peers)
+      staying += schedule.retiring(q.id) ? 0 : 1;
+    if (launcher && !schedule.complete() && staying < std::max<std::size_t>(options.workers, 1)) launch_one();
+  }
+  decide(p);
+}
+
+void Manager::Impl::decide(Peer& p) {
+  schedule.expect_joins(workers_to_come());
+  const Decision d = schedule.next(p.id);
+  if (d.kind == TaskKind::send && schedule.retiring(p.id)) {
+    report.handed_back += schedule.transfer_leaves(d.transfer);
+    log.info("worker " + p.token + " hands its surface of " + std::to_string(schedule.transfer_leaves(d.transfer)) +
+             " block(s) to worker " + token_of(d.target));
+  }
+  if (d.kind == TaskKind::finished && !d.final && schedule.leaves_held(p.id) > 0) {
+    const std::size_t n = schedule.leaves_held(p.id);
+    log.warning("worker " + p.token + " retires with no worker to take its surface: " + std::to_string(n) +
+                " block(s) will be re-done from the volume");
+    report.redone_leaves += n;
+  }
+  Message m = detail::task_message(d, tree);
+  if (d.kind == TaskKind::extract) m.lease.attempt = ++attempts[d.leaf];
+  const bool busy = d.kind != TaskKind::wait && (d.kind != TaskKind::finished || d.final);
+  if (busy) {
+    m.lease.task = next_task++;
+    p.lease = m.lease;
+    p.task = d;
+    p.task_start = Clock::now();
+    log.debug("worker " + p.token + ": " + task_text(p));
+  }
+  if (d.kind == TaskKind::merge) {
+    const detail::SurfaceRelay::Header h = relay.begin_outbound(p.token, d.transfer);
+    m.number = h.total;
+    m.box[0] = static_cast<std::int64_t>(h.checksum);
+  }
+  if (d.kind == TaskKind::send) relay.begin_inbound(p.token);
+  if (!send(p.token, m)) return kill_peer(p.token, "cannot be reached");
+  if (d.kind == TaskKind::merge) pump(p, 0);
+  if (d.kind == TaskKind::finished && !d.final) depart(p.token);
+}
+
+// The chunks of the MERGE in progress that the worker's credits allow now.
+void Manager::Impl::pump(Peer& p, std::uint64_t credits) {
+  relay.pump(p.token, credits, [&](std::uint64_t offset, std::span<const std::byte> piece) {
+    Message c;
+    c.kind = MessageKind::merge_chunk;
+    c.lease = p.lease;
+    c.number = offset;
+    c.bytes.assign(piece.begin(), piece.end());
+    send(p.token, c);
+  });
+}
+
+// A worker told to stop leaves the run without a warning.
+void Manager::Impl::depart(const std::string& token) {
+  auto it = peers.find(token);
+  if (it == peers.end()) return;
+  log.info("worker " + token + " done after " + std::to_string(it->second.tasks) + " task(s)");
+  schedule.leave(it->second.id);
+  relay.forget(token);
+  dead.insert(token);
+  departed.insert(token);
+  peers.erase(it);
+}
+
+void Manager::Impl::task_done(Peer& p, const Message& m) {
+  const double s = static_cast<double>(m.number) / 1000.0;
+  report.worker_peak_rss_kb = std::max(report.worker_peak_rss_kb, m.box[0]);
+  switch (p.task->kind) {
+  case TaskKind::extract: ++report.extract, report.seconds_extract += s, advance(); break;
+  case TaskKind::merge: ++report.merge, report.seconds_merge += s; break;
+  case TaskKind::finished:
+    ++report.finish, report.seconds_finish += s, advance();
+    report.input_triangles = static_cast<std::uint64_t>(m.box[2]);
+    report.collapses = static_cast<std::uint64_t>(m.box[3]);
+    break;
+  default: break;
+  }
+  ++p.tasks;
+  // An empty surface: its leaves' components are all committed (the COMMIT came first).
+  if (m.box[1] == 1) {
+    const std::vector<tandem::NodeId> leaves = schedule.held(p.id);
+    log.debug("worker " + p.token + ": surface empty after " + task_text(p) + "; " + std::to_string(leaves.size()) +
+              " leaves finished");
+    commits.then([this, leaves] { finished.record(leaves); }); // once their COMMITs are in the index
+  }
+  const bool final = p.task->kind == TaskKind::finished;
+  p.task.reset();
+  schedule.done(p.id);
+  if (final) depart(p.token);
+}
+
+void Manager::Impl::handle(const std::string& token, std::span<const std::byte> frame) {
+  if (dead.count(token)) { // a frozen worker woke up, or a late message of one that left
+    Message f;
+    f.kind = MessageKind::finished;
+    send(token, f);
+    // A worker told FINISHED may still have had a heartbeat on its way: that is not a dropped
+    // message. One declared dead that speaks again is.
+    if (!departed.count(token)) ++report.dropped_messages;
+    return;
+  }
+  if (!allowed.count(token)) return drop("from an unknown sender (not a token this manager issued)");
+  Message m;
+  try {
+    m = decode(frame, options.max_message);
+  } catch (const ProtocolError& e) {
+    return drop(std::string("from worker ") + token + ": " + e.what());
+  }
+  auto it = peers.find(token);
+  if (m.kind == MessageKind::hello) {
+    if (it != peers.end()) return drop("a second HELLO from worker " + token);
+    if (schedule.complete()) { // a late starter: nothing left to do
+      Message f;
+      f.kind = MessageKind::finished;
+      send(token, f);
+      dead.insert(token);
+      departed.insert(token);
+      return;
+    }
+    Peer p{.id = next_worker++, .token = token, .pid = m.number, .heard = Clock::now()};
+    schedule.join(p.id);
+    ++report.workers;
+    log.info("worker " + token + " (pid " + std::to_string(p.pid) + ") joined; " + std::to_string(peers.size() + 1) +
+             " connected");
+    Message s;
+    s.kind = MessageKind::setup;
+    s.text = options.settings.to_json();
+    peers.emplace(token, p);
+    if (!send(token, s)) kill_peer(token, "cannot be reached");
+    return;
+  }
+  if (it == peers.end()) return drop(std::string(to_string(m.kind)) + " from worker " + token + " before its HELLO");
+  Peer& p = it->second;
+  p.heard = Clock::now();
+  switch (m.kind) {
+  case MessageKind::heartbeat: return;
+  case MessageKind::ask:
+    if (p.task) { // it lost its task (a message dropped on the way): its work is re-done elsewhere
+      drop("ASK from worker " + token + " while it has a task (" + task_text(p) + ")");
+      return kill_peer(token, "asked again without finishing its task");
+    }
+    return decide(p);
+  case MessageKind::retire:
+    if (p.task) {
+      drop("RETIRE from worker " + token + " while it has a task (" + task_text(p) + ")");
+      return kill_peer(token, "retired without finishing its task");
+    }
+    return retire(p, m.text);
+  case MessageKind::failed:
+    if (!p.task && m.lease == Lease{}) // SETUP failed: every worker would fail the same way
+      detail::throw_worker_failure(static_cast<int>(m.number), "could not start: " + m.text, token,
+                                   "every worker reads the input itself: check that it is readable and "
+                                   "intact from every worker, and that the store directory is writable");
+    if (!p.task || !(m.lease == p.lease)) return drop("a stale FAILED from worker " + token);
+    detail::throw_worker_failure(static_cast<int>(m.number), "failed during " + task_text(p) + ": " + m.text, token,
+                                 "fix the cause and rerun the same command: committed components are kept");
+  default: break;
+  }
+  if (!p.task || !(m.lease == p.lease))
+    return drop(std::string(to_string(m.kind)) + " from worker " + token + " with a stale lease (task " +
+                std::to_string(m.lease.task) + ", attempt " + std::to_string(m.lease.attempt) + ")");
+  switch (m.kind) {
+  case MessageKind::commit: commits.commit(std::move(m.entries)); return;
+  case MessageKind::surface_chunk: {
+    if (p.task->kind != TaskKind::send) return drop("a surface chunk from worker " + token + " outside a SEND");
+    if (const std::optional<std::string> why = relay.chunk_in(token, m.number, m.bytes)) {
+      drop("from worker " + token + ": " + *why); // its surface cannot arrive whole: its leaves are redone
+      return kill_peer(token, "sent a damaged partial surface");
+    }
+    Message credit;
+    credit.kind = MessageKind::surface_credit;
+    credit.lease = m.lease;
+    credit.number = 1;
+    send(token, credit);
+    return;
+  }
+  case MessageKind::merge_credit:
+    if (p.task->kind != TaskKind::merge) return drop("a merge credit from worker " + token + " outside a MERGE");
+    return pump(p, m.number);
+  case MessageKind::surface: {
+    if (p.task->kind != TaskKind::send) return drop("SURFACE from worker " + token + " outside a SEND");
+    const TransferId t = p.task->transfer;
+    std::uint64_t bytes = 0;
+    if (const std::optional<std::string> why =
+            relay.end_inbound(token, m.number, static_cast<std::uint64_t>(m.box[0]), bytes)) {
+      drop("from worker " + token + ": " + *why);
+      return kill_peer(token, "sent a damaged partial surface");
+    }
+    report.surface_bytes += bytes;
+    report.largest_surface = std::max<std::uint64_t>(report.largest_surface, bytes);
+    ++report.send;
+    ++p.tasks;
+    p.task.reset();
+    if (schedule.arrived(p.id, t)) relay.keep(token, t);
+    relay.forget(token);
+    return;
+  }
+  case MessageKind::done:
+    if (p.task->kind == TaskKind::send) return drop("DONE from worker " + token + " for a SEND");
+    return task_done(p, m);
+  default: return drop(std::string("unexpected ") + to_string(m.kind) + " from worker " + token);
+  }
+}
+
+} // namespace geotandem::runtime

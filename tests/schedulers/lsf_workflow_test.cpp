@@ -81,12 +81,10 @@ TEST_F(LsfRun, PastTheReplacementLimitTheRunStopsWithAClearError) {
   EXPECT_EQ(code, 1) << text;
   EXPECT_NE(text.find("lsf: job "), std::string::npos) << text;
   EXPECT_NE(text.find("has already replaced 3 lost or killed job(s), its limit"), std::string::npos) << text;
-  // Four ended jobs reach the policy. A worker that had connected is also lost by its heartbeat
-  // (2.5 s), and the manager starts one replacement for it then; when the scheduler's poll lags
-  // behind that (a loaded machine: this test once took 16 s in a full parallel suite), some of those
-  // come before the fourth end is seen. The run still stops there, not after its 16 restarts.
+  // Four ended jobs reach the policy; the manager may have started one more after a heartbeat death
+  // before the fourth job's end was polled.
   EXPECT_GE(killed.size(), 4u) << text;
-  EXPECT_LE(killed.size(), 7u) << text;
+  EXPECT_LE(killed.size(), 5u) << text;
 }
 
 TEST_F(LsfRun, NoSuchQueueIsAClearError) {

@@ -14,9 +14,7 @@
 #include <string>
 
 #include "geotandem/core/error.hpp"
-#include "mc_caps.hpp"
-#include "mc_table.hpp"
-#include "slab_reader.hpp"
+#include "layer_extractor_impl.hpp"
 
 namespace geotandem::tandem {
 
@@ -24,10 +22,6 @@ namespace {
 
 using volume::Box;
 using volume::Index3;
-
-// The families of lattice edges of a layer: in cross-section A (rank - 1) along u or v, in
-// cross-section B (rank) along u or v, and across (along the axis, from A to B).
-enum EdgeArray : std::uint8_t { a_u = 0, a_v, b_u, b_v, across, edge_array_count };
 
 // Bits [64 w, 64 w + 64) of a row that are below `limit`.
 std::uint64_t mask_below(std::int64_t limit, std::int64_t w) {
@@ -51,57 +45,6 @@ unsigned two_bits(const std::uint64_t* row, std::int64_t iv) {
 volume::Box cube_cells(const volume::Index3& shape) {
   return Box{{0, 0, 0}, {shape[0] - 1, shape[1] - 1, shape[2] - 1}};
 }
-
-struct LayerExtractor::Impl {
-  struct EdgeSlot {
-    EdgeArray array;
-    std::uint8_t du, dv;
-  };
-
-  const volume::Volume& volume;
-  Box box; // the cells
-  McOptions options;
-  LatticeIds lattice;
-  int a = 0, u = 1, v = 2;                     // extraction axis, then the slower and faster in-plane axes
-  std::int64_t nu = 0, nv = 0, su = 0, sv = 0; // cells and samples of a cross-section along u and v
-  std::int64_t words = 0;                      // 64-bit words per row of sign bits
-  std::int64_t rank = 0;                       // the next layer's rank
-  bool first_read = false;
-  std::unique_ptr<detail::SlabReader> slabs; // the block's samples, a slab of sections at a time
-  std::vector<float> values[2];              // [0]: cross-section rank - 1 ("A"), [1]: cross-section rank ("B")
-  std::vector<std::uint64_t> signs[2];       // sign bits of the same
-  // Vertex number per crossed edge, row stride sv, relative to the first vertex of its
-  // cross-section (or of the edges across): [buffer][0 = along u, 1 = along v], and across.
-  std::vector<std::uint32_t> plane_slots[2][2];
-  std::vector<std::uint32_t> across_slots;
-  // Vertex number per inside sample on the cube's border (caps), relative like plane_slots.
-  std::vector<std::uint32_t> sample_slots[2];
-  // The vertices of cross-section B of the last layer, which are cross-section A's of the next.
-  std::vector<std::uint64_t> kept_ids;
-  std::vector<std::array<double, 3>> kept_positions;
-  bool have_kept = false;
-  EdgeSlot edge_slot[detail::kCellEdges]{};
-  std::uint8_t local_to_case[256]{};
-
-  Impl(const volume::Volume& vol, const Box& cells, const McOptions& opts);
-  void read(int which, std::int64_t section);
-  void emit_plane(int which, Layer& out);
-  void emit_samples(int which, Layer& out, std::uint32_t first);
-  void emit_across(Layer& out);
-  void emit_caps(Layer& out, std::uint32_t b_first, std::uint32_t across_first) const;
-  bool inside(int which, std::int64_t iu, std::int64_t iv) const {
-    return ((signs[which][static_cast<std::size_t>(iu * words + (iv >> 6))] >> (iv & 63)) & 1u) != 0;
-  }
-  void emit_triangles(Layer& out, const std::uint32_t (&base)[edge_array_count]) const;
-  Index3 at(std::int64_t section, std::int64_t iu, std::int64_t iv) const {
-    Index3 g{};
-    g[a] = section;
-    g[u] = box.lo[u] + iu;
-    g[v] = box.lo[v] + iv;
-    return g;
-  }
-  std::uint32_t add_vertex(Layer& out, Index3 p0, int axis, float v0, float v1) const;
-};
 
 LayerExtractor::Impl::Impl(const volume::Volume& vol, const Box& cells, const McOptions& opts)
     : volume(vol), box(cells), options(opts), lattice{vol.geometry().shape} {
@@ -218,31 +161,6 @@ void LayerExtractor::Impl::emit_plane(int which, Layer& out) {
   if (options.caps) emit_samples(which, out, first);
 }
 
-void LayerExtractor::Impl::emit_samples(int which, Layer& out, std::uint32_t first) {
-  const std::int64_t section = rank - 1 + which;
-  const Index3& n = lattice.shape;
-  const bool whole = section == 0 || section == n[a] - 1;
-  const bool v_lo = box.lo[v] == 0, v_hi = box.lo[v] + nv == n[v] - 1;
-  std::uint32_t* slot = sample_slots[which].data();
-  auto add = [&](std::int64_t iu, std::int64_t iv) {
-    if (!inside(which, iu, iv)) return;
-    const Index3 g = at(section, iu, iv);
-    slot[iu * sv + iv] = static_cast<std::uint32_t>(out.positions.size()) - first;
-    out.positions.push_back({static_cast<double>(g[0]), static_cast<double>(g[1]), static_cast<double>(g[2])});
-    out.vertex_ids.push_back(lattice.sample_id(g[0], g[1], g[2]));
-  };
-  for (std::int64_t iu = 0; iu < su; ++iu) {
-    const std::int64_t gu = box.lo[u] + iu;
-    if (whole || gu == 0 || gu == n[u] - 1) {
-      for (std::int64_t iv = 0; iv < sv; ++iv)
-        add(iu, iv);
-    } else {
-      if (v_lo) add(iu, 0);
-      if (v_hi) add(iu, nv);
-    }
-  }
-}
-
 void LayerExtractor::Impl::emit_across(Layer& out) {
   const auto first = static_cast<std::uint32_t>(out.positions.size());
   for (std::int64_t iu = 0; iu < su; ++iu)
@@ -305,89 +223,6 @@ void LayerExtractor::Impl::emit_triangles(Layer& out, const std::uint32_t (&base
         }
       }
     }
-  }
-}
-
-void LayerExtractor::Impl::emit_caps(Layer& out, std::uint32_t b_first, std::uint32_t across_first) const {
-  const Index3& n = lattice.shape;
-  const std::uint32_t first[2] = {0, b_first};
-  auto at_uv = [this](std::int64_t iu, std::int64_t iv) { return static_cast<std::size_t>(iu * sv + iv); };
-  auto corner = [&](detail::CapSquare& q, int c, int which, std::int64_t iu, std::int64_t iv) {
-    q.inside[c] = inside(which, iu, iv);
-    if (q.inside[c]) q.corner[c] = first[which] + sample_slots[which][at_uv(iu, iv)];
-  };
-  // Edge vertices are looked up only where the signs of their ends differ (they exist there).
-  auto along = [&](int which, int dir, std::int64_t iu, std::int64_t iv) {
-    return first[which] + plane_slots[which][dir][at_uv(iu, iv)];
-  };
-  auto across_at = [&](std::int64_t iu, std::int64_t iv) { return across_first + across_slots[at_uv(iu, iv)]; };
-  auto emit = [&](detail::CapSquare& q, auto&& edge, int axis, int side) {
-    for (int c = 0; c < 4; ++c)
-      if (q.inside[c] != q.inside[(c + 1) % 4]) q.edge[c] = edge(c);
-    detail::emit_cap_square(q, axis, side, out);
-  };
-  // Faces across u and v: squares between cross-sections A and B.
-  for (int side = 0; side < 2; ++side) {
-    if (side == 0 ? box.lo[u] == 0 : box.lo[u] + nu == n[u] - 1) {
-      const std::int64_t iu = side == 0 ? 0 : nu;
-      for (std::int64_t iv = 0; iv < nv; ++iv) {
-        detail::CapSquare q;
-        corner(q, 0, 0, iu, iv);
-        corner(q, 1, 0, iu, iv + 1);
-        corner(q, 2, 1, iu, iv + 1);
-        corner(q, 3, 1, iu, iv);
-        emit(
-            q,
-            [&](int c) {
-              return c == 0   ? along(0, 1, iu, iv)
-                     : c == 1 ? across_at(iu, iv + 1)
-                     : c == 2 ? along(1, 1, iu, iv)
-                              : across_at(iu, iv);
-            },
-            u, side);
-      }
-    }
-    if (side == 0 ? box.lo[v] == 0 : box.lo[v] + nv == n[v] - 1) {
-      const std::int64_t iv = side == 0 ? 0 : nv;
-      for (std::int64_t iu = 0; iu < nu; ++iu) {
-        detail::CapSquare q;
-        corner(q, 0, 0, iu, iv);
-        corner(q, 1, 0, iu + 1, iv);
-        corner(q, 2, 1, iu + 1, iv);
-        corner(q, 3, 1, iu, iv);
-        emit(
-            q,
-            [&](int c) {
-              return c == 0   ? along(0, 0, iu, iv)
-                     : c == 1 ? across_at(iu + 1, iv)
-                     : c == 2 ? along(1, 0, iu, iv)
-                              : across_at(iu, iv);
-            },
-            v, side);
-      }
-    }
-  }
-  // Faces across the extraction axis: the whole first or last cross-section of the cube.
-  for (int which = 0; which < 2; ++which) {
-    if (rank - 1 + which != (which == 0 ? 0 : n[a] - 1)) continue;
-    for (std::int64_t iu = 0; iu < nu; ++iu)
-      for (std::int64_t iv = 0; iv < nv; ++iv) {
-        detail::CapSquare q;
-        corner(q, 0, which, iu, iv);
-        corner(q, 1, which, iu + 1, iv);
-        corner(q, 2, which, iu + 1, iv + 1);
-        corner(q, 3, which, iu, iv + 1);
-        if (!q.inside[0] && !q.inside[1] && !q.inside[2] && !q.inside[3]) continue;
-        emit(
-            q,
-            [&](int c) {
-              return c == 0   ? along(which, 0, iu, iv)
-                     : c == 1 ? along(which, 1, iu + 1, iv)
-                     : c == 2 ? along(which, 0, iu, iv + 1)
-                              : along(which, 1, iu, iv);
-            },
-            a, which);
-      }
   }
 }
 

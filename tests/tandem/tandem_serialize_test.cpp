@@ -147,7 +147,8 @@ TEST(TandemSerialize, DamagedRecordsAreRefused) {
 
   std::vector<std::byte> version = good;
   set_u32(version, 8, kSurfaceWireVersion + 1);
-  expect_refused(version, "format version 3, this build reads 2");
+  expect_refused(version, "format version " + std::to_string(kSurfaceWireVersion + 1) + ", this build reads " +
+                              std::to_string(kSurfaceWireVersion));
 
   std::vector<std::byte> magic = good;
   magic[0] = std::byte{'X'};

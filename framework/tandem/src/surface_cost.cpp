@@ -16,50 +16,66 @@ using detail::operator*;
 
 namespace {
 // One corner's share of a triangle's terms: p x q and q - p for the two corners that follow it.
-inline void add_corner(detail::VertexRecord& r, const detail::FaceRecord& fr, const Vec3& pq, const Vec3& link) {
-  r.isotropy += fr.isotropy;
-  r.det_sum += fr.det;
+inline void add_corner(detail::VertexRecord& r, const detail::Isotropy& isotropy, double det, const Vec3& normal,
+                       const Vec3& pq, const Vec3& link) {
+  r.isotropy += isotropy;
+  r.det_sum += det;
   r.cross_sum = r.cross_sum + pq;
   r.link_sum = r.link_sum + link;
-  r.normal_sum = r.normal_sum + fr.normal;
+  r.normal_sum = r.normal_sum + normal;
 }
-inline void remove_corner(detail::VertexRecord& r, const detail::FaceRecord& fr, const Vec3& pq, const Vec3& link) {
-  r.isotropy -= fr.isotropy;
-  r.det_sum -= fr.det;
+inline void remove_corner(detail::VertexRecord& r, const detail::Isotropy& isotropy, double det, const Vec3& normal,
+                          const Vec3& pq, const Vec3& link) {
+  r.isotropy -= isotropy;
+  r.det_sum -= det;
   r.cross_sum = r.cross_sum - pq;
   r.link_sum = r.link_sum - link;
-  r.normal_sum = r.normal_sum - fr.normal;
+  r.normal_sum = r.normal_sum - normal;
 }
 } // namespace
 
-void WorkingSurface::Engine::add_face_terms(FH f) {
+// Every term of a face is computed here, from its first halfedge on and from the same positions,
+// so that computing it again gives the bits that were added (working_mesh.hpp, FaceRecord).
+WorkingSurface::Engine::FaceCorners WorkingSurface::Engine::corners(FH f) const {
   const HH h0 = mesh_->halfedge_handle(f);
   const HH h1 = mesh_->next_halfedge_handle(h0);
-  const VH v0 = mesh_->from_vertex_handle(h0), v1 = mesh_->to_vertex_handle(h0), v2 = mesh_->to_vertex_handle(h1);
-  const Vec3 a = position(v0), b = position(v1), c = position(v2);
-  const Vec3 p0 = a - origin_, p1 = b - origin_, p2 = c - origin_;
-  detail::FaceRecord& fr = frec(f);
-  fr.normal = detail::cross(p1 - p0, p2 - p0);
-  fr.isotropy = detail::Isotropy::of_triangle(a, b, c, fr.normal);
+  FaceCorners c;
+  c.v = {mesh_->from_vertex_handle(h0), mesh_->to_vertex_handle(h0), mesh_->to_vertex_handle(h1)};
+  for (std::size_t k = 0; k < 3; ++k)
+    c.p[k] = position(c.v[k]) - origin_;
+  c.normal = detail::cross(c.p[1] - c.p[0], c.p[2] - c.p[0]);
+  return c;
+}
+
+detail::Isotropy WorkingSurface::Engine::face_isotropy(const FaceCorners& c) const {
+  return detail::Isotropy::of_triangle(position(c.v[0]), position(c.v[1]), position(c.v[2]), c.normal);
+}
+
+void WorkingSurface::Engine::add_face_terms(FH f) {
+  const FaceCorners c = corners(f);
+  const Vec3 &p0 = c.p[0], &p1 = c.p[1], &p2 = c.p[2];
+  const detail::Isotropy isotropy = face_isotropy(c);
   const Vec3 c0 = detail::cross(p1, p2);
-  fr.det = detail::dot(p0, c0);
-  fr.alive = true;
-  add_corner(vrec(v0), fr, c0, p2 - p1);
-  add_corner(vrec(v1), fr, detail::cross(p2, p0), p0 - p2);
-  add_corner(vrec(v2), fr, detail::cross(p0, p1), p1 - p0);
+  const double det = detail::dot(p0, c0);
+  frec(f).alive = true;
+  add_corner(vrec(c.v[0]), isotropy, det, c.normal, c0, p2 - p1);
+  add_corner(vrec(c.v[1]), isotropy, det, c.normal, detail::cross(p2, p0), p0 - p2);
+  add_corner(vrec(c.v[2]), isotropy, det, c.normal, detail::cross(p0, p1), p1 - p0);
 }
 
 void WorkingSurface::Engine::remove_face_terms(FH f, VH skip_a, VH skip_b) {
-  // The cross products are recomputed from the same positions in the same order, so they cancel
-  // what add_face_terms added exactly.
-  const HH h0 = mesh_->halfedge_handle(f);
-  const HH h1 = mesh_->next_halfedge_handle(h0);
-  const VH v0 = mesh_->from_vertex_handle(h0), v1 = mesh_->to_vertex_handle(h0), v2 = mesh_->to_vertex_handle(h1);
-  const Vec3 p0 = position(v0) - origin_, p1 = position(v1) - origin_, p2 = position(v2) - origin_;
-  const detail::FaceRecord& fr = frec(f);
-  if (v0 != skip_a && v0 != skip_b) remove_corner(vrec(v0), fr, detail::cross(p1, p2), p2 - p1);
-  if (v1 != skip_a && v1 != skip_b) remove_corner(vrec(v1), fr, detail::cross(p2, p0), p0 - p2);
-  if (v2 != skip_a && v2 != skip_b) remove_corner(vrec(v2), fr, detail::cross(p0, p1), p1 - p0);
+  // Computed again from the same positions in the same order: they cancel what add_face_terms
+  // added exactly.
+  const FaceCorners c = corners(f);
+  const Vec3 &p0 = c.p[0], &p1 = c.p[1], &p2 = c.p[2];
+  const detail::Isotropy isotropy = face_isotropy(c);
+  const Vec3 c0 = detail::cross(p1, p2);
+  const double det = detail::dot(p0, c0);
+  if (c.v[0] != skip_a && c.v[0] != skip_b) remove_corner(vrec(c.v[0]), isotropy, det, c.normal, c0, p2 - p1);
+  if (c.v[1] != skip_a && c.v[1] != skip_b)
+    remove_corner(vrec(c.v[1]), isotropy, det, c.normal, detail::cross(p2, p0), p0 - p2);
+  if (c.v[2] != skip_a && c.v[2] != skip_b)
+    remove_corner(vrec(c.v[2]), isotropy, det, c.normal, detail::cross(p0, p1), p1 - p0);
 }
 
 void WorkingSurface::Engine::recompute_face_terms() {
@@ -97,9 +113,9 @@ void WorkingSurface::Engine::volume_plane(HH h, CostInputs& in) const {
     // The triangle (u, v, w) of ab (side goes from u to v) is counted at both u and v, and in S_ab
     // once; it vanishes, so its terms at u and v leave N:
     //   (v x w) + (w x u) = w x (u - v)   and   (w - v) + (u - w) = u - v.
-    const detail::FaceRecord& fr = frec_[f.idx()];
-    det_sum -= fr.det;
-    normal_sum = normal_sum - fr.normal;
+    const FaceCorners fc = corners(f);
+    det_sum -= detail::dot(fc.p[0], detail::cross(fc.p[1], fc.p[2]));
+    normal_sum = normal_sum - fc.normal;
     const Vec3 u = position(mesh_->from_vertex_handle(side)) - origin_;
     const Vec3 v = position(mesh_->to_vertex_handle(side)) - origin_;
     const Vec3 w = position(mesh_->to_vertex_handle(mesh_->next_halfedge_handle(side))) - origin_;
@@ -124,8 +140,8 @@ bool WorkingSurface::Engine::prepare_inputs(HH h, CostInputs& in) {
   in.isotropy += rb.isotropy;
   // The triangles abx and aby are in both sums.
   const FH f0 = mesh_->face_handle(h), f1 = mesh_->face_handle(mesh_->opposite_halfedge_handle(h));
-  if (f0.is_valid()) in.isotropy -= frec(f0).isotropy;
-  if (f1.is_valid()) in.isotropy -= frec(f1).isotropy;
+  if (f0.is_valid()) in.isotropy -= face_isotropy(corners(f0));
+  if (f1.is_valid()) in.isotropy -= face_isotropy(corners(f1));
   in.a = position(a);
   in.b = position(b);
   if (options_.preserve_volume) volume_plane(h, in);

@@ -99,6 +99,15 @@ private:
   std::uint32_t stamp_of(EH e) const;
   void set_state(EH e, detail::EdgeState state, double key);
   bool prepare_inputs(HH h, detail::CostInputs& in);
+  // A face's corners from its first halfedge on, their positions relative to the origin and its
+  // normal (p1 - p0) x (p2 - p0): what every term of the face is computed from (surface_cost.cpp).
+  struct FaceCorners {
+    std::array<VH, 3> v;
+    std::array<detail::Vec3, 3> p;
+    detail::Vec3 normal;
+  };
+  FaceCorners corners(FH f) const;
+  detail::Isotropy face_isotropy(const FaceCorners& c) const;
   // Face terms (isotropy, volume) into and out of the sums of the face's corners.
   void add_face_terms(FH f);
   void remove_face_terms(FH f, VH skip_a, VH skip_b);

@@ -51,13 +51,11 @@ detail::SurfaceState WorkingSurface::Engine::export_state() const {
   auto vertex = [&](VH v) { return static_cast<std::uint32_t>(vertex_index[static_cast<std::size_t>(v.idx())]); };
 
   s.triangles.reserve(live_faces_);
-  s.faces.reserve(live_faces_);
   for (std::size_t i = 0; i < mesh_->n_faces(); ++i) {
     if (!frec_[i].alive) continue;
     const HH h = mesh_->halfedge_handle(FH(static_cast<int>(i)));
     s.triangles.push_back({vertex(mesh_->from_vertex_handle(h)), vertex(mesh_->to_vertex_handle(h)),
                            vertex(mesh_->to_vertex_handle(mesh_->next_halfedge_handle(h)))});
-    s.faces.push_back(frec_[i]);
   }
   for (std::size_t i = 0; i < mesh_->n_edges(); ++i) {
     const detail::EdgeRecord& r = erec_[i];
@@ -104,10 +102,9 @@ void WorkingSurface::Engine::restore_edge(VH a, VH b, const detail::EdgeRecord& 
 
 void WorkingSurface::Engine::import_state(detail::SurfaceState&& s) {
   const std::size_t nv = s.points.size(), nt = s.triangles.size();
-  if (s.vertices.size() != nv || s.faces.size() != nt)
+  if (s.vertices.size() != nv)
     throw DataError("working surface state: " + std::to_string(nv) + " points but " +
-                    std::to_string(s.vertices.size()) + " vertex records, " + std::to_string(nt) + " triangles but " +
-                    std::to_string(s.faces.size()) + " face records");
+                    std::to_string(s.vertices.size()) + " vertex records");
   front_ = s.front;
   last_rank_ = s.last_rank;
   origin_ = s.origin;
@@ -150,9 +147,7 @@ void WorkingSurface::Engine::import_state(detail::SurfaceState&& s) {
     if (!f.is_valid())
       throw DataError("working surface state: triangle " + std::to_string(t) +
                       " would make the surface non-manifold or flip its orientation");
-    detail::FaceRecord fr = s.faces[t];
-    fr.alive = true;
-    frec_[f.idx()] = fr;
+    frec_[f.idx()].alive = true;
     if (vrec_[tri[0]].component != vrec_[tri[1]].component || vrec_[tri[1]].component != vrec_[tri[2]].component)
       throw DataError("working surface state: triangle " + std::to_string(t) + " joins different components");
   }

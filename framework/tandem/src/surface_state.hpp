@@ -35,9 +35,9 @@ struct SurfaceState {
   std::vector<Vec3> points;
   // Per vertex; `component` is an index into component_keys.
   std::vector<VertexRecord> vertices;
-  // Oriented outward, into points; each with the terms it added to its corners.
+  // Oriented outward, into points; the first corner is the one the face's terms start from
+  // (working_mesh.hpp, FaceRecord).
   std::vector<std::array<std::uint32_t, 3>> triangles;
-  std::vector<FaceRecord> faces;
   std::vector<StateEdge> edges;
   // The key (smallest lattice id ever born in it) of every live component.
   std::vector<std::uint64_t> component_keys;

@@ -90,7 +90,7 @@ detail::Isotropy get_isotropy(Reader& r) {
 
 // Bytes per item, for the count checks.
 constexpr std::size_t kVertexBytes = 32 * 8 + 8 + 4 + 1 + 4;
-constexpr std::size_t kFaceBytes = 3 * 4 + 9 * 8;
+constexpr std::size_t kFaceBytes = 3 * 4;
 constexpr std::size_t kEdgeBytes = 4 + 4 + 1 + 1 + 4 + 8 + 3 * 8;
 
 void encode(Writer& w, const detail::SurfaceState& s) {
@@ -150,9 +150,6 @@ void encode(Writer& w, const detail::SurfaceState& s) {
   for (std::size_t t = 0; t < s.triangles.size(); ++t) {
     for (std::uint32_t v : s.triangles[t])
       w.put(v);
-    put_isotropy(w, s.faces[t].isotropy);
-    w.put(s.faces[t].det);
-    w.put(s.faces[t].normal);
   }
   // Edges that are not idle.
   w.count(s.edges.size());
@@ -248,14 +245,9 @@ detail::SurfaceState decode(Reader& r) {
 
   const std::size_t nt = r.count(kFaceBytes, "triangles");
   s.triangles.resize(nt);
-  s.faces.resize(nt);
   for (std::size_t t = 0; t < nt; ++t) {
     for (std::uint32_t& v : s.triangles[t])
       v = r.get<std::uint32_t>();
-    s.faces[t].isotropy = get_isotropy(r);
-    s.faces[t].det = r.get<double>();
-    s.faces[t].normal = r.vec();
-    s.faces[t].alive = true;
   }
 
   s.edges.resize(r.count(kEdgeBytes, "edges"));

@@ -18,7 +18,8 @@
 namespace geotandem::tandem {
 
 // Version of the record this build writes and reads.
-inline constexpr std::uint32_t kSurfaceWireVersion = 2; // 2: per-vertex distance bounds (E0 guarantee)
+// 2: per-vertex distance bounds (E0 guarantee); 3: triangles without their terms (computed again).
+inline constexpr std::uint32_t kSurfaceWireVersion = 3;
 // Size of the fixed header in front of the payload: magic (8 bytes), version (4), flags (4),
 // payload length (8), XXH64 of the payload (8).
 inline constexpr std::size_t kSurfaceWireHeaderSize = 32;

@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <limits>
@@ -194,6 +195,53 @@ TEST(TandemBlocks, LShapedRegionsMerge) {
   EXPECT_FALSE(l_shape.on_open_face({32.0, 20.0, 5.0})) << "inside the L, the seam is no face any more";
   EXPECT_GT(a->component_count(), 0u) << "the bodies crossing into the last quarter still wait";
   a->merge(std::move(*d));
+  a->finish();
+  EXPECT_EQ(a->triangle_count(), 0u);
+  blocks_test::expect_same_components(one.sink.components, sink.components);
+}
+
+// The triangles of a snapshot as sorted corner triples: the same surface whatever the numbering.
+std::vector<std::array<std::array<double, 3>, 3>> triangle_set(const mesh::SurfaceMesh& m) {
+  std::vector<std::array<std::array<double, 3>, 3>> out;
+  for (const auto& t : m.triangles) {
+    std::array<std::array<double, 3>, 3> corners{m.points[t[0]], m.points[t[1]], m.points[t[2]]};
+    std::rotate(corners.begin(), std::min_element(corners.begin(), corners.end()), corners.end());
+    out.push_back(corners);
+  }
+  std::sort(out.begin(), out.end());
+  return out;
+}
+
+TEST(TandemBlocks, CompactingASurfaceSetAsideChangesNothingButItsStorage) {
+  // compact() renumbers everything (the queues, the components, the last layer's ids): the
+  // surface, its waiting edges and its components stay, and the merges go on to the components
+  // of the whole-cube extraction.
+  const auto volume = blocks_test::sample(blocks_test::bodies(), kShape);
+  BlocksRun one;
+  run_blocks(one, *volume, 0);
+
+  CollectingSink sink;
+  auto a = quarter(*volume, 0, 0, sink);
+  auto b = quarter(*volume, 1, 0, sink);
+  const auto before = triangle_set(a->snapshot());
+  const std::size_t waiting = a->waiting_edge_count(), components = a->component_count();
+  ASSERT_GT(waiting, 0u);
+  const std::uint64_t collections = a->counters().garbage_collections;
+  a->compact();
+  EXPECT_EQ(a->counters().garbage_collections, collections + 1) << "collapses and dumps left storage to give back";
+  EXPECT_EQ(triangle_set(a->snapshot()), before);
+  EXPECT_EQ(a->waiting_edge_count(), waiting);
+  EXPECT_EQ(a->component_count(), components);
+  a->merge(std::move(*b));
+  a->compact();
+  const std::uint64_t after_merge = a->counters().garbage_collections;
+  a->compact();
+  EXPECT_EQ(a->counters().garbage_collections, after_merge) << "nothing left to give back";
+  auto c = quarter(*volume, 0, 1, sink);
+  auto d = quarter(*volume, 1, 1, sink);
+  c->compact();
+  c->merge(std::move(*d));
+  a->merge(std::move(*c));
   a->finish();
   EXPECT_EQ(a->triangle_count(), 0u);
   blocks_test::expect_same_components(one.sink.components, sink.components);

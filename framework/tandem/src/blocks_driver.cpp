@@ -1,5 +1,5 @@
 // The block tree driven in one process (blocks.hpp): leaves by extract_block, brothers merged
-// bottom-up, the smaller of two brothers shipped through its wire form before their merge.
+// bottom-up, the smaller of two brothers shipped through its wire form and taken in from it.
 #include <algorithm>
 #include <chrono>
 #include <limits>
@@ -49,24 +49,33 @@ public:
     const BlockNode& node = tree_.node(id);
     if (node.is_leaf()) return leaf(node);
     std::unique_ptr<WorkingSurface> low = run(node.children[0]);
+    low->compact(); // set aside while its brother is extracted
     held_ += low->triangle_count();
     std::unique_ptr<WorkingSurface> high = run(node.children[1]);
     held_ -= low->triangle_count();
-    // The runtime sends one brother to the worker holding the other: the smaller one travels.
-    if (low->triangle_count() < high->triangle_count())
-      low = ship(*low);
-    else
-      high = ship(*high);
+    // The runtime sends the smaller brother, as a record, to the worker holding the other, which
+    // takes it in from the record; the sender's copy goes first, as on another machine.
+    const bool low_travels = low->triangle_count() < high->triangle_count();
+    std::unique_ptr<WorkingSurface>& sent = low_travels ? low : high;
+    std::unique_ptr<WorkingSurface>& kept = low_travels ? high : low;
+    const SimplifyCounters before = kept->counters(), other = sent->counters();
     if (options_.cancel) options_.cancel->throw_if_cancelled();
-    const auto t = Clock::now();
-    const SimplifyCounters before = low->counters(), other = high->counters();
-    stats_.components_at_merges += low->merge(std::move(*high), options_.cancel);
-    stats_.seam_collapses += low->counters().collapses - before.collapses - other.collapses;
-    stats_.seconds_merge += seconds_since(t);
+    {
+      const auto t = Clock::now();
+      const std::vector<std::byte> record = serialize(*sent);
+      sent.reset();
+      stats_.seconds_wire += seconds_since(t);
+      stats_.wire_bytes += record.size();
+      stats_.largest_record = std::max<std::uint64_t>(stats_.largest_record, record.size());
+      const auto m = Clock::now();
+      stats_.components_at_merges += merge_record(*kept, record, options_.cancel);
+      stats_.seconds_merge += seconds_since(m);
+    }
+    stats_.seam_collapses += kept->counters().collapses - before.collapses - other.collapses;
     ++stats_.merges;
-    note(low->triangle_count());
+    note(kept->triangle_count());
     if (options_.progress) options_.progress->advance();
-    return low;
+    return std::move(kept);
   }
 
   BlocksStats& stats() { return stats_; }
@@ -84,17 +93,6 @@ private:
       note(layer.triangles_in_memory);
     note(s.final_pass.triangles_in_memory);
     return surface;
-  }
-
-  // What a worker would send: the surface as a record, and the surface the receiver rebuilds.
-  std::unique_ptr<WorkingSurface> ship(const WorkingSurface& surface) {
-    const auto t = Clock::now();
-    const std::vector<std::byte> record = serialize(surface);
-    auto received = std::make_unique<WorkingSurface>(deserialize(record, sink_, options_.observer));
-    stats_.seconds_wire += seconds_since(t);
-    stats_.wire_bytes += record.size();
-    stats_.largest_record = std::max<std::uint64_t>(stats_.largest_record, record.size());
-    return received;
   }
 
   void note(std::uint64_t triangles) {

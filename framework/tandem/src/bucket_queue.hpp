@@ -42,16 +42,19 @@ public:
   // Appends to `out` every item of the lowest non-empty bucket if it may hold keys below `front`
   // (the caller checks each key); returns false when no bucket can.
   bool lowest_below(double front, std::vector<std::int32_t>& out) {
-    while (lowest_ < buckets_.size() && buckets_[lowest_].empty())
+    while (lowest_ < buckets_.size() && buckets_[lowest_].empty()) {
+      // Behind the front: it will rarely fill again, so its storage goes back.
+      std::vector<std::int32_t>().swap(buckets_[lowest_]);
       ++lowest_;
+    }
     if (lowest_ >= buckets_.size() || !(static_cast<double>(lowest_) < front)) return false;
     out.assign(buckets_[lowest_].begin(), buckets_[lowest_].end());
     return true;
   }
-  // Forgets every item without touching the slots (they are being renumbered).
+  // Forgets every item without touching the slots (they are being renumbered), and gives the
+  // storage back.
   void clear() {
-    for (auto& b : buckets_)
-      b.clear();
+    std::vector<std::vector<std::int32_t>>().swap(buckets_);
     size_ = 0;
     lowest_ = 0;
   }

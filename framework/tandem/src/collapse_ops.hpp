@@ -31,8 +31,9 @@ public:
   }
   void mark(VH v, std::uint32_t stamp) { marks_[static_cast<std::size_t>(v.idx())] = stamp; }
   bool marked(VH v, std::uint32_t stamp) const { return marks_[static_cast<std::size_t>(v.idx())] == stamp; }
+  // Forgets every mark and gives the storage back.
   void clear() {
-    marks_.clear();
+    std::vector<std::uint32_t>().swap(marks_);
     stamp_ = 0;
   }
 

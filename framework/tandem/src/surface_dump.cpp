@@ -102,17 +102,25 @@ void WorkingSurface::Engine::dump_component(std::int32_t root) {
 }
 
 void WorkingSurface::Engine::maybe_collect_garbage() {
-  // Compaction costs a pass over everything held; do it when two thirds of the storage are dead
-  // (amortised O(1) per removed element) and there is enough of it to matter.
+  // Compaction costs a pass over everything held; do it when half the storage is dead (amortised
+  // O(1) per removed element) and there is enough of it to matter. (At two thirds, as before, the
+  // storage held was up to three times the live surface.)
   const std::size_t dead_faces = mesh_->n_faces() - live_faces_;
-  if (dead_faces > options_.compaction_min_dead && dead_faces > 2 * live_faces_) collect_garbage();
+  if (dead_faces > options_.compaction_min_dead && dead_faces > live_faces_) collect_garbage();
+}
+
+void WorkingSurface::Engine::compact() {
+  // A rebuilt mesh has exactly the room it needs; only rebuild when that gives back enough.
+  const detail::TriMesh& m = *mesh_;
+  const std::size_t room = m.property(vprop_).data_vector().capacity();
+  if (m.n_faces() - live_faces_ > live_faces_ / 8 || room > live_vertices_ + live_vertices_ / 8) collect_garbage();
 }
 
 void WorkingSurface::Engine::collect_garbage() {
   delayed_.clear(); // before the slots are renumbered
   const std::vector<std::int32_t> moved = rebuild_mesh();
-  slots_.assign(mesh_->n_edges(), -1);
-  local_index_.clear();
+  std::vector<std::int32_t>(mesh_->n_edges(), -1).swap(slots_); // exact storage, as the mesh's
+  std::vector<std::int32_t>().swap(local_index_);
   marks_.clear();
   refresh();
   recompute_face_terms();

@@ -38,6 +38,7 @@ public:
   void simplify(const CancelToken* cancel);
   std::size_t dump();
   void set_region(Region region);
+  void compact();
 
   const Region& region() const { return region_; }
   double front() const { return front_; }
@@ -55,16 +56,14 @@ public:
   // is inconsistent (an index out of range, a triangle that would make the surface non-manifold,
   // an edge that is not in the mesh).
   void import_state(detail::SurfaceState&& state);
-  // Takes in the surface of a disjoint region of the same cube (both past their sweep), welded by
-  // lattice ids; the region becomes the union, but the parked edges are not placed again yet
-  // (surface_merge.cpp). Throws InvalidArgument when the surfaces do not fit together and
-  // DataError when two vertices with the same lattice id differ in position; the engine is then
-  // in an unspecified state.
-  void absorb(const Engine& other);
-  // The same from the other side's state, as decoded from its wire form (no engine is built for
-  // the sender).
+  // Takes in the surface of a disjoint region of the same cube (both past their sweep), as plain
+  // data (exported from its engine, or decoded from its wire form), welded by lattice ids; the
+  // region becomes the union, but the parked edges are not placed again yet (surface_merge.cpp).
+  // Throws InvalidArgument when the surfaces do not fit together and DataError when two vertices
+  // with the same lattice id differ in position; the engine is then in an unspecified state.
   void absorb_state(const detail::SurfaceState& other);
-  // The union of both regions; throws InvalidArgument as absorb() does when the two do not fit.
+  // The union of both regions; throws InvalidArgument as absorb_state() does when the two do not
+  // fit.
   Region merge_region(const Engine& other) const;
   Region merge_region_state(const detail::SurfaceState& other) const;
   Region merge_region_of(const Region& region, int axis, const SimplifyOptions& options, double front) const;

@@ -55,11 +55,6 @@ Region WorkingSurface::Engine::merge_region_of(const Region& region, int axis, c
   return region_.merged_with(region); // throws when the blocks overlap
 }
 
-void WorkingSurface::Engine::absorb(const Engine& b) {
-  merge_region(b); // refuses surfaces that do not fit before the state is exported
-  absorb_state(b.export_state());
-}
-
 void WorkingSurface::Engine::absorb_state(const detail::SurfaceState& t) {
   const Region region = merge_region_state(t);
   const std::string where_ = where(region_, t.region);
@@ -92,6 +87,8 @@ void WorkingSurface::Engine::absorb_state(const detail::SurfaceState& t) {
     vertex[i] = VH(j);
   }
   const std::size_t first_new = mesh_->n_vertices(), edges_before = mesh_->n_edges(), faces_before = mesh_->n_faces();
+  // Exactly the room the merge may need: the larger surface does not double its storage for it.
+  mesh_->reserve(next, edges_before + 3 * nt, faces_before + nt);
   mesh_->resize(next, edges_before + 3 * nt, faces_before + nt);
   refresh();
   for (std::size_t i = 0; i < nb; ++i) {

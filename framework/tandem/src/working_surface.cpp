@@ -55,12 +55,21 @@ std::size_t WorkingSurface::merge(WorkingSurface&& other, const CancelToken* can
     other.engine_->set_outputs(engine_->sink_of(), engine_->observer_of());
     std::swap(engine_, other.engine_);
   }
-  engine_->absorb(*other.engine_);
-  const WorkingSurface gone = std::move(other); // frees the other side now
+  // The smaller side as plain data, then its engine goes before the larger one grows: the two
+  // engines and the state are never held at once.
+  {
+    const detail::SurfaceState state = other.engine_->export_state();
+    { const WorkingSurface gone = std::move(other); }
+    engine_->absorb_state(state);
+  }
   // The region grew: the edges parked by faces that are now inside it are placed again.
   engine_->set_region(engine_->region());
   engine_->simplify(cancel);
   return engine_->dump();
+}
+
+void WorkingSurface::compact() {
+  engine_->compact();
 }
 
 const Region& WorkingSurface::region() const {

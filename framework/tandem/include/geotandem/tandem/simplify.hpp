@@ -51,9 +51,9 @@ struct SimplifyOptions {
   // full-resolution one (symmetric Hausdorff). Off: only eps_0(c) <= E0 is asked (an RMS-like
   // bound; measured maxima reach 2.5 to 4 E0), which keeps fewer triangles; for comparisons.
   bool guarantee_distance = true;
-  // Storage: removed elements are compacted away (OpenMesh garbage collection, which renumbers
-  // everything) after a simplification or a dumping when more than this many triangles and two
-  // thirds of the storage are dead. Tests lower it to exercise compaction on small inputs.
+  // Storage: removed elements are compacted away (a fresh mesh of the live elements, which
+  // renumbers everything) after a simplification or a dumping when more than this many triangles
+  // and half the storage are dead. Tests lower it to exercise compaction on small inputs.
   std::size_t compaction_min_dead = 16384;
 
   // Throws InvalidArgument naming the field when a value is out of range.
@@ -151,6 +151,10 @@ public:
   // has different positions on the two sides (*this is then in an unspecified state: drop it), and
   // Cancelled. After everything is merged: finish().
   std::size_t merge(WorkingSurface&& other, const CancelToken* cancel = nullptr);
+  // Gives back the storage of removed elements and the room kept for growth: for a surface set
+  // aside while its brother is extracted (the block driver and the workers call it). Costs a copy
+  // of what is held; changes nothing else.
+  void compact();
 
   const Region& region() const;
   double front() const;

@@ -36,7 +36,7 @@ inline void remove_corner(detail::VertexRecord& r, const detail::Isotropy& isotr
 
 // Every term of a face is computed here, from its first halfedge on and from the same positions,
 // so that computing it again gives the bits that were added (working_mesh.hpp, FaceRecord).
-WorkingSurface::Engine::FaceCorners WorkingSurface::Engine::corners(FH f) const {
+inline WorkingSurface::Engine::FaceCorners WorkingSurface::Engine::corners(FH f) const {
   const HH h0 = mesh_->halfedge_handle(f);
   const HH h1 = mesh_->next_halfedge_handle(h0);
   FaceCorners c;
@@ -47,7 +47,7 @@ WorkingSurface::Engine::FaceCorners WorkingSurface::Engine::corners(FH f) const 
   return c;
 }
 
-detail::Isotropy WorkingSurface::Engine::face_isotropy(const FaceCorners& c) const {
+inline detail::Isotropy WorkingSurface::Engine::face_isotropy(const FaceCorners& c) const {
   return detail::Isotropy::of_triangle(position(c.v[0]), position(c.v[1]), position(c.v[2]), c.normal);
 }
 

@@ -1,5 +1,5 @@
 // Exports parsed back by independent readers written here: PLY header and binary body, OBJ and
-// TSurf numbering, VTP structure (and python3's XML parser when it is available).
+// TSurf numbering, one file per component, failures. VTP has its own file (export_vtp_test.cpp).
 
 #include <gtest/gtest.h>
 
@@ -7,68 +7,15 @@
 #include <fstream>
 #include <sstream>
 
-#include "fixtures.hpp"
+#include "export_fixture.hpp"
 #include "geotandem/core/error.hpp"
-#include "geotandem/store/export.hpp"
-#include "geotandem/store/local_sink.hpp"
-#include "scratch.hpp"
 
 namespace geotandem::store {
 namespace {
 
-using geotandem::testing::ScratchDir;
-
-std::string slurp(const std::filesystem::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::stringstream text;
-  text << in.rdbuf();
-  return text.str();
-}
-
-std::vector<std::string> lines_of(const std::string& text) {
-  std::vector<std::string> lines;
-  std::istringstream in(text);
-  for (std::string line; std::getline(in, line);)
-    lines.push_back(line);
-  return lines;
-}
-
-class ExportTest : public ::testing::Test {
-protected:
-  void SetUp() override {
-    store_.emplace(ComponentStore::create(scratch_.path() / "store", testing::test_geometry()));
-    LocalSink sink(*store_, {"local", std::nullopt, 8});
-    for (std::uint64_t key : {5, 12, 31, 44})
-      sink.commit(testing::make_component(key, testing::test_geometry(), 2));
-    sink.close();
-    rows_ = store_->query();
-    for (const auto& row : rows_)
-      surfaces_.push_back(store_->read(row));
-  }
-
-  ExportSummary run(const std::filesystem::path& out, ExportOptions options) {
-    NullProgress progress;
-    return export_components(*store_, rows_, out, options, progress, CancelToken{});
-  }
-
-  std::uint64_t total_vertices() const {
-    std::uint64_t n = 0;
-    for (auto& s : surfaces_)
-      n += s.points.size();
-    return n;
-  }
-  std::uint64_t total_triangles() const {
-    std::uint64_t n = 0;
-    for (auto& s : surfaces_)
-      n += s.triangles.size();
-    return n;
-  }
-
-  ScratchDir scratch_;
-  std::optional<ComponentStore> store_;
-  std::vector<ComponentRow> rows_;
-  std::vector<mesh::SurfaceMesh> surfaces_;
-};
+using testing::ExportTest;
+using testing::lines_of;
+using testing::slurp;
 
 struct PlyHeader {
   std::uint64_t vertices = 0, faces = 0, comments_with_keys = 0;
@@ -237,77 +184,6 @@ TEST_F(ExportTest, TsurfObjectsNumberTheirVerticesFromOne) {
     ++i;
   }
   EXPECT_EQ(object, rows_.size());
-}
-
-// Reads the numbers between <DataArray ... Name="name" ...> and </DataArray> within `scope`.
-std::vector<double> data_array(const std::string& xml, const std::string& scope, const std::string& name) {
-  auto from = xml.find("<" + scope);
-  EXPECT_NE(from, std::string::npos) << scope;
-  auto at = xml.find("Name=\"" + name + "\"", from);
-  EXPECT_NE(at, std::string::npos) << name;
-  auto begin = xml.find('>', at) + 1;
-  auto end = xml.find("</DataArray>", begin);
-  std::istringstream in(xml.substr(begin, end - begin));
-  std::vector<double> values;
-  for (double v; in >> v;)
-    values.push_back(v);
-  return values;
-}
-
-TEST_F(ExportTest, VtpHasConsistentCountsAndPerBodyData) {
-  auto path = scratch_.path() / "all.vtp";
-  run(path, {ExportFormat::vtp});
-  auto xml = slurp(path);
-  auto n_points = total_vertices(), n_polys = total_triangles();
-  EXPECT_NE(xml.find("NumberOfPoints=\"" + std::to_string(n_points) + "\""), std::string::npos);
-  EXPECT_NE(xml.find("NumberOfPolys=\"" + std::to_string(n_polys) + "\""), std::string::npos);
-  auto points = data_array(xml, "Points", "Points");
-  ASSERT_EQ(points.size(), 3 * n_points);
-  EXPECT_EQ(points[0], surfaces_[0].points[0][0]);
-  auto connectivity = data_array(xml, "Polys", "connectivity");
-  auto offsets = data_array(xml, "Polys", "offsets");
-  ASSERT_EQ(connectivity.size(), 3 * n_polys);
-  ASSERT_EQ(offsets.size(), n_polys);
-  EXPECT_EQ(offsets.back(), 3.0 * static_cast<double>(n_polys));
-  for (double c : connectivity)
-    EXPECT_LT(c, static_cast<double>(n_points));
-  auto cell_keys = data_array(xml, "CellData", "key");
-  ASSERT_EQ(cell_keys.size(), n_polys);
-  EXPECT_EQ(cell_keys.front(), static_cast<double>(rows_.front().key));
-  EXPECT_EQ(cell_keys.back(), static_cast<double>(rows_.back().key));
-  EXPECT_EQ(data_array(xml, "CellData", "volume").size(), n_polys);
-  auto field_keys = data_array(xml, "FieldData", "key");
-  auto field_azimuths = data_array(xml, "FieldData", "azimuth");
-  ASSERT_EQ(field_keys.size(), rows_.size());
-  for (std::size_t i = 0; i < rows_.size(); ++i) {
-    EXPECT_EQ(field_keys[i], static_cast<double>(rows_[i].key));
-    EXPECT_EQ(field_azimuths[i], rows_[i].stats.azimuth);
-  }
-#ifdef GEOTANDEM_PYTHON3
-  // An independent XML parser: well-formed, and the counts agree.
-  auto script = scratch_.path() / "check_vtp.py";
-  std::ofstream(script) << R"py(import sys, xml.etree.ElementTree as ET
-root = ET.parse(sys.argv[1]).getroot()
-assert root.tag == "VTKFile" and root.get("type") == "PolyData", root.tag
-piece = root.find("PolyData/Piece")
-npts, npolys = int(piece.get("NumberOfPoints")), int(piece.get("NumberOfPolys"))
-def values(path, name):
-    for a in root.findall(path):
-        if a.get("Name") == name:
-            return a.text.split()
-    raise SystemExit("no array " + name)
-assert len(values("PolyData/Piece/Points/DataArray", "Points")) == 3 * npts
-assert len(values("PolyData/Piece/Polys/DataArray", "connectivity")) == 3 * npolys
-assert len(values("PolyData/Piece/Polys/DataArray", "offsets")) == npolys
-for name in ("key", "volume", "azimuth"):
-    assert len(values("PolyData/Piece/CellData/DataArray", name)) == npolys, name
-    assert len(values("PolyData/FieldData/DataArray", name)) == int(sys.argv[2]), name
-print("ok")
-)py";
-  auto command =
-      std::string(GEOTANDEM_PYTHON3) + " " + script.string() + " " + path.string() + " " + std::to_string(rows_.size());
-  EXPECT_EQ(std::system(command.c_str()), 0) << command;
-#endif
 }
 
 TEST_F(ExportTest, PerComponentFilesAreNamedByKey) {

@@ -22,18 +22,21 @@ int CollapseDistance::add(VH v, const TriMesh::Point* points, const VertexRecord
   return static_cast<int>(points_.size() - 1);
 }
 
-double CollapseDistance::tolerance(const TriMesh& mesh, HH h, const Vec3& c, const TriMesh::Point* points,
-                                   const VertexRecord* records, double limit) {
+void CollapseDistance::gather(const TriMesh& mesh, HH h, const TriMesh::Point* points, const VertexRecord* records) {
   const VH a = mesh.from_vertex_handle(h), b = mesh.to_vertex_handle(h);
   const Vec3 pa = to_vec(points[a.idx()]), pb = to_vec(points[b.idx()]);
   const double da = records[a.idx()].tolerance, db = records[b.idx()].tolerance;
-  const double simple = simplicial(pa, da, pb, db, c);
-  if (mesh.is_boundary(a) || mesh.is_boundary(b)) return simple;
+  a_ = pa;
+  b_ = pb;
+  da_ = da;
+  db_ = db;
+  boundary_ = mesh.is_boundary(a) || mesh.is_boundary(b);
+  if (boundary_) return;
   // a and b are interior, so both triangles of ab exist; x and y, opposite ab, are their only
   // common neighbours (the link condition was checked).
   const VH x = mesh.to_vertex_handle(mesh.next_halfedge_handle(h));
   const VH y = mesh.to_vertex_handle(mesh.next_halfedge_handle(mesh.opposite_halfedge_handle(h)));
-  points_.assign({pa, pb, c});
+  points_.assign({pa, pb, Vec3{}}); // c goes in its place in bound()
   tolerances_.assign({da, db, 0.0});
   old_triangles_.clear();
   new_triangles_.clear();
@@ -74,25 +77,34 @@ double CollapseDistance::tolerance(const TriMesh& mesh, HH h, const Vec3& c, con
         old_edges_.push_back({0, 1});
     }
   }
+  // The vector area of the patch (the same before and after: it depends on the boundary only; c
+  // is not in the old triangles) and the frame of the projection.
+  Vec3 n{0.0, 0.0, 0.0};
+  for (const auto& t : old_triangles_)
+    n = n + cross(points_[static_cast<std::size_t>(t[1])] - points_[static_cast<std::size_t>(t[0])],
+                  points_[static_cast<std::size_t>(t[2])] - points_[static_cast<std::size_t>(t[0])]);
+  area_length_ = norm(n);
+  if (!(area_length_ > 0.0)) return;
+  n_ = (1.0 / area_length_) * n;
+  Vec3 u = std::fabs(n_[0]) < 0.6 ? cross(n_, Vec3{1.0, 0.0, 0.0}) : cross(n_, Vec3{0.0, 1.0, 0.0});
+  u_ = (1.0 / norm(u)) * u;
+  v_ = cross(n_, u_);
+}
+
+double CollapseDistance::bound(const Vec3& c, double limit) {
+  const double simple = simplicial(a_, da_, b_, db_, c);
+  if (boundary_) return simple;
+  points_[2] = c;
   const double d = projected(c, std::min(simple, limit));
   return d >= 0.0 && d < simple ? d : simple;
 }
 
 double CollapseDistance::projected(const Vec3& c, double limit) {
-  // The vector area of the patch (the same before and after: it depends on the boundary only).
-  Vec3 n{0.0, 0.0, 0.0};
   double scale2 = 0.0;
   for (const Vec3& p : points_)
     scale2 = std::max(scale2, norm2(p - c));
-  for (const auto& t : old_triangles_)
-    n = n + cross(points_[static_cast<std::size_t>(t[1])] - points_[static_cast<std::size_t>(t[0])],
-                  points_[static_cast<std::size_t>(t[2])] - points_[static_cast<std::size_t>(t[0])]);
-  const double length = norm(n);
-  if (!(length > 1e-9 * scale2)) return -1.0;
-  n = (1.0 / length) * n;
-  Vec3 u = std::fabs(n[0]) < 0.6 ? cross(n, Vec3{1.0, 0.0, 0.0}) : cross(n, Vec3{0.0, 1.0, 0.0});
-  u = (1.0 / norm(u)) * u;
-  const Vec3 v = cross(n, u);
+  if (!(area_length_ > 1e-9 * scale2)) return -1.0;
+  const Vec3 &u = u_, &v = v_, &n = n_;
   projected_.resize(points_.size());
   for (std::size_t i = 0; i < points_.size(); ++i) {
     const Vec3 d = points_[i] - c;

@@ -36,7 +36,15 @@ class CollapseDistance {
 public:
   // Values above `limit` (E0) are only known to be above it.
   double tolerance(const TriMesh& mesh, HH h, const Vec3& c, const TriMesh::Point* points, const VertexRecord* records,
-                   double limit = std::numeric_limits<double>::infinity());
+                   double limit = std::numeric_limits<double>::infinity()) {
+    gather(mesh, h, points, records);
+    return bound(c, limit);
+  }
+  // The same in two steps, for several positions c of one collapse: gather() reads the patch
+  // around h (and what of the projection does not depend on c), bound() gives d_c for one c. The
+  // patch is only valid until the mesh, its points or their bounds change.
+  void gather(const TriMesh& mesh, HH h, const TriMesh::Point* points, const VertexRecord* records);
+  double bound(const Vec3& c, double limit = std::numeric_limits<double>::infinity());
 
   // d_c for the simplicial map alone (exposed for tests).
   static double simplicial(const Vec3& a, double da, const Vec3& b, double db, const Vec3& c);
@@ -57,6 +65,13 @@ private:
   std::vector<std::array<int, 3>> old_triangles_;
   std::vector<std::array<int, 3>> new_triangles_;
   std::vector<std::array<int, 2>> old_edges_; // interior edges of the old patch (at a or b)
+  // The gathered patch: a and b with their bounds, whether either is on the surface's boundary,
+  // and the patch's vector area with the frame (u, v, n) of the projection.
+  Vec3 a_{}, b_{};
+  double da_ = 0.0, db_ = 0.0;
+  bool boundary_ = true;
+  double area_length_ = 0.0;
+  Vec3 u_{}, v_{}, n_{};
   int add(VH v, const TriMesh::Point* points, const VertexRecord* records);
 };
 

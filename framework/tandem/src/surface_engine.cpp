@@ -223,10 +223,11 @@ void WorkingSurface::Engine::try_collapse(EH e, double cost) {
     ++counters_.rejected_link;
     return;
   }
+  bool gathered = false; // the patch around h is read once for every position tried
   if (!detail::collapse_keeps_shape(*mesh_, h, r.target, points_)) {
     ++counters_.rejected_flip;
   } else {
-    const double error = collapse_error(h, r.target);
+    const double error = collapse_error(h, r.target, gathered);
     if (error <= options_.max_error) {
       collapse(h, r.target, cost, error);
       return;
@@ -253,7 +254,7 @@ void WorkingSurface::Engine::try_collapse(EH e, double cost) {
     const Candidate& o = options[k];
     if (!(o.shape_error <= options_.max_error)) continue;
     if (!detail::collapse_keeps_shape(*mesh_, h, o.position, points_)) continue;
-    if (!(collapse_error(h, o.position) <= options_.max_error)) continue;
+    if (!(collapse_error(h, o.position, gathered) <= options_.max_error)) continue;
     ++counters_.retried;
     r.target = o.position;
     r.retried = true;
@@ -262,9 +263,11 @@ void WorkingSurface::Engine::try_collapse(EH e, double cost) {
   }
 }
 
-double WorkingSurface::Engine::collapse_error(HH h, const Vec3& target) {
+double WorkingSurface::Engine::collapse_error(HH h, const Vec3& target, bool& gathered) {
   if (!options_.guarantee_distance) return 0.0;
-  return distance_.tolerance(*mesh_, h, target, points_, vrec_, options_.max_error);
+  if (!gathered) distance_.gather(*mesh_, h, points_, vrec_);
+  gathered = true;
+  return distance_.bound(target, options_.max_error);
 }
 
 void WorkingSurface::Engine::report_collapse(HH h, const Vec3& target, double cost, double error) {

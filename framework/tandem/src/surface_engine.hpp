@@ -115,7 +115,9 @@ private:
   bool evaluate(HH h, detail::Candidate& out);
   void try_collapse(EH e, double cost);
   // The distance bound the triangles around c would get (the E0 guarantee, collapse_distance.hpp).
-  double collapse_error(HH h, const detail::Vec3& target);
+  // The patch around h is read when `gathered` is false (then set): several positions of one
+  // collapse share it, as long as nothing changes in between.
+  double collapse_error(HH h, const detail::Vec3& target, bool& gathered);
   void collapse(HH h, const detail::Vec3& target, double cost, double error);
   void report_collapse(HH h, const detail::Vec3& target, double cost, double error);
 

@@ -91,7 +91,7 @@ void WorkingSurface::Engine::recompute_face_terms() {
     if (frec_[i].alive) add_face_terms(FH(static_cast<int>(i)));
 }
 
-void WorkingSurface::Engine::volume_plane(HH h, CostInputs& in) const {
+void WorkingSurface::Engine::volume_plane(HH h, const FaceCorners* const faces[2], CostInputs& in) const {
   // Six times the volume enclosed with a point s is the sum over triangles of det(p0 - s, p1 - s,
   // p2 - s). Moving a and b to c replaces, in every triangle (v, p, q) that keeps one of them,
   // det(v - s, p - s, q - s) by (c - s).((p - s) x (q - s)), and removes the two triangles of ab:
@@ -107,18 +107,21 @@ void WorkingSurface::Engine::volume_plane(HH h, CostInputs& in) const {
   Vec3 link_sum = ra.link_sum + rb.link_sum;
   Vec3 normal_sum = ra.normal_sum + rb.normal_sum;
   double det_sum = ra.det_sum + rb.det_sum;
-  for (HH side : {h, mesh_->opposite_halfedge_handle(h)}) {
-    const FH f = mesh_->face_handle(side);
-    if (!f.is_valid()) continue;
+  const HH sides[2] = {h, mesh_->opposite_halfedge_handle(h)};
+  for (int k = 0; k < 2; ++k) {
+    const FaceCorners* fc = faces[k];
+    if (!fc) continue;
     // The triangle (u, v, w) of ab (side goes from u to v) is counted at both u and v, and in S_ab
     // once; it vanishes, so its terms at u and v leave N:
     //   (v x w) + (w x u) = w x (u - v)   and   (w - v) + (u - w) = u - v.
-    const FaceCorners fc = corners(f);
-    det_sum -= detail::dot(fc.p[0], detail::cross(fc.p[1], fc.p[2]));
-    normal_sum = normal_sum - fc.normal;
-    const Vec3 u = position(mesh_->from_vertex_handle(side)) - origin_;
-    const Vec3 v = position(mesh_->to_vertex_handle(side)) - origin_;
-    const Vec3 w = position(mesh_->to_vertex_handle(mesh_->next_halfedge_handle(side))) - origin_;
+    det_sum -= detail::dot(fc->p[0], detail::cross(fc->p[1], fc->p[2]));
+    normal_sum = normal_sum - fc->normal;
+    // The face's corners from the side's start on.
+    const VH from = mesh_->from_vertex_handle(sides[k]);
+    const std::size_t i = fc->v[0] == from ? 0 : fc->v[1] == from ? 1 : 2;
+    const Vec3& u = fc->p[i];
+    const Vec3& v = fc->p[(i + 1) % 3];
+    const Vec3& w = fc->p[(i + 2) % 3];
     cross_sum = cross_sum - detail::cross(w, u - v);
     link_sum = link_sum - (u - v);
   }
@@ -140,11 +143,21 @@ bool WorkingSurface::Engine::prepare_inputs(HH h, CostInputs& in) {
   in.isotropy += rb.isotropy;
   // The triangles abx and aby are in both sums.
   const FH f0 = mesh_->face_handle(h), f1 = mesh_->face_handle(mesh_->opposite_halfedge_handle(h));
-  if (f0.is_valid()) in.isotropy -= face_isotropy(corners(f0));
-  if (f1.is_valid()) in.isotropy -= face_isotropy(corners(f1));
+  FaceCorners c0, c1;
+  const FaceCorners* faces[2] = {nullptr, nullptr};
+  if (f0.is_valid()) {
+    c0 = corners(f0);
+    in.isotropy -= face_isotropy(c0);
+    faces[0] = &c0;
+  }
+  if (f1.is_valid()) {
+    c1 = corners(f1);
+    in.isotropy -= face_isotropy(c1);
+    faces[1] = &c1;
+  }
   in.a = position(a);
   in.b = position(b);
-  if (options_.preserve_volume) volume_plane(h, in);
+  if (options_.preserve_volume) volume_plane(h, faces, in);
   in.fixed_axes = 0;
   for (unsigned i = 0; i < 3; ++i) {
     const unsigned bits = (border >> (2 * i)) & 3u;

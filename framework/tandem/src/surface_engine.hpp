@@ -111,7 +111,8 @@ private:
   void add_face_terms(FH f);
   void remove_face_terms(FH f, VH skip_a, VH skip_b);
   void recompute_face_terms();
-  void volume_plane(HH h, detail::CostInputs& in) const;
+  // `faces`: the corners of the triangles on both sides of h (null where there is none).
+  void volume_plane(HH h, const FaceCorners* const faces[2], detail::CostInputs& in) const;
   bool evaluate(HH h, detail::Candidate& out);
   void try_collapse(EH e, double cost);
   // The distance bound the triangles around c would get (the E0 guarantee, collapse_distance.hpp).

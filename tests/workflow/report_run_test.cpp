@@ -4,6 +4,8 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+
 #include <fstream>
 #include <set>
 
@@ -103,6 +105,25 @@ TEST(ReportRun, MapAndThreeDViewsHoldTheKeptBodies) {
     small_triangles += b.triangles.size();
   EXPECT_LE(small_triangles, 800u);
   EXPECT_GT(small_triangles, 200u);
+
+  // At most two bodies: the two kept ones with the most triangles, in the components' order, and
+  // the whole budget is theirs.
+  ASSERT_GT(kept.keys.size(), 2u);
+  std::vector<const workflow::ReportComponent*> by_size;
+  for (const auto& c : components)
+    if (c.kept) by_size.push_back(&c);
+  std::stable_sort(by_size.begin(), by_size.end(), [](auto* a, auto* b) { return a->triangles > b->triangles; });
+  ASSERT_GT(by_size[1]->triangles, by_size[2]->triangles) << "the test needs a clear second largest";
+  const auto two = workflow::display_bodies(store, components, survey, 800, 2);
+  ASSERT_EQ(two.size(), 2u);
+  std::vector<std::uint64_t> expected;
+  for (const auto& c : components)
+    if (&c == by_size[0] || &c == by_size[1]) expected.push_back(c.key);
+  EXPECT_EQ((std::vector<std::uint64_t>{two[0].key, two[1].key}), expected);
+  std::size_t two_triangles = 0;
+  for (const auto& b : two)
+    two_triangles += b.triangles.size();
+  EXPECT_LE(two_triangles, 800u);
 }
 
 } // namespace

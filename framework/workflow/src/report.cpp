@@ -101,6 +101,16 @@ figure{margin:0}figcaption{font-size:12px;color:#555;max-width:520px}pre{backgro
 dl.facts dt{color:#555}dl.facts dd{margin:0}td.sep{border-top:2px solid #bbb}
 canvas#gt-view{width:640px;height:480px;border:1px solid #ddd;display:block;cursor:grab}svg.map{border:1px solid #ddd})";
 
+// "N kept bodies", or "N largest (by triangles) of the M kept bodies" when the views leave some out.
+std::string shown_bodies(const ReportData& d) {
+  std::size_t kept = 0;
+  for (const auto& c : d.components)
+    if (c.kept) ++kept;
+  if (kept <= d.bodies.size()) return std::to_string(d.bodies.size()) + " kept bodies";
+  return std::to_string(d.bodies.size()) + " largest (by triangles) of the " + std::to_string(kept) +
+         " kept bodies (remove_bubbles keeps fewer)";
+}
+
 } // namespace
 
 std::string render_report(const ReportData& d) {
@@ -157,8 +167,8 @@ std::string render_report(const ReportData& d) {
     h << "<h2>Bodies</h2><div class=\"plots\"><figure>" << svg_body_map(d.survey, d.bodies)
       << "<figcaption>Map view, north up: the survey outline and the footprint (convex hull of the surface seen "
          "from above) of each of the "
-      << d.bodies.size()
-      << " kept bodies, coloured by the azimuth of its main axis. Hover a footprint for its key.</figcaption>"
+      << shown_bodies(d)
+      << ", coloured by the azimuth of its main axis. Hover a footprint for its key.</figcaption>"
          "</figure><figure>"
       << body_viewer_html(d.survey, d.bodies, unit)
       << "<figcaption>3-D view: drag to orbit, wheel to zoom, right-drag to pan; click a body. The survey's box is "

@@ -182,14 +182,28 @@ ReportBody display_body(const ReportComponent& component, const mesh::SurfaceMes
 
 std::vector<ReportBody> display_bodies(const store::ComponentStore& store,
                                        const std::vector<ReportComponent>& components, const ReportSurvey& survey,
-                                       std::size_t budget) {
+                                       std::size_t budget, std::size_t max_bodies) {
+  std::vector<std::size_t> shown;
+  for (std::size_t i = 0; i < components.size(); ++i)
+    if (components[i].kept) shown.push_back(i);
+  if (shown.size() > max_bodies) {
+    std::nth_element(shown.begin(), shown.begin() + static_cast<std::ptrdiff_t>(max_bodies), shown.end(),
+                     [&](std::size_t a, std::size_t b) {
+                       if (components[a].triangles != components[b].triangles)
+                         return components[a].triangles > components[b].triangles;
+                       return a < b;
+                     });
+    shown.resize(max_bodies);
+    std::sort(shown.begin(), shown.end());
+  }
   std::uint64_t total = 0;
-  for (const auto& c : components)
-    if (c.kept) total += c.triangles;
+  for (std::size_t i : shown)
+    total += components[i].triangles;
   const double z_scale = display_z_scale(survey);
   std::vector<ReportBody> bodies;
-  for (const auto& c : components) {
-    if (!c.kept) continue;
+  bodies.reserve(shown.size());
+  for (std::size_t i : shown) {
+    const ReportComponent& c = components[i];
     // Each body's share of the budget, in proportion to its triangles: the sum stays within it.
     const auto share = static_cast<std::size_t>(static_cast<double>(budget) * static_cast<double>(c.triangles) /
                                                 static_cast<double>(std::max<std::uint64_t>(total, 1)));

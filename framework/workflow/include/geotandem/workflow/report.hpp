@@ -29,6 +29,10 @@ struct ReportComponent {
 // Triangles the 3-D view holds for all bodies together (about 2 MB of page); bodies above their
 // share are decimated for display.
 inline constexpr std::size_t kDisplayTriangleBudget = 40000;
+// Kept bodies the map and the 3-D view draw at most, the largest by triangles: a recipe that keeps
+// every speck of a large cube (no remove_bubbles) would otherwise make a page of hundreds of MB,
+// and the footprints of all of them would be held at once.
+inline constexpr std::size_t kDisplayBodies = 2000;
 
 // The survey's outline on the map and its sample range, for the body views.
 struct ReportSurvey {

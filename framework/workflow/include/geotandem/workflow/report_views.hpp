@@ -16,11 +16,13 @@ namespace geotandem::workflow {
 // The outline of the traces' centres and the first and last sample.
 ReportSurvey survey_outline(const volume::Geometry& geometry);
 
-// The kept components of `components`, read from `store` (world coordinates), each decimated to
+// The kept components of `components` (the `max_bodies` with the most triangles when there are
+// more, in their order in `components`), read from `store` (world coordinates), each decimated to
 // its share of `budget` in proportion to its triangles. Throws what ComponentStore::read throws.
 std::vector<ReportBody> display_bodies(const store::ComponentStore& store,
                                        const std::vector<ReportComponent>& components, const ReportSurvey& survey,
-                                       std::size_t budget = kDisplayTriangleBudget);
+                                       std::size_t budget = kDisplayTriangleBudget,
+                                       std::size_t max_bodies = kDisplayBodies);
 
 // One body: `world` decimated to at most `budget` triangles (points relative to `origin`, z
 // scaled by `z_scale` while clustering so that cells are cubes on screen), and its footprint.

@@ -223,18 +223,19 @@ void WorkingSurface::Engine::try_collapse(EH e, double cost) {
     ++counters_.rejected_link;
     return;
   }
+  // The distance bound first: it refuses many more candidates than the shape test (2 in 3 pops on
+  // noisy surfaces, against 1 in 25), so the shape test mostly runs for collapses that happen.
   bool gathered = false; // the patch around h is read once for every position tried
-  if (!detail::collapse_keeps_shape(*mesh_, h, r.target, points_)) {
-    ++counters_.rejected_flip;
-  } else {
-    const double error = collapse_error(h, r.target, gathered);
-    if (error <= options_.max_error) {
-      collapse(h, r.target, cost, error);
-      return;
-    }
+  const double error = collapse_error(h, r.target, gathered);
+  if (!(error <= options_.max_error)) {
     // Retried at the simple positions as after a flip. (Without the retry: 4 % more triangles and
     // a quarter less time on noisy surfaces, but worse seams between blocks.)
     ++counters_.rejected_distance;
+  } else if (!detail::collapse_keeps_shape(*mesh_, h, r.target, points_)) {
+    ++counters_.rejected_flip;
+  } else {
+    collapse(h, r.target, cost, error);
+    return;
   }
   if (r.retried) return;
   // One more chance at the simple positions (volume-preserving when asked) that keep every
@@ -253,8 +254,8 @@ void WorkingSurface::Engine::try_collapse(EH e, double cost) {
   for (int k = 0; k < count; ++k) {
     const Candidate& o = options[k];
     if (!(o.shape_error <= options_.max_error)) continue;
-    if (!detail::collapse_keeps_shape(*mesh_, h, o.position, points_)) continue;
     if (!(collapse_error(h, o.position, gathered) <= options_.max_error)) continue;
+    if (!detail::collapse_keeps_shape(*mesh_, h, o.position, points_)) continue;
     ++counters_.retried;
     r.target = o.position;
     r.retried = true;

@@ -112,25 +112,6 @@ double CollapseDistance::projected(const Vec3& c, double limit) {
   }
   const auto at = [this](int i) -> const Point2& { return projected_[static_cast<std::size_t>(i)]; };
 
-  // One to one: every triangle of both patches keeps its orientation, and the fan around c turns
-  // once (its boundary, the patch's, is then a simple polygon).
-  const double tiny = 1e-12 * scale2;
-  const auto positive = [&](const std::array<int, 3>& t) {
-    const Point2 &p = at(t[0]), &q = at(t[1]), &r = at(t[2]);
-    return cross2(q.u - p.u, q.v - p.v, r.u - p.u, r.v - p.v) > tiny;
-  };
-  for (const auto& t : old_triangles_)
-    if (!positive(t)) return -1.0;
-  // With every sector (c, p, q) turning by less than pi, the fan's winding number is how many of
-  // them hold the direction (1, 0) (half-open, so that one on a ray counts once).
-  int winding = 0;
-  for (const auto& t : new_triangles_) {
-    if (!positive(t)) return -1.0;
-    const Point2 &p = at(t[1]), &q = at(t[2]);
-    if (-p.v >= 0.0 && q.v > 0.0) ++winding; // cross2(p, (1, 0)) >= 0 and cross2((1, 0), q) > 0
-  }
-  if (winding != 1) return -1.0;
-
   // The triangle of a triangulation that holds a point, and the point's barycentric weights.
   const auto locate = [&](const std::vector<std::array<int, 3>>& triangles, const Point2& x, double w[3]) {
     for (const auto& t : triangles) {
@@ -154,6 +135,8 @@ double CollapseDistance::projected(const Vec3& c, double limit) {
     need = std::max(need, rhs / wc);
     return need <= limit;
   };
+  // a and b first: on a refused collapse it is usually there that d_c passes the limit, and every
+  // way out below gives the same answer (no use of the projection), so their order is free.
   double w[3];
   for (int i = 0; i < 2; ++i) { // a and b, in the new patch (c is its triangles' first corner)
     const auto* t = locate(new_triangles_, at(i), w);
@@ -161,6 +144,25 @@ double CollapseDistance::projected(const Vec3& c, double limit) {
     const double z = w[0] * at(2).z + w[1] * at((*t)[1]).z + w[2] * at((*t)[2]).z;
     if (!require(w[0], tol(i) + std::fabs(z - at(i).z) - w[1] * tol((*t)[1]) - w[2] * tol((*t)[2]))) return -1.0;
   }
+  // One to one: every triangle of both patches keeps its orientation, and the fan around c turns
+  // once (its boundary, the patch's, is then a simple polygon).
+  const double tiny = 1e-12 * scale2;
+  const auto positive = [&](const std::array<int, 3>& t) {
+    const Point2 &p = at(t[0]), &q = at(t[1]), &r = at(t[2]);
+    return cross2(q.u - p.u, q.v - p.v, r.u - p.u, r.v - p.v) > tiny;
+  };
+  for (const auto& t : old_triangles_)
+    if (!positive(t)) return -1.0;
+  // With every sector (c, p, q) turning by less than pi, the fan's winding number is how many of
+  // them hold the direction (1, 0) (half-open, so that one on a ray counts once).
+  int winding = 0;
+  for (const auto& t : new_triangles_) {
+    if (!positive(t)) return -1.0;
+    const Point2 &p = at(t[1]), &q = at(t[2]);
+    if (-p.v >= 0.0 && q.v > 0.0) ++winding; // cross2(p, (1, 0)) >= 0 and cross2((1, 0), q) > 0
+  }
+  if (winding != 1) return -1.0;
+
   { // c, in the old patch
     const auto* t = locate(old_triangles_, at(2), w);
     if (!t) return -1.0;

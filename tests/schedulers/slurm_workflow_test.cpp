@@ -60,8 +60,10 @@ TEST_F(SlurmRun, AScancelledWorkerJobIsReplacedAndTheRunCompletes) {
   ASSERT_EQ(r, 0);
   ASSERT_EQ(wait_exit(manager, 600), 0) << read_text(log);
   const std::string text = read_text(log);
+  // The manager saw the cancel as the job's end, as a silent worker, or through the scheduler's
+  // account of the job (a worker that ends on SIGTERM between two tasks says none of the first two).
   if (text.find("done after") != std::string::npos && text.find("ended") == std::string::npos &&
-      text.find("silent") == std::string::npos)
+      text.find("silent") == std::string::npos && text.find("will be replaced") == std::string::npos)
     GTEST_SKIP() << "the run finished before the job was cancelled (a very fast machine):\n" << text;
   EXPECT_GE(submitted_jobs(text).size(), 3u) << "a replacement job should have been submitted:\n" << text;
   expect_same_components(dir.file("local-large") + "/store", out + "/store");

@@ -1,8 +1,6 @@
 // geotandem: one executable, one subcommand per use. main builds the world (logger, cancel token,
 // signal handling) and passes it down; nothing is registered by static initialisers.
 
-#include <malloc.h>
-
 #include <atomic>
 #include <cstdlib>
 #include <filesystem>
@@ -45,11 +43,6 @@ void* operator new[](std::size_t size) {
 
 int main(int argc, char** argv) {
   using namespace geotandem;
-  // Blocks of 1 MiB and more always come from mmap and go back to the system when freed. glibc
-  // otherwise raises this threshold to the largest block freed so far, after which the working
-  // surfaces' large arrays stay in the heap and the peak RSS keeps their holes (1024^3 analytic
-  // cube in process: 630 -> 530 MiB, the same time).
-  mallopt(M_MMAP_THRESHOLD, 1 << 20);
   Logger log(std::cerr);
   app::Context context{log, CancelToken{}};
 

@@ -1,4 +1,5 @@
 // dumping(): finished components leave the working surface; compaction of the mesh afterwards.
+#include <algorithm>
 #include <cassert>
 #include <string>
 
@@ -114,6 +115,16 @@ void WorkingSurface::Engine::compact() {
   const detail::TriMesh& m = *mesh_;
   const std::size_t room = m.property(vprop_).data_vector().capacity();
   if (m.n_faces() - live_faces_ > live_faces_ / 8 || room > live_vertices_ + live_vertices_ / 8) collect_garbage();
+}
+
+void WorkingSurface::Engine::make_room(std::size_t nv, std::size_t ne, std::size_t nf) {
+  const detail::TriMesh& m = *mesh_;
+  const std::size_t v = m.property(vprop_).data_vector().capacity(), e = m.property(eprop_).data_vector().capacity(),
+                    f = m.property(fprop_).data_vector().capacity();
+  const auto room = [](std::size_t need, std::size_t have) {
+    return need <= have ? have : std::max(need, have + have / 4);
+  };
+  if (nv > v || ne > e || nf > f) mesh_->reserve(room(nv, v), room(ne, e), room(nf, f));
 }
 
 void WorkingSurface::Engine::collect_garbage() {

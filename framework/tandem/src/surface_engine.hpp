@@ -39,6 +39,9 @@ public:
   std::size_t dump();
   void set_region(Region region);
   void compact();
+  // Storage for nv vertices, ne edges and nf faces, grown by at least a quarter when it must grow
+  // (a growing array doubles: up to half its room would stay spare).
+  void make_room(std::size_t nv, std::size_t ne, std::size_t nf);
 
   const Region& region() const { return region_; }
   double front() const { return front_; }

@@ -92,6 +92,7 @@ void WorkingSurface::Engine::add_layer(const Layer& layer) {
   const std::size_t nt = layer.triangles.size();
   // Room for every new vertex, and for at most three new edges and one face per triangle: trimmed
   // to what was used afterwards.
+  make_room(first_new + new_positions_.size(), edges_before + 3 * nt, faces_before + nt);
   mesh_->resize(first_new + new_positions_.size(), edges_before + 3 * nt, faces_before + nt);
   refresh();
   for (std::size_t k = 0; k < new_positions_.size(); ++k)

@@ -169,18 +169,20 @@ std::unique_ptr<WorkingSurface> quarter(const volume::Volume& volume, int qi, in
   return surface;
 }
 
+// The test cube's whole-cube extraction, and its quarters extracted into one sink.
+struct Quarters {
+  const std::unique_ptr<volume::MemoryVolume> volume = blocks_test::sample(blocks_test::bodies(), kShape);
+  BlocksRun one;
+  CollectingSink sink;
+  Quarters() { run_blocks(one, *volume, 0); }
+  std::unique_ptr<WorkingSurface> operator()(int qi, int qj) { return quarter(*volume, qi, qj, sink); }
+};
+
 TEST(TandemBlocks, LShapedRegionsMerge) {
   // A node merged with a nephew (restricted adjacency) gives an L-shaped region: its open faces
   // are the parts of the boundary the last quarter will arrive at.
-  const auto volume = blocks_test::sample(blocks_test::bodies(), kShape);
-  BlocksRun one;
-  run_blocks(one, *volume, 0);
-
-  CollectingSink sink;
-  auto a = quarter(*volume, 0, 0, sink);
-  auto b = quarter(*volume, 1, 0, sink);
-  auto c = quarter(*volume, 0, 1, sink);
-  auto d = quarter(*volume, 1, 1, sink);
+  Quarters q;
+  auto a = q(0, 0), b = q(1, 0), c = q(0, 1), d = q(1, 1);
   a->merge(std::move(*b));
   ASSERT_EQ(a->region().blocks().size(), 1u) << "two brothers make one box";
   a->merge(std::move(*c));
@@ -197,7 +199,7 @@ TEST(TandemBlocks, LShapedRegionsMerge) {
   a->merge(std::move(*d));
   a->finish();
   EXPECT_EQ(a->triangle_count(), 0u);
-  blocks_test::expect_same_components(one.sink.components, sink.components);
+  blocks_test::expect_same_components(q.one.sink.components, q.sink.components);
 }
 
 // The triangles of a snapshot as sorted corner triples: the same surface whatever the numbering.
@@ -216,13 +218,8 @@ TEST(TandemBlocks, CompactingASurfaceSetAsideChangesNothingButItsStorage) {
   // compact() renumbers everything (the queues, the components, the last layer's ids): the
   // surface, its waiting edges and its components stay, and the merges go on to the components
   // of the whole-cube extraction.
-  const auto volume = blocks_test::sample(blocks_test::bodies(), kShape);
-  BlocksRun one;
-  run_blocks(one, *volume, 0);
-
-  CollectingSink sink;
-  auto a = quarter(*volume, 0, 0, sink);
-  auto b = quarter(*volume, 1, 0, sink);
+  Quarters q;
+  auto a = q(0, 0), b = q(1, 0);
   const auto before = triangle_set(a->snapshot());
   const std::size_t waiting = a->waiting_edge_count(), components = a->component_count();
   ASSERT_GT(waiting, 0u);
@@ -237,14 +234,13 @@ TEST(TandemBlocks, CompactingASurfaceSetAsideChangesNothingButItsStorage) {
   const std::uint64_t after_merge = a->counters().garbage_collections;
   a->compact();
   EXPECT_EQ(a->counters().garbage_collections, after_merge) << "nothing left to give back";
-  auto c = quarter(*volume, 0, 1, sink);
-  auto d = quarter(*volume, 1, 1, sink);
+  auto c = q(0, 1), d = q(1, 1);
   c->compact();
   c->merge(std::move(*d));
   a->merge(std::move(*c));
   a->finish();
   EXPECT_EQ(a->triangle_count(), 0u);
-  blocks_test::expect_same_components(one.sink.components, sink.components);
+  blocks_test::expect_same_components(q.one.sink.components, q.sink.components);
 }
 
 TEST(TandemBlocks, MergesThatDoNotFitAreRefused) {

@@ -150,11 +150,13 @@ TEST(StoreSafetyCli, FreshRefusesWhileAnotherProcessWritesTheStore) {
     auto r = run_geotandem("-q run-workflow " + q(dir.file("w.yaml")) + " --set steps.extract.iso=0.6 --fresh");
     EXPECT_EQ(r.exit_code, 3) << r.err;
     EXPECT_NE(r.err.find("another process is writing this store"), std::string::npos) << r.err;
+    EXPECT_EQ(r.err.find("removed the previous store"), std::string::npos) << "nothing was removed: " << r.err;
     EXPECT_TRUE(store::ComponentStore::exists(dir.file("w-out/store")));
     EXPECT_EQ(writer.size(), before.size());
   }
-  auto r = run_geotandem("-q run-workflow " + q(dir.file("w.yaml")) + " --set steps.extract.iso=0.6 --fresh");
+  auto r = run_geotandem("run-workflow " + q(dir.file("w.yaml")) + " --set steps.extract.iso=0.6 --fresh");
   EXPECT_EQ(r.exit_code, 0) << "once the writer is gone --fresh proceeds: " << r.err;
+  EXPECT_NE(r.err.find("removed the previous store"), std::string::npos) << r.err;
 }
 
 TEST(StoreSafetyCli, CheckFindsADamagedRecordExportSkipsItAndARerunRepairsIt) {

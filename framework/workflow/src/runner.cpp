@@ -140,8 +140,8 @@ private:
 
   void extract(const Plugin& plugin, const StepSpec& step) {
     if (settings_.fresh && fs::exists(store_dir_)) {
-      log_.info("--fresh: removing the previous store " + store_dir_.string());
       store::ComponentStore::remove(store_dir_); // Refuses while another process writes it
+      log_.info("--fresh: removed the previous store " + store_dir_.string());
       state_.clear();
     }
     if (store::ComponentStore::exists(store_dir_) && state_.fingerprint_of("extract") != print_)

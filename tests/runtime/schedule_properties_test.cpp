@@ -10,16 +10,14 @@
 
 #include "geotandem/runtime/schedule.hpp"
 #include "geotandem/tandem/block_tree.hpp"
+#include "schedule_support.hpp"
 
 namespace geotandem::runtime {
 namespace {
 
+using schedule_test::cells;
 using tandem::BlockTree;
 using tandem::NodeId;
-
-volume::Box cells(std::int64_t x, std::int64_t y, std::int64_t z) {
-  return volume::Box{{0, 0, 0}, {x, y, z}};
-}
 
 // What a worker really holds, simulated: leaf counts per surface.
 using Surface = std::map<NodeId, int>;

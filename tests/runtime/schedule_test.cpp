@@ -5,16 +5,14 @@
 
 #include "geotandem/runtime/schedule.hpp"
 #include "geotandem/tandem/block_tree.hpp"
+#include "schedule_support.hpp"
 
 namespace geotandem::runtime {
 namespace {
 
+using schedule_test::cells;
 using tandem::BlockTree;
 using tandem::NodeId;
-
-volume::Box cells(std::int64_t x, std::int64_t y, std::int64_t z) {
-  return volume::Box{{0, 0, 0}, {x, y, z}};
-}
 
 // A cube of 32^3 cells with leaves of 16: eight blocks, cut along x (left 1, right 8), then y
 // (up/down), then z (front/back). Leaves in tree order: 3 4 6 7 10 11 13 14.

@@ -10,6 +10,6 @@ set(TANDEM_SIMPLIFY_SOURCES
   src/triangle_insert.cpp
   src/surface_layers.cpp
   src/surface_dump.cpp
-  src/surface_compact.cpp
+  src/working_mesh.cpp
   src/working_surface.cpp
   src/tandem_driver.cpp)

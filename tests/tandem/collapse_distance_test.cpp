@@ -12,6 +12,7 @@
 #include "collapse_distance.hpp"
 #include "geotandem/mesh/quality.hpp"
 #include "geotandem/mesh/surface.hpp"
+#include "triangle_insert.hpp"
 
 namespace geotandem::tandem {
 namespace {
@@ -21,13 +22,13 @@ using namespace detail;
 // a at (-0.5, 0), b at (0.5, 0), `n` link vertices on an ellipse around them (counter-clockwise
 // seen from +z), heights z = bump(x, y).
 struct Patch {
-  TriMesh mesh;
+  HalfedgeMesh mesh;
   VH a, b;
   std::vector<VH> ring;
   std::vector<VertexRecord> records;
 
   template <class Bump> Patch(int n, Bump bump, double phase) {
-    const auto add = [&](double x, double y) { return mesh.add_vertex(TriMesh::Point(x, y, bump(x, y))); };
+    const auto add = [&](double x, double y) { return mesh.add_vertex(HalfedgeMesh::Point(x, y, bump(x, y))); };
     a = add(-0.5, 0.0);
     b = add(0.5, 0.0);
     for (int k = 0; k < n; ++k) {
@@ -35,28 +36,27 @@ struct Patch {
       ring.push_back(add(1.6 * std::cos(t), 1.1 * std::sin(t)));
     }
     const auto left = [&](VH v) { return mesh.point(v)[0] < 0.0; };
+    const auto triangle = [&](VH p0, VH p1, VH p2) {
+      EXPECT_TRUE(insert_triangle(mesh, p0, p1, p2).is_valid()) << "a triangle of the patch was refused";
+    };
     for (int k = 0; k < n; ++k) {
       const VH p = ring[static_cast<std::size_t>(k)], q = ring[static_cast<std::size_t>((k + 1) % n)];
       if (left(p) && left(q)) {
-        mesh.add_face(a, p, q);
+        triangle(a, p, q);
       } else if (!left(p) && !left(q)) {
-        mesh.add_face(b, p, q);
+        triangle(b, p, q);
       } else if (!left(p) && left(q)) { // top: right to left
-        mesh.add_face(b, p, q);
-        mesh.add_face(a, b, q);
+        triangle(b, p, q);
+        triangle(a, b, q);
       } else { // bottom: left to right
-        mesh.add_face(a, p, q);
-        mesh.add_face(b, a, q);
+        triangle(a, p, q);
+        triangle(b, a, q);
       }
     }
     records.resize(mesh.n_vertices());
   }
 
-  HH ab() const {
-    for (auto h : mesh.voh_range(a))
-      if (mesh.to_vertex_handle(h) == b) return h;
-    return HH();
-  }
+  HH ab() const { return find_halfedge(mesh, a, b); }
 
   // The patch as plain triangles, with a and b moved to c (collapsed) or not.
   mesh::SurfaceMesh surface(const Vec3* c) const {
@@ -70,11 +70,10 @@ struct Patch {
       if (c && (v == a || v == b)) return static_cast<std::uint32_t>(s.points.size() - 1);
       return static_cast<std::uint32_t>(v.idx());
     };
-    for (auto f : mesh.faces()) {
-      std::array<std::uint32_t, 3> t{};
-      int k = 0;
-      for (auto v : mesh.fv_range(f))
-        t[static_cast<std::size_t>(k++)] = index(v);
+    for (std::size_t f = 0; f < mesh.n_faces(); ++f) {
+      const HH h = mesh.halfedge_handle(FH(static_cast<int>(f)));
+      const std::array<std::uint32_t, 3> t{index(mesh.from_vertex_handle(h)), index(mesh.to_vertex_handle(h)),
+                                           index(mesh.to_vertex_handle(mesh.next_halfedge_handle(h)))};
       if (t[0] == t[1] || t[1] == t[2] || t[0] == t[2]) continue; // abx, aby vanish
       s.triangles.push_back(t);
     }

@@ -1,4 +1,4 @@
-// White-box tests of the connectivity operations written against TriMesh: triangle insertion in
+// White-box tests of the connectivity operations written against HalfedgeMesh: triangle insertion in
 // any order, the link condition and the collapse. Checked against the halfedge invariants and the
 // Euler characteristic, on closed surfaces from marching cubes.
 #include <gtest/gtest.h>
@@ -24,29 +24,29 @@ mesh::SurfaceMesh torus_surface() {
 }
 
 // Halfedge invariants of the live part of the mesh; returns V - E + F over live elements.
-long check_connectivity(const TriMesh& m) {
+long check_connectivity(const HalfedgeMesh& m) {
   long v = 0, e = 0, f = 0;
   for (std::size_t i = 0; i < m.n_edges(); ++i) {
     const EH eh(static_cast<int>(i));
-    if (m.status(eh).deleted()) continue;
+    if (m.deleted(eh)) continue;
     ++e;
     for (int side = 0; side < 2; ++side) {
       const HH h = m.halfedge_handle(eh, static_cast<unsigned>(side));
       EXPECT_EQ(m.prev_halfedge_handle(m.next_halfedge_handle(h)), h);
       EXPECT_EQ(m.from_vertex_handle(m.next_halfedge_handle(h)), m.to_vertex_handle(h));
       EXPECT_EQ(m.face_handle(m.next_halfedge_handle(h)), m.face_handle(h));
-      EXPECT_FALSE(m.status(m.to_vertex_handle(h)).deleted());
+      EXPECT_FALSE(m.deleted(m.to_vertex_handle(h)));
       if (m.face_handle(h).is_valid()) {
-        EXPECT_FALSE(m.status(m.face_handle(h)).deleted());
+        EXPECT_FALSE(m.deleted(m.face_handle(h)));
         EXPECT_EQ(m.next_halfedge_handle(m.next_halfedge_handle(m.next_halfedge_handle(h))), h) << "not a triangle";
       }
     }
   }
   for (std::size_t i = 0; i < m.n_faces(); ++i)
-    if (!m.status(FH(static_cast<int>(i))).deleted()) ++f;
+    if (!m.deleted(FH(static_cast<int>(i)))) ++f;
   for (std::size_t i = 0; i < m.n_vertices(); ++i) {
     const VH vh(static_cast<int>(i));
-    if (m.status(vh).deleted()) continue;
+    if (m.deleted(vh)) continue;
     const HH start = m.halfedge_handle(vh);
     if (!start.is_valid()) continue; // no triangle yet
     ++v;
@@ -70,6 +70,70 @@ long check_connectivity(const TriMesh& m) {
   return v - e + f;
 }
 
+// The live triangles as corner positions, starting from the smallest corner.
+std::set<std::array<std::array<double, 3>, 3>> live_triangles(const HalfedgeMesh& m) {
+  std::set<std::array<std::array<double, 3>, 3>> out;
+  for (std::size_t i = 0; i < m.n_faces(); ++i) {
+    const FH f(static_cast<int>(i));
+    if (m.deleted(f)) continue;
+    const HH h = m.halfedge_handle(f);
+    std::array<std::array<double, 3>, 3> t;
+    const VH corners[3] = {m.from_vertex_handle(h), m.to_vertex_handle(h),
+                           m.to_vertex_handle(m.next_halfedge_handle(h))};
+    for (int k = 0; k < 3; ++k) {
+      const auto& p = m.point(corners[k]);
+      t[static_cast<std::size_t>(k)] = {p[0], p[1], p[2]};
+    }
+    std::rotate(t.begin(), std::min_element(t.begin(), t.end()), t.end());
+    out.insert(t);
+  }
+  return out;
+}
+
+// Random legal collapses, then compaction: the same live surface, nothing dead, no spare room.
+void collapse_then_compact(HalfedgeMesh& m, long euler, unsigned seed) {
+  VertexMarks marks;
+  marks.ensure(m.n_vertices());
+  std::mt19937 rng(seed);
+  std::size_t collapses = 0;
+  for (int attempt = 0; attempt < 4000 && collapses < m.n_vertices() / 2; ++attempt) {
+    const EH e(static_cast<int>(rng() % m.n_edges()));
+    if (m.deleted(e)) continue;
+    const HH h = m.halfedge_handle(e, rng() % 2);
+    if (!link_condition_ok(m, h, marks)) continue;
+    collapse_halfedge(m, h);
+    ++collapses;
+  }
+  ASSERT_GT(collapses, m.n_vertices() / 4);
+  const auto before = live_triangles(m);
+  std::vector<HalfedgeMesh::Point> points(m.points(), m.points() + m.n_vertices());
+  std::vector<bool> alive;
+  for (std::size_t i = 0; i < m.n_vertices(); ++i)
+    alive.push_back(!m.deleted(VH(static_cast<int>(i))));
+  const std::size_t live_vertices = static_cast<std::size_t>(std::count(alive.begin(), alive.end(), true));
+
+  const std::vector<std::int32_t> moved = m.compact();
+  ASSERT_EQ(moved.size(), alive.size());
+  EXPECT_EQ(m.n_vertices(), live_vertices);
+  EXPECT_EQ(m.n_faces(), before.size());
+  EXPECT_EQ(m.vertex_capacity(), m.n_vertices());
+  EXPECT_EQ(m.edge_capacity(), m.n_edges());
+  EXPECT_EQ(m.face_capacity(), m.n_faces());
+  for (std::size_t i = 0; i < m.n_edges(); ++i)
+    EXPECT_FALSE(m.deleted(EH(static_cast<int>(i))));
+  std::int32_t next = 0;
+  for (std::size_t i = 0; i < moved.size(); ++i) {
+    if (!alive[i]) {
+      EXPECT_EQ(moved[i], -1);
+      continue;
+    }
+    ASSERT_EQ(moved[i], next++) << "live vertices keep their order";
+    EXPECT_EQ(m.point(VH(moved[i])), points[i]);
+  }
+  EXPECT_EQ(check_connectivity(m), euler);
+  EXPECT_EQ(live_triangles(m), before);
+}
+
 TEST(TriangleInsert, AnyOrderOfAClosedSurfaceGoesIn) {
   const mesh::SurfaceMesh s = torus_surface();
   ASSERT_GT(s.triangle_count(), 500u);
@@ -78,9 +142,9 @@ TEST(TriangleInsert, AnyOrderOfAClosedSurfaceGoesIn) {
     for (std::size_t i = 0; i < order.size(); ++i)
       order[i] = i;
     std::shuffle(order.begin(), order.end(), std::mt19937(seed));
-    TriMesh m;
+    HalfedgeMesh m;
     for (const auto& p : s.points)
-      m.add_vertex(TriMesh::Point(p[0], p[1], p[2]));
+      m.add_vertex(HalfedgeMesh::Point(p[0], p[1], p[2]));
     std::size_t step = 0;
     for (std::size_t t : order) {
       const auto& tri = s.triangles[t];
@@ -111,10 +175,10 @@ TEST(TriangleInsert, AnyOrderOfAClosedSurfaceGoesIn) {
 }
 
 TEST(TriangleInsert, RefusesNonManifoldAndMisorientedTriangles) {
-  TriMesh m;
+  HalfedgeMesh m;
   VH v[6];
   for (int i = 0; i < 6; ++i)
-    v[i] = m.add_vertex(TriMesh::Point(i, i * i, 0));
+    v[i] = m.add_vertex(HalfedgeMesh::Point(i, i * i, 0));
   ASSERT_TRUE(insert_triangle(m, v[0], v[1], v[2]).is_valid());
   ASSERT_TRUE(insert_triangle(m, v[0], v[2], v[3]).is_valid());
   // The edge 0 -> 1 is used in this direction already.
@@ -128,9 +192,9 @@ TEST(TriangleInsert, RefusesNonManifoldAndMisorientedTriangles) {
 
 TEST(CollapseOps, RandomLegalCollapsesKeepTheTopology) {
   const mesh::SurfaceMesh s = torus_surface();
-  TriMesh m;
+  HalfedgeMesh m;
   for (const auto& p : s.points)
-    m.add_vertex(TriMesh::Point(p[0], p[1], p[2]));
+    m.add_vertex(HalfedgeMesh::Point(p[0], p[1], p[2]));
   for (const auto& t : s.triangles)
     ASSERT_TRUE(insert_triangle(m, VH(static_cast<int>(t[0])), VH(static_cast<int>(t[1])), VH(static_cast<int>(t[2])))
                     .is_valid());
@@ -140,7 +204,7 @@ TEST(CollapseOps, RandomLegalCollapsesKeepTheTopology) {
   std::size_t collapses = 0, refused = 0;
   for (int attempt = 0; attempt < 20000 && collapses < s.points.size() - 40; ++attempt) {
     const EH e(static_cast<int>(rng() % m.n_edges()));
-    if (m.status(e).deleted()) continue;
+    if (m.deleted(e)) continue;
     const HH h = m.halfedge_handle(e, rng() % 2);
     if (!link_condition_ok(m, h, marks)) {
       ++refused;
@@ -161,12 +225,12 @@ TEST(CollapseOps, RandomLegalCollapsesKeepTheTopology) {
 
 TEST(CollapseOps, BoundaryCollapsesKeepADisc) {
   // A flat disc: collapses along and across its boundary keep one disc (Euler characteristic 1).
-  TriMesh m;
+  HalfedgeMesh m;
   const int n = 9;
   std::vector<VH> grid;
   for (int i = 0; i < n; ++i)
     for (int j = 0; j < n; ++j)
-      grid.push_back(m.add_vertex(TriMesh::Point(i, j, 0)));
+      grid.push_back(m.add_vertex(HalfedgeMesh::Point(i, j, 0)));
   auto at = [&](int i, int j) { return grid[static_cast<std::size_t>(i * n + j)]; };
   for (int i = 0; i + 1 < n; ++i)
     for (int j = 0; j + 1 < n; ++j) {
@@ -180,7 +244,7 @@ TEST(CollapseOps, BoundaryCollapsesKeepADisc) {
   std::size_t collapses = 0;
   for (int attempt = 0; attempt < 5000; ++attempt) {
     const EH e(static_cast<int>(rng() % m.n_edges()));
-    if (m.status(e).deleted()) continue;
+    if (m.deleted(e)) continue;
     const HH h = m.halfedge_handle(e, rng() % 2);
     if (!link_condition_ok(m, h, marks)) continue;
     collapse_halfedge(m, h);
@@ -188,6 +252,32 @@ TEST(CollapseOps, BoundaryCollapsesKeepADisc) {
     ASSERT_EQ(check_connectivity(m), 1) << "after " << collapses << " collapses";
   }
   EXPECT_GT(collapses, 50u);
+}
+
+TEST(HalfedgeMesh, CompactionInPlaceKeepsTheLiveSurfaceOfATorus) {
+  const mesh::SurfaceMesh s = torus_surface();
+  HalfedgeMesh m;
+  for (const auto& p : s.points)
+    m.add_vertex(HalfedgeMesh::Point(p[0], p[1], p[2]));
+  for (const auto& t : s.triangles)
+    ASSERT_TRUE(insert_triangle(m, VH(static_cast<int>(t[0])), VH(static_cast<int>(t[1])), VH(static_cast<int>(t[2])))
+                    .is_valid());
+  collapse_then_compact(m, 0, 3);
+}
+
+TEST(HalfedgeMesh, CompactionInPlaceKeepsTheBoundaryOfADisc) {
+  HalfedgeMesh m;
+  const int n = 12;
+  for (int i = 0; i < n; ++i)
+    for (int j = 0; j < n; ++j)
+      m.add_vertex(HalfedgeMesh::Point(i, j, 0.1 * ((i * j) % 3)));
+  const auto at = [&](int i, int j) { return VH(i * n + j); };
+  for (int i = 0; i + 1 < n; ++i)
+    for (int j = 0; j + 1 < n; ++j) {
+      ASSERT_TRUE(insert_triangle(m, at(i, j), at(i + 1, j), at(i + 1, j + 1)).is_valid());
+      ASSERT_TRUE(insert_triangle(m, at(i, j), at(i + 1, j + 1), at(i, j + 1)).is_valid());
+    }
+  collapse_then_compact(m, 1, 8);
 }
 
 } // namespace

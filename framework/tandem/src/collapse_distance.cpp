@@ -16,13 +16,14 @@ double CollapseDistance::simplicial(const Vec3& a, double da, const Vec3& b, dou
   return std::max(da + norm(a - c), db + norm(b - c));
 }
 
-int CollapseDistance::add(VH v, const TriMesh::Point* points, const VertexRecord* records) {
+int CollapseDistance::add(VH v, const HalfedgeMesh::Point* points, const VertexRecord* records) {
   points_.push_back(to_vec(points[v.idx()]));
   tolerances_.push_back(records[v.idx()].tolerance);
   return static_cast<int>(points_.size() - 1);
 }
 
-void CollapseDistance::gather(const TriMesh& mesh, HH h, const TriMesh::Point* points, const VertexRecord* records) {
+void CollapseDistance::gather(const HalfedgeMesh& mesh, HH h, const HalfedgeMesh::Point* points,
+                              const VertexRecord* records) {
   const VH a = mesh.from_vertex_handle(h), b = mesh.to_vertex_handle(h);
   const Vec3 pa = to_vec(points[a.idx()]), pb = to_vec(points[b.idx()]);
   const double da = records[a.idx()].tolerance, db = records[b.idx()].tolerance;

@@ -35,15 +35,15 @@ namespace geotandem::tandem::detail {
 class CollapseDistance {
 public:
   // Values above `limit` (E0) are only known to be above it.
-  double tolerance(const TriMesh& mesh, HH h, const Vec3& c, const TriMesh::Point* points, const VertexRecord* records,
-                   double limit = std::numeric_limits<double>::infinity()) {
+  double tolerance(const HalfedgeMesh& mesh, HH h, const Vec3& c, const HalfedgeMesh::Point* points,
+                   const VertexRecord* records, double limit = std::numeric_limits<double>::infinity()) {
     gather(mesh, h, points, records);
     return bound(c, limit);
   }
   // The same in two steps, for several positions c of one collapse: gather() reads the patch
   // around h (and what of the projection does not depend on c), bound() gives d_c for one c. The
   // patch is only valid until the mesh, its points or their bounds change.
-  void gather(const TriMesh& mesh, HH h, const TriMesh::Point* points, const VertexRecord* records);
+  void gather(const HalfedgeMesh& mesh, HH h, const HalfedgeMesh::Point* points, const VertexRecord* records);
   double bound(const Vec3& c, double limit = std::numeric_limits<double>::infinity());
 
   // d_c for the simplicial map alone (exposed for tests).
@@ -72,7 +72,7 @@ private:
   bool boundary_ = true;
   double area_length_ = 0.0;
   Vec3 u_{}, v_{}, n_{};
-  int add(VH v, const TriMesh::Point* points, const VertexRecord* records);
+  int add(VH v, const HalfedgeMesh::Point* points, const VertexRecord* records);
 };
 
 } // namespace geotandem::tandem::detail

@@ -13,23 +13,23 @@ constexpr double kMinNormalCosine = 0.2;
 // sliver (smallest height below 1/1000 of the longest edge): refused.
 constexpr double kMinShape = 1e-3;
 
-bool boundary_vertex(const TriMesh& m, VH v) {
+bool boundary_vertex(const HalfedgeMesh& m, VH v) {
   const HH h = m.halfedge_handle(v);
   return !h.is_valid() || !m.face_handle(h).is_valid();
 }
 
-bool boundary_halfedge(const TriMesh& m, HH h) {
+bool boundary_halfedge(const HalfedgeMesh& m, HH h) {
   return !m.face_handle(h).is_valid();
 }
 
-Vec3 point(const TriMesh::Point* p, VH v) {
-  const TriMesh::Point& q = p[v.idx()];
+Vec3 point(const HalfedgeMesh::Point* p, VH v) {
+  const HalfedgeMesh::Point& q = p[v.idx()];
   return {q[0], q[1], q[2]};
 }
 
 // Sum of the (area-weighted) normals of the triangles around a and b: the reference direction
 // for triangles that are degenerate before the collapse and so have no orientation of their own.
-Vec3 patch_normal(const TriMesh& m, VH a, VH b, const TriMesh::Point* p) {
+Vec3 patch_normal(const HalfedgeMesh& m, VH a, VH b, const HalfedgeMesh::Point* p) {
   Vec3 sum{0.0, 0.0, 0.0};
   for (VH v : {a, b}) {
     const HH start = m.halfedge_handle(v);
@@ -48,7 +48,7 @@ Vec3 patch_normal(const TriMesh& m, VH a, VH b, const TriMesh::Point* p) {
 
 } // namespace
 
-bool link_condition_ok(const TriMesh& m, HH h, VertexMarks& marks) {
+bool link_condition_ok(const HalfedgeMesh& m, HH h, VertexMarks& marks) {
   const HH o = m.opposite_halfedge_handle(h);
   const VH a = m.to_vertex_handle(o), b = m.to_vertex_handle(h);
   const bool has_fh = !boundary_halfedge(m, h), has_fo = !boundary_halfedge(m, o);
@@ -95,7 +95,7 @@ bool link_condition_ok(const TriMesh& m, HH h, VertexMarks& marks) {
   return true;
 }
 
-bool collapse_keeps_shape(const TriMesh& m, HH h, const Vec3& c, const TriMesh::Point* p) {
+bool collapse_keeps_shape(const HalfedgeMesh& m, HH h, const Vec3& c, const HalfedgeMesh::Point* p) {
   const HH o = m.opposite_halfedge_handle(h);
   const VH a = m.to_vertex_handle(o), b = m.to_vertex_handle(h);
   bool have_reference = false;
@@ -133,7 +133,7 @@ bool collapse_keeps_shape(const TriMesh& m, HH h, const Vec3& c, const TriMesh::
   return true;
 }
 
-void adjust_outgoing_halfedge(TriMesh& m, VH v) {
+void adjust_outgoing_halfedge(HalfedgeMesh& m, VH v) {
   const HH start = m.halfedge_handle(v);
   HH g = start;
   do {
@@ -149,7 +149,7 @@ namespace {
 
 // The face of h0 has become a loop of two halfedges h0 (v0 -> v1) and h1 (v1 -> v0): drop the
 // edge of h0 and the face, and let h1 take the place of h0's opposite in the neighbouring face.
-void collapse_loop(TriMesh& m, HH h0, CollapseResult& r) {
+void collapse_loop(HalfedgeMesh& m, HH h0, CollapseResult& r) {
   const HH h1 = m.next_halfedge_handle(h0);
   assert(m.next_halfedge_handle(h1) == h0);
   const HH o0 = m.opposite_halfedge_handle(h0), o1 = m.opposite_halfedge_handle(h1);
@@ -168,15 +168,15 @@ void collapse_loop(TriMesh& m, HH h0, CollapseResult& r) {
   if (m.halfedge_handle(v0) == h0) m.set_halfedge_handle(v0, o1);
   if (m.halfedge_handle(v1) == o0) m.set_halfedge_handle(v1, h1);
   const EH dead_edge = m.edge_handle(h0);
-  m.status(dead_edge).set_deleted(true);
-  m.status(loop_face).set_deleted(true);
+  m.edge_records()[dead_edge.idx()].alive = false;
+  m.face_records()[loop_face.idx()].alive = false;
   r.removed_edges[r.removed_edge_count++] = dead_edge;
   r.removed_faces[r.removed_face_count++] = loop_face;
 }
 
 } // namespace
 
-CollapseResult collapse_halfedge(TriMesh& m, HH h) {
+CollapseResult collapse_halfedge(HalfedgeMesh& m, HH h) {
   CollapseResult r;
   const HH o = m.opposite_halfedge_handle(h);
   const VH a = m.to_vertex_handle(o), b = m.to_vertex_handle(h);
@@ -201,9 +201,9 @@ CollapseResult collapse_halfedge(TriMesh& m, HH h) {
   if (fo.is_valid()) m.set_halfedge_handle(fo, on);
   if (m.halfedge_handle(b) == o) m.set_halfedge_handle(b, hn);
   m.set_isolated(a);
-  m.status(a).set_deleted(true);
+  m.vertex_records()[a.idx()].alive = false;
   const EH ab = m.edge_handle(h);
-  m.status(ab).set_deleted(true);
+  m.edge_records()[ab.idx()].alive = false;
   r.removed_vertex = a;
   r.kept_vertex = b;
   r.removed_edges[r.removed_edge_count++] = ab;

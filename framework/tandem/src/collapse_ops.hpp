@@ -1,5 +1,5 @@
 #pragma once
-// The topological side of a collapse, written against TriMesh's halfedge connectivity directly:
+// The topological side of a collapse, written against HalfedgeMesh's halfedge connectivity directly:
 // the link condition, the flip/degeneracy test and the collapse itself. Measured while choosing
 // the design (ALGORITHM.md): twice as fast as OpenMesh's is_collapse_ok + collapse, which Debian
 // builds with assertions and which touch status bits we do not keep on halfedges.
@@ -45,14 +45,14 @@ private:
 // Whether collapsing h keeps the surface a 2-manifold of the same topology: the link condition
 // (the common neighbours of a and b are exactly the vertices opposite ab), no interior edge
 // between two boundary vertices, no triangle left dangling, no tetrahedron collapsed.
-bool link_condition_ok(const TriMesh& mesh, HH h, VertexMarks& marks);
+bool link_condition_ok(const HalfedgeMesh& mesh, HH h, VertexMarks& marks);
 
 // Whether moving a and b to c leaves every surviving triangle around them non-degenerate and
 // turned by less than acos(min_cosine) from its old orientation. `points` are the mesh's points.
-bool collapse_keeps_shape(const TriMesh& mesh, HH h, const Vec3& c, const TriMesh::Point* points);
+bool collapse_keeps_shape(const HalfedgeMesh& mesh, HH h, const Vec3& c, const HalfedgeMesh::Point* points);
 
 // Removes a and the edge ab, merges the two pairs of edges of the triangles abx and aby, deletes
-// what disappears (status bits) and lists it. Precondition: link_condition_ok(h).
+// what disappears (its record is no longer alive) and lists it. Precondition: link_condition_ok(h).
 struct CollapseResult {
   VH removed_vertex;
   VH kept_vertex;
@@ -61,9 +61,9 @@ struct CollapseResult {
   FH removed_faces[2];
   int removed_face_count = 0;
 };
-CollapseResult collapse_halfedge(TriMesh& mesh, HH h);
+CollapseResult collapse_halfedge(HalfedgeMesh& mesh, HH h);
 
 // Makes a boundary vertex point to one of its boundary outgoing halfedges.
-void adjust_outgoing_halfedge(TriMesh& mesh, VH v);
+void adjust_outgoing_halfedge(HalfedgeMesh& mesh, VH v);
 
 } // namespace geotandem::tandem::detail

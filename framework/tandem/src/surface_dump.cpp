@@ -83,18 +83,14 @@ void WorkingSurface::Engine::dump_component(std::int32_t root) {
       if (er.alive) {
         if (er.state != EdgeState::idle) set_state(e, EdgeState::idle, 0.0);
         er.alive = false;
-        mesh_->status(e).set_deleted(true);
       }
       h = detail::next_outgoing(*mesh_, h);
     } while (h != first);
     detail::VertexRecord& vr = vrec(v);
     vr.alive = false;
-    mesh_->status(v).set_deleted(true);
   }
-  for (FH f : faces) {
+  for (FH f : faces)
     frec(f).alive = false;
-    mesh_->status(f).set_deleted(true);
-  }
   components_.remove(root);
   live_vertices_ -= order.size();
   live_faces_ -= faces.size();
@@ -111,16 +107,13 @@ void WorkingSurface::Engine::maybe_collect_garbage() {
 }
 
 void WorkingSurface::Engine::compact() {
-  // A rebuilt mesh has exactly the room it needs; only rebuild when that gives back enough.
-  const detail::TriMesh& m = *mesh_;
-  const std::size_t room = m.property(vprop_).data_vector().capacity();
-  if (m.n_faces() - live_faces_ > live_faces_ / 8 || room > live_vertices_ + live_vertices_ / 8) collect_garbage();
+  // A compacted mesh has exactly the room it needs; only compact when that gives back enough.
+  const std::size_t room = mesh_->vertex_capacity();
+  if (mesh_->n_faces() - live_faces_ > live_faces_ / 8 || room > live_vertices_ + live_vertices_ / 8) collect_garbage();
 }
 
 void WorkingSurface::Engine::make_room(std::size_t nv, std::size_t ne, std::size_t nf) {
-  const detail::TriMesh& m = *mesh_;
-  const std::size_t v = m.property(vprop_).data_vector().capacity(), e = m.property(eprop_).data_vector().capacity(),
-                    f = m.property(fprop_).data_vector().capacity();
+  const std::size_t v = mesh_->vertex_capacity(), e = mesh_->edge_capacity(), f = mesh_->face_capacity();
   const auto room = [](std::size_t need, std::size_t have) {
     return need <= have ? have : std::max(need, have + have / 4);
   };
@@ -129,7 +122,7 @@ void WorkingSurface::Engine::make_room(std::size_t nv, std::size_t ne, std::size
 
 void WorkingSurface::Engine::collect_garbage() {
   delayed_.clear(); // before the slots are renumbered
-  const std::vector<std::int32_t> moved = rebuild_mesh();
+  const std::vector<std::int32_t> moved = mesh_->compact();
   std::vector<std::int32_t>(mesh_->n_edges(), -1).swap(slots_); // exact storage, as the mesh's
   std::vector<std::int32_t>().swap(local_index_);
   marks_.clear();

@@ -39,17 +39,14 @@ WorkingSurface::Engine::Engine(const volume::Geometry& cube, Region region, int 
     origin_[i] = static_cast<double>(region_.blocks().front().lo[i]);
   for (int i = 0; i < 3; ++i)
     cube_hi_[static_cast<std::size_t>(i)] = static_cast<double>(cube_.shape[i] - 1);
-  mesh_->add_property(vprop_, "geotandem:vertex");
-  mesh_->add_property(eprop_, "geotandem:edge");
-  mesh_->add_property(fprop_, "geotandem:face");
   refresh();
 }
 
 void WorkingSurface::Engine::refresh() {
-  vrec_ = mesh_->property(vprop_).data_vector().data();
-  erec_ = mesh_->property(eprop_).data_vector().data();
-  frec_ = mesh_->property(fprop_).data_vector().data();
-  points_ = mesh_->property(mesh_->points_pph()).data_vector().data();
+  vrec_ = mesh_->vertex_records();
+  erec_ = mesh_->edge_records();
+  frec_ = mesh_->face_records();
+  points_ = mesh_->points();
   if (slots_.size() < mesh_->n_edges()) slots_.resize(mesh_->n_edges(), -1);
   marks_.ensure(mesh_->n_vertices());
 }
@@ -339,11 +336,7 @@ void WorkingSurface::Engine::collapse(HH h, const Vec3& target, double cost, dou
     if (comp.member == a.idx()) comp.member = b.idx();
   }
 
-  const detail::CollapseResult result = detail::collapse_halfedge(*mesh_, h);
-  for (int i = 0; i < result.removed_edge_count; ++i)
-    erec(result.removed_edges[i]).alive = false;
-  for (int i = 0; i < result.removed_face_count; ++i)
-    frec(result.removed_faces[i]).alive = false;
+  const detail::CollapseResult result = detail::collapse_halfedge(*mesh_, h); // a, its edges and faces die
   live_faces_ -= static_cast<std::size_t>(result.removed_face_count);
   --live_vertices_;
 
@@ -354,8 +347,7 @@ void WorkingSurface::Engine::collapse(HH h, const Vec3& target, double cost, dou
   rb.tolerance = error;
   rb.lattice_id = detail::kNoLatticeId;
   rb.border |= ra.border;
-  ra.alive = false;
-  points_[b.idx()] = detail::TriMesh::Point(target[0], target[1], target[2]);
+  points_[b.idx()] = detail::HalfedgeMesh::Point(target[0], target[1], target[2]);
 
   // New terms of the triangles around c.
   rb.isotropy = detail::Isotropy{};

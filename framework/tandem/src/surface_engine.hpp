@@ -132,8 +132,6 @@ private:
   void dump_component(std::int32_t root);
   void maybe_collect_garbage();
   void collect_garbage();
-  // A fresh mesh with only the live elements (surface_compact.cpp); returns old -> new vertex index.
-  std::vector<std::int32_t> rebuild_mesh();
 
   volume::Geometry cube_;
   LatticeIds lattice_;
@@ -149,14 +147,11 @@ private:
   std::unique_ptr<detail::FrontRule> front_rule_;
   std::unique_ptr<detail::FaceRule> face_rule_;
 
-  std::unique_ptr<detail::TriMesh> mesh_ = std::make_unique<detail::TriMesh>();
-  OpenMesh::VPropHandleT<detail::VertexRecord> vprop_;
-  OpenMesh::EPropHandleT<detail::EdgeRecord> eprop_;
-  OpenMesh::FPropHandleT<detail::FaceRecord> fprop_;
+  std::unique_ptr<detail::HalfedgeMesh> mesh_ = std::make_unique<detail::HalfedgeMesh>();
   detail::VertexRecord* vrec_ = nullptr;
   detail::EdgeRecord* erec_ = nullptr;
   detail::FaceRecord* frec_ = nullptr;
-  detail::TriMesh::Point* points_ = nullptr;
+  detail::HalfedgeMesh::Point* points_ = nullptr;
 
   std::vector<std::int32_t> slots_;  // edge -> position in Q, W or the parked list
   detail::IndexedHeap candidates_;   // Q, by eps_alpha

@@ -61,7 +61,6 @@ void WorkingSurface::Engine::drop_isolated_vertices() {
     if (!r.alive || !mesh_->is_isolated(v)) continue;
     components_.remove(components_.find(r.component));
     r.alive = false;
-    mesh_->status(v).set_deleted(true);
     --live_vertices_;
   }
   isolated_.clear();
@@ -96,7 +95,8 @@ void WorkingSurface::Engine::add_layer(const Layer& layer) {
   mesh_->resize(first_new + new_positions_.size(), edges_before + 3 * nt, faces_before + nt);
   refresh();
   for (std::size_t k = 0; k < new_positions_.size(); ++k)
-    points_[first_new + k] = detail::TriMesh::Point(new_positions_[k][0], new_positions_[k][1], new_positions_[k][2]);
+    points_[first_new + k] =
+        detail::HalfedgeMesh::Point(new_positions_[k][0], new_positions_[k][1], new_positions_[k][2]);
   detail::ElementPool pool{static_cast<int>(edges_before), static_cast<int>(faces_before)};
   for (std::size_t i = 0; i < n; ++i) {
     const VH v = handles[i];

@@ -104,7 +104,7 @@ void WorkingSurface::Engine::absorb_state(const detail::SurfaceState& t) {
       w.isotropy = detail::Isotropy{};
       w.det_sum = 0.0;
       w.cross_sum = w.link_sum = w.normal_sum = {0.0, 0.0, 0.0};
-      points_[v.idx()] = detail::TriMesh::Point(t.points[i][0], t.points[i][1], t.points[i][2]);
+      points_[v.idx()] = detail::HalfedgeMesh::Point(t.points[i][0], t.points[i][1], t.points[i][2]);
       ++live_vertices_;
     } else {
       // The same lattice edge seen from both sides: one vertex. Both are original marching-cubes

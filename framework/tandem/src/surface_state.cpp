@@ -127,7 +127,7 @@ void WorkingSurface::Engine::import_state(detail::SurfaceState&& s) {
     const detail::Vec3& p = s.points[i];
     if (!std::isfinite(p[0]) || !std::isfinite(p[1]) || !std::isfinite(p[2]))
       throw DataError("working surface state: vertex " + std::to_string(i) + " has a non-finite position");
-    points_[i] = detail::TriMesh::Point(p[0], p[1], p[2]);
+    points_[i] = detail::HalfedgeMesh::Point(p[0], p[1], p[2]);
     detail::ComponentRecord& c = components_.at(r.component);
     if (c.member < 0) c.member = static_cast<std::int32_t>(i);
   }

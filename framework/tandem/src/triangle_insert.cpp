@@ -5,19 +5,19 @@
 namespace geotandem::tandem::detail {
 namespace {
 
-bool is_boundary_halfedge(const TriMesh& m, HH h) {
+bool is_boundary_halfedge(const HalfedgeMesh& m, HH h) {
   return !m.face_handle(h).is_valid();
 }
 
 // A vertex can take a new triangle when it has no triangle yet or lies on the boundary.
-bool open_vertex(const TriMesh& m, VH v) {
+bool open_vertex(const HalfedgeMesh& m, VH v) {
   const HH h = m.halfedge_handle(v);
   return !h.is_valid() || is_boundary_halfedge(m, h);
 }
 
 // Around the vertex where `in` starts, the incoming boundary halfedge that ends the fan beginning
 // with the outgoing boundary halfedge `in`.
-HH end_of_fan(const TriMesh& m, HH in) {
+HH end_of_fan(const HalfedgeMesh& m, HH in) {
   HH g = in;
   for (;;) {
     const HH t = m.opposite_halfedge_handle(g);
@@ -28,7 +28,7 @@ HH end_of_fan(const TriMesh& m, HH in) {
 
 } // namespace
 
-FH insert_triangle(TriMesh& m, VH v0, VH v1, VH v2, ElementPool* pool) {
+FH insert_triangle(HalfedgeMesh& m, VH v0, VH v1, VH v2, ElementPool* pool) {
   const VH v[3] = {v0, v1, v2};
   // inner[i] goes from v[i] to v[i + 1] and will bound the new triangle.
   HH inner[3];

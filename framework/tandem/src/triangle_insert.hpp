@@ -1,5 +1,5 @@
 #pragma once
-// Appending a triangle to the working mesh, written against TriMesh's halfedge connectivity like
+// Appending a triangle to the working mesh, written against HalfedgeMesh's halfedge connectivity like
 // the collapse (collapse_ops.hpp): OpenMesh's add_face is general (polygons) and, in Debian's
 // build, runs assertions on every link; it was the largest single cost of adding a layer.
 //
@@ -22,6 +22,6 @@ struct ElementPool {
   int next_edge = 0; // the first unused reserved edge
   int next_face = 0;
 };
-FH insert_triangle(TriMesh& mesh, VH v0, VH v1, VH v2, ElementPool* pool = nullptr);
+FH insert_triangle(HalfedgeMesh& mesh, VH v0, VH v1, VH v2, ElementPool* pool = nullptr);
 
 } // namespace geotandem::tandem::detail

@@ -1,28 +1,34 @@
 #pragma once
-// The working mesh: OpenMesh's TriMesh (halfedge connectivity, face insertion, garbage collection)
-// with double points and status bits only on vertices, edges and faces, plus our records per
-// element. The records are OpenMesh properties so that garbage collection permutes them with the
-// elements; the hot loops read them through raw pointers refreshed after the mesh grows or is
-// compacted (see MeshStore::refresh()).
+// The working mesh: halfedge connectivity (the layout of OpenMesh's ArrayKernel: edge e owns the
+// halfedges 2e and 2e + 1, each with its target vertex, next and previous halfedge and face),
+// points, and our records per element, in arrays of our own. OpenMesh stays the mesh type at the
+// boundaries (measures, exports, tests) and lends its handle types; the hot loops read the arrays
+// through raw pointers refreshed after the mesh grows or is compacted
+// (WorkingSurface::Engine::refresh()).
+//
+// Why not OpenMesh's TriMesh, which this replaced: its containers are private, so its storage could
+// only be compacted into a second mesh (the whole surface held twice at each compaction) or grown
+// by std::vector's copy (twice again); it keeps status words we do not need (12 bytes per
+// triangle); and properties go through virtual calls. Here every array is plain data in
+// malloc'ed storage: growing and shrinking go through realloc (mremap for large arrays, no copy),
+// and compaction moves the live elements down in place.
 
+#include <algorithm>
 #include <cstdint>
+#include <cstdlib>
+#include <new>
+#include <type_traits>
+#include <utility>
+#include <vector>
 
-#include <OpenMesh/Core/Mesh/TriMesh_ArrayKernelT.hh>
+#include <OpenMesh/Core/Geometry/VectorT.hh>
+#include <OpenMesh/Core/Mesh/Handles.hh>
 
 #include "id_map.hpp"
 #include "quadric.hpp"
 
 namespace geotandem::tandem::detail {
 
-struct MeshTraits : public OpenMesh::DefaultTraits {
-  using Point = OpenMesh::Vec3d;
-  using Normal = OpenMesh::Vec3d;
-  VertexAttributes(OpenMesh::Attributes::Status);
-  EdgeAttributes(OpenMesh::Attributes::Status);
-  FaceAttributes(OpenMesh::Attributes::Status);
-  HalfedgeAttributes(OpenMesh::Attributes::PrevHalfedge);
-};
-using TriMesh = OpenMesh::TriMesh_ArrayKernelT<MeshTraits>;
 using VH = OpenMesh::VertexHandle;
 using HH = OpenMesh::HalfedgeHandle;
 using EH = OpenMesh::EdgeHandle;
@@ -84,13 +90,171 @@ struct FaceRecord {
   bool alive = false;
 };
 
+// A growable array of plain data in malloc'ed storage. Growing and shrinking go through realloc,
+// which glibc serves with mremap for large blocks: no second copy is held while the array moves.
+template <class T> class PodArray {
+  static_assert(std::is_trivially_copyable_v<T> && std::is_trivially_destructible_v<T>);
+
+public:
+  PodArray() = default;
+  PodArray(const PodArray&) = delete;
+  PodArray& operator=(const PodArray&) = delete;
+  PodArray(PodArray&& other) noexcept { swap(other); }
+  PodArray& operator=(PodArray&& other) noexcept {
+    PodArray(std::move(other)).swap(*this);
+    return *this;
+  }
+  ~PodArray() { std::free(data_); }
+
+  void swap(PodArray& other) noexcept {
+    std::swap(data_, other.data_);
+    std::swap(size_, other.size_);
+    std::swap(capacity_, other.capacity_);
+  }
+  T* data() { return data_; }
+  const T* data() const { return data_; }
+  std::size_t size() const { return size_; }
+  std::size_t capacity() const { return capacity_; }
+  T& operator[](std::size_t i) { return data_[i]; }
+  const T& operator[](std::size_t i) const { return data_[i]; }
+
+  // Room for exactly n elements when there is less.
+  void reserve(std::size_t n) {
+    if (n > capacity_) reallocate(n);
+  }
+  // New elements are copies of `fill`; growing past the room grows it by a quarter at least.
+  void resize(std::size_t n, const T& fill) {
+    if (n > capacity_) reallocate(std::max(n, capacity_ + capacity_ / 4));
+    for (std::size_t i = size_; i < n; ++i)
+      new (data_ + i) T(fill);
+    size_ = n;
+  }
+  void push_back(const T& value) {
+    if (size_ == capacity_) reallocate(capacity_ < 8 ? 8 : 2 * capacity_);
+    new (data_ + size_) T(value);
+    ++size_;
+  }
+  // Gives back the room beyond the size.
+  void shrink_to_fit() {
+    if (capacity_ > size_) reallocate(size_);
+  }
+
+private:
+  void reallocate(std::size_t n) {
+    if (n == 0) {
+      std::free(data_);
+      data_ = nullptr;
+      capacity_ = 0;
+      return;
+    }
+    void* p = std::realloc(data_, n * sizeof(T));
+    if (!p) throw std::bad_alloc();
+    data_ = static_cast<T*>(p);
+    capacity_ = n;
+  }
+
+  T* data_ = nullptr;
+  std::size_t size_ = 0;
+  std::size_t capacity_ = 0;
+};
+
+// The working mesh (see the top of this file). Its interface is the part of OpenMesh's
+// ArrayKernel the engine uses, with the same names and the same meaning, so that connectivity code
+// reads like OpenMesh code. An element is deleted when its record is not alive.
+class HalfedgeMesh {
+public:
+  using Point = OpenMesh::Vec3d;
+
+  std::size_t n_vertices() const { return out_.size(); }
+  std::size_t n_edges() const { return halfedges_.size() / 2; }
+  std::size_t n_halfedges() const { return halfedges_.size(); }
+  std::size_t n_faces() const { return face_halfedge_.size(); }
+  std::size_t vertex_capacity() const { return out_.capacity(); }
+  std::size_t edge_capacity() const { return edges_.capacity(); }
+  std::size_t face_capacity() const { return face_halfedge_.capacity(); }
+
+  // Connectivity.
+  HH halfedge_handle(VH v) const { return out_[idx(v)]; }
+  HH halfedge_handle(FH f) const { return face_halfedge_[idx(f)]; }
+  static HH halfedge_handle(EH e, unsigned side) { return HH(2 * e.idx() + static_cast<int>(side)); }
+  static HH opposite_halfedge_handle(HH h) { return HH(h.idx() ^ 1); }
+  static EH edge_handle(HH h) { return EH(h.idx() >> 1); }
+  VH to_vertex_handle(HH h) const { return halfedges_[idx(h)].to; }
+  VH from_vertex_handle(HH h) const { return halfedges_[idx(h) ^ 1u].to; }
+  HH next_halfedge_handle(HH h) const { return halfedges_[idx(h)].next; }
+  HH prev_halfedge_handle(HH h) const { return halfedges_[idx(h)].prev; }
+  FH face_handle(HH h) const { return halfedges_[idx(h)].face; }
+  bool is_boundary(HH h) const { return !face_handle(h).is_valid(); }
+  // No triangle at v, or v on the boundary (its outgoing halfedge is then a boundary one).
+  bool is_boundary(VH v) const {
+    const HH h = halfedge_handle(v);
+    return !h.is_valid() || is_boundary(h);
+  }
+  bool is_isolated(VH v) const { return !halfedge_handle(v).is_valid(); }
+
+  void set_halfedge_handle(VH v, HH h) { out_[idx(v)] = h; }
+  void set_halfedge_handle(FH f, HH h) { face_halfedge_[idx(f)] = h; }
+  void set_vertex_handle(HH h, VH v) { halfedges_[idx(h)].to = v; }
+  // Sets prev as well, as OpenMesh does.
+  void set_next_halfedge_handle(HH h, HH next) {
+    halfedges_[idx(h)].next = next;
+    halfedges_[idx(next)].prev = h;
+  }
+  void set_face_handle(HH h, FH f) { halfedges_[idx(h)].face = f; }
+  void set_boundary(HH h) { halfedges_[idx(h)].face = FH(); }
+  void set_isolated(VH v) { out_[idx(v)] = HH(); }
+
+  // Points and records.
+  Point* points() { return points_.data(); }
+  const Point* points() const { return points_.data(); }
+  const Point& point(VH v) const { return points_[idx(v)]; }
+  VertexRecord* vertex_records() { return vertices_.data(); }
+  const VertexRecord* vertex_records() const { return vertices_.data(); }
+  EdgeRecord* edge_records() { return edges_.data(); }
+  const EdgeRecord* edge_records() const { return edges_.data(); }
+  FaceRecord* face_records() { return faces_.data(); }
+  const FaceRecord* face_records() const { return faces_.data(); }
+  bool deleted(VH v) const { return !vertices_[idx(v)].alive; }
+  bool deleted(EH e) const { return !edges_[idx(e)].alive; }
+  bool deleted(FH f) const { return !faces_[idx(f)].alive; }
+
+  // Single elements, alive (for tests and small meshes; the engine grows by whole layers).
+  VH add_vertex(const Point& p);
+  HH new_edge(VH from, VH to); // the halfedge from -> to
+  FH new_face();
+
+  // New elements are unlinked, at the origin, with default (not alive) records.
+  void resize(std::size_t nv, std::size_t ne, std::size_t nf);
+  void reserve(std::size_t nv, std::size_t ne, std::size_t nf);
+  // Moves the live elements (alive records) down in place, keeping their order, and gives back
+  // every byte beyond them. Returns old -> new vertex index (-1 for a deleted vertex).
+  std::vector<std::int32_t> compact();
+
+private:
+  struct Halfedge {
+    VH to;
+    HH next;
+    HH prev;
+    FH face;
+  };
+  template <class Handle> static std::size_t idx(Handle h) { return static_cast<std::size_t>(h.idx()); }
+
+  PodArray<HH> out_;                // per vertex: an outgoing halfedge (a boundary one on the boundary)
+  PodArray<Point> points_;          // per vertex
+  PodArray<VertexRecord> vertices_; // per vertex
+  PodArray<Halfedge> halfedges_;    // two per edge
+  PodArray<EdgeRecord> edges_;      // per edge
+  PodArray<HH> face_halfedge_;      // per face: its first halfedge
+  PodArray<FaceRecord> faces_;      // per face
+};
+
 // One-ring navigation by outgoing halfedges (h goes from v to a neighbour).
-inline HH next_outgoing(const TriMesh& m, HH h) {
+inline HH next_outgoing(const HalfedgeMesh& m, HH h) {
   return m.next_halfedge_handle(m.opposite_halfedge_handle(h));
 }
 
 // The halfedge from `from` to `to`, or an invalid handle when they are not neighbours.
-inline HH find_halfedge(const TriMesh& m, VH from, VH to) {
+inline HH find_halfedge(const HalfedgeMesh& m, VH from, VH to) {
   const HH start = m.halfedge_handle(from);
   if (!start.is_valid()) return HH();
   HH g = start;
@@ -101,7 +265,7 @@ inline HH find_halfedge(const TriMesh& m, VH from, VH to) {
   return HH();
 }
 
-inline Vec3 to_vec(const TriMesh::Point& p) {
+inline Vec3 to_vec(const HalfedgeMesh::Point& p) {
   return {p[0], p[1], p[2]};
 }
 

@@ -62,13 +62,13 @@ public:
     if (options_.cancel) options_.cancel->throw_if_cancelled();
     {
       const auto t = Clock::now();
-      const std::vector<std::byte> record = serialize(*sent);
+      std::vector<std::byte> record = serialize(*sent);
       sent.reset();
       stats_.seconds_wire += seconds_since(t);
       stats_.wire_bytes += record.size();
       stats_.largest_record = std::max<std::uint64_t>(stats_.largest_record, record.size());
       const auto m = Clock::now();
-      stats_.components_at_merges += merge_record(*kept, record, options_.cancel);
+      stats_.components_at_merges += merge_record(*kept, std::move(record), options_.cancel);
       stats_.seconds_merge += seconds_since(m);
     }
     stats_.seam_collapses += kept->counters().collapses - before.collapses - other.collapses;

@@ -294,6 +294,11 @@ std::string hex(std::uint64_t v) {
 std::vector<std::byte> serialize(const WorkingSurface& surface) {
   const detail::SurfaceState state = detail::SurfaceAccess::state(surface);
   Writer w;
+  // The room the record needs, at most a few kilobytes over (the fixed fields are not counted
+  // exactly): a record grown by doubling would be held twice while it moves.
+  w.reserve(kSurfaceWireHeaderSize + 4096 + 48 * state.region.blocks().size() + 8 * state.component_keys.size() +
+            kVertexBytes * state.points.size() + kFaceBytes * state.triangles.size() + kEdgeBytes * state.edges.size() +
+            12 * state.previous_ids.size() + 4 * state.isolated.size());
   for (char c : kMagic)
     w.put(static_cast<std::uint8_t>(c));
   w.put(kSurfaceWireVersion);
@@ -356,13 +361,24 @@ WorkingSurface deserialize(std::span<const std::byte> record, mesh::ComponentSin
   }
 }
 
-std::size_t merge_record(WorkingSurface& into, std::span<const std::byte> record, const CancelToken* cancel) {
-  const detail::SurfaceState state = decode_record(record);
+namespace {
+std::size_t merge_state(WorkingSurface& into, const detail::SurfaceState& state, const CancelToken* cancel) {
   try {
     return detail::SurfaceAccess::merge(into, state, cancel);
   } catch (const InvalidArgument& e) {
     throw DataError("working-surface record: " + e.message());
   }
+}
+} // namespace
+
+std::size_t merge_record(WorkingSurface& into, std::span<const std::byte> record, const CancelToken* cancel) {
+  return merge_state(into, decode_record(record), cancel);
+}
+
+std::size_t merge_record(WorkingSurface& into, std::vector<std::byte>&& record, const CancelToken* cancel) {
+  const detail::SurfaceState state = decode_record(record);
+  std::vector<std::byte>().swap(record); // given back before the surface grows
+  return merge_state(into, state, cancel);
 }
 
 } // namespace geotandem::tandem

@@ -23,6 +23,8 @@ public:
     std::memcpy(out_.data() + at, &v, sizeof(T));
   }
   void count(std::size_t n) { put(static_cast<std::uint64_t>(n)); }
+  // Room for n bytes in all, when the size is known in advance (a growing array doubles).
+  void reserve(std::size_t n) { out_.reserve(n); }
   // A length, then the bytes.
   void put_bytes(std::span<const std::byte> b) {
     count(b.size());

@@ -42,5 +42,7 @@ WorkingSurface deserialize(std::span<const std::byte> record, mesh::ComponentSin
 // do not fit together (nothing changed then), DataError from the weld (then `into` is in an
 // unspecified state: drop it), and Cancelled.
 std::size_t merge_record(WorkingSurface& into, std::span<const std::byte> record, const CancelToken* cancel = nullptr);
+// The same, giving the record's storage back once it is decoded, before `into` grows.
+std::size_t merge_record(WorkingSurface& into, std::vector<std::byte>&& record, const CancelToken* cancel = nullptr);
 
 } // namespace geotandem::tandem

@@ -69,6 +69,7 @@ TEST(TandemSerialize, RoundTripInTheMiddleOfTheSweepContinuesToTheSameComponents
     EXPECT_EQ(before.points, after.points);
     EXPECT_EQ(before.triangles, after.triangles);
     EXPECT_EQ(serialize(*copy), record) << "a rebuilt surface writes the same record";
+    EXPECT_EQ(serialize(std::move(*surface)), record) << "giving the surface up writes the same record";
     surface.reset();
 
     while (source->next(layer))

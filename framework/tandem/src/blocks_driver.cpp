@@ -62,7 +62,7 @@ public:
     if (options_.cancel) options_.cancel->throw_if_cancelled();
     {
       const auto t = Clock::now();
-      std::vector<std::byte> record = serialize(*sent);
+      std::vector<std::byte> record = serialize(std::move(*sent));
       sent.reset();
       stats_.seconds_wire += seconds_since(t);
       stats_.wire_bytes += record.size();

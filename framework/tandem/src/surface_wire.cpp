@@ -289,10 +289,7 @@ std::string hex(std::uint64_t v) {
   return s;
 }
 
-} // namespace
-
-std::vector<std::byte> serialize(const WorkingSurface& surface) {
-  const detail::SurfaceState state = detail::SurfaceAccess::state(surface);
+std::vector<std::byte> record_of(const detail::SurfaceState& state) {
   Writer w;
   // The room the record needs, at most a few kilobytes over (the fixed fields are not counted
   // exactly): a record grown by doubling would be held twice while it moves.
@@ -312,6 +309,17 @@ std::vector<std::byte> serialize(const WorkingSurface& surface) {
   std::memcpy(out.data() + 16, &length, 8);
   std::memcpy(out.data() + 24, &hash, 8);
   return std::move(out);
+}
+} // namespace
+
+std::vector<std::byte> serialize(const WorkingSurface& surface) {
+  return record_of(detail::SurfaceAccess::state(surface));
+}
+
+std::vector<std::byte> serialize(WorkingSurface&& surface) {
+  const detail::SurfaceState state = detail::SurfaceAccess::state(surface);
+  { const WorkingSurface gone(std::move(surface)); } // its storage goes before the record is built
+  return record_of(state);
 }
 
 namespace {

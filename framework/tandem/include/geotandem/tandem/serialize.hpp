@@ -27,6 +27,9 @@ inline constexpr std::size_t kSurfaceWireHeaderSize = 32;
 // The surface as a record. The surface is not changed. Works at any point of the sweep (between
 // layers) as well as after it.
 std::vector<std::byte> serialize(const WorkingSurface& surface);
+// The same, for a surface that is not needed afterwards: its storage is given back before the
+// record is built (the surface is left empty, as after a move).
+std::vector<std::byte> serialize(WorkingSurface&& surface);
 
 // A surface that continues exactly where the serialized one stood; finished components go to
 // `sink` (may be null), collapses to `observer` (may be null). Throws DataError naming the problem

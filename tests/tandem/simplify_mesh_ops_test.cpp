@@ -23,6 +23,15 @@ mesh::SurfaceMesh torus_surface() {
   return input.full(input.cells(), 0);
 }
 
+// The mesh of `s`, its triangles inserted in order.
+void build(HalfedgeMesh& m, const mesh::SurfaceMesh& s) {
+  for (const auto& p : s.points)
+    m.add_vertex(HalfedgeMesh::Point(p[0], p[1], p[2]));
+  for (const auto& t : s.triangles)
+    ASSERT_TRUE(insert_triangle(m, VH(static_cast<int>(t[0])), VH(static_cast<int>(t[1])), VH(static_cast<int>(t[2])))
+                    .is_valid());
+}
+
 // Halfedge invariants of the live part of the mesh; returns V - E + F over live elements.
 long check_connectivity(const HalfedgeMesh& m) {
   long v = 0, e = 0, f = 0;
@@ -70,6 +79,14 @@ long check_connectivity(const HalfedgeMesh& m) {
   return v - e + f;
 }
 
+// A random live halfedge whose collapse passes the link condition, or an invalid handle.
+HH random_collapsible(const HalfedgeMesh& m, VertexMarks& marks, std::mt19937& rng) {
+  const EH e(static_cast<int>(rng() % m.n_edges()));
+  if (m.deleted(e)) return HH();
+  const HH h = m.halfedge_handle(e, rng() % 2);
+  return link_condition_ok(m, h, marks) ? h : HH();
+}
+
 // The live triangles as corner positions, starting from the smallest corner.
 std::set<std::array<std::array<double, 3>, 3>> live_triangles(const HalfedgeMesh& m) {
   std::set<std::array<std::array<double, 3>, 3>> out;
@@ -97,10 +114,8 @@ void collapse_then_compact(HalfedgeMesh& m, long euler, unsigned seed) {
   std::mt19937 rng(seed);
   std::size_t collapses = 0;
   for (int attempt = 0; attempt < 4000 && collapses < m.n_vertices() / 2; ++attempt) {
-    const EH e(static_cast<int>(rng() % m.n_edges()));
-    if (m.deleted(e)) continue;
-    const HH h = m.halfedge_handle(e, rng() % 2);
-    if (!link_condition_ok(m, h, marks)) continue;
+    const HH h = random_collapsible(m, marks, rng);
+    if (!h.is_valid()) continue;
     collapse_halfedge(m, h);
     ++collapses;
   }
@@ -193,11 +208,7 @@ TEST(TriangleInsert, RefusesNonManifoldAndMisorientedTriangles) {
 TEST(CollapseOps, RandomLegalCollapsesKeepTheTopology) {
   const mesh::SurfaceMesh s = torus_surface();
   HalfedgeMesh m;
-  for (const auto& p : s.points)
-    m.add_vertex(HalfedgeMesh::Point(p[0], p[1], p[2]));
-  for (const auto& t : s.triangles)
-    ASSERT_TRUE(insert_triangle(m, VH(static_cast<int>(t[0])), VH(static_cast<int>(t[1])), VH(static_cast<int>(t[2])))
-                    .is_valid());
+  ASSERT_NO_FATAL_FAILURE(build(m, s));
   VertexMarks marks;
   marks.ensure(m.n_vertices());
   std::mt19937 rng(11);
@@ -243,10 +254,8 @@ TEST(CollapseOps, BoundaryCollapsesKeepADisc) {
   std::mt19937 rng(5);
   std::size_t collapses = 0;
   for (int attempt = 0; attempt < 5000; ++attempt) {
-    const EH e(static_cast<int>(rng() % m.n_edges()));
-    if (m.deleted(e)) continue;
-    const HH h = m.halfedge_handle(e, rng() % 2);
-    if (!link_condition_ok(m, h, marks)) continue;
+    const HH h = random_collapsible(m, marks, rng);
+    if (!h.is_valid()) continue;
     collapse_halfedge(m, h);
     ++collapses;
     ASSERT_EQ(check_connectivity(m), 1) << "after " << collapses << " collapses";
@@ -257,11 +266,7 @@ TEST(CollapseOps, BoundaryCollapsesKeepADisc) {
 TEST(HalfedgeMesh, CompactionInPlaceKeepsTheLiveSurfaceOfATorus) {
   const mesh::SurfaceMesh s = torus_surface();
   HalfedgeMesh m;
-  for (const auto& p : s.points)
-    m.add_vertex(HalfedgeMesh::Point(p[0], p[1], p[2]));
-  for (const auto& t : s.triangles)
-    ASSERT_TRUE(insert_triangle(m, VH(static_cast<int>(t[0])), VH(static_cast<int>(t[1])), VH(static_cast<int>(t[2])))
-                    .is_valid());
+  ASSERT_NO_FATAL_FAILURE(build(m, s));
   collapse_then_compact(m, 0, 3);
 }
 

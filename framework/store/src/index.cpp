@@ -242,9 +242,13 @@ std::size_t ComponentStore::commit(const std::vector<IndexEntry>& entries) {
 }
 
 bool ComponentStore::contains(std::uint64_t key) const {
-  auto s = impl_->db->prepare("SELECT 1 FROM components WHERE key = ?");
-  s.bind(1, to_sql(key));
-  return s.step();
+  std::optional<detail::Statement>& s = impl_->key_lookup;
+  if (!s) s.emplace(impl_->db->prepare("SELECT 1 FROM components WHERE key = ?"));
+  s->reset();
+  s->bind(1, to_sql(key));
+  const bool found = s->step();
+  s->reset();
+  return found;
 }
 
 std::vector<std::uint64_t> ComponentStore::present(const std::vector<std::uint64_t>& keys) const {

@@ -4,6 +4,7 @@
 #include <filesystem>
 #include <map>
 #include <memory>
+#include <optional>
 #include <string>
 
 #include <nlohmann/json.hpp>
@@ -21,6 +22,10 @@ struct ComponentStore::Impl {
   bool writable = false;
   bool cap_columns = true; // the index has cut_faces and cap_area (stores from before caps may not)
   std::unique_ptr<detail::Database> db;
+  // contains()'s statement, prepared once and reset after each use (so that it holds no read
+  // snapshot): preparing it for every key cost hundreds of allocations in SQLite's parser, and a
+  // local sink asks for every component it commits.
+  std::optional<detail::Statement> key_lookup;
   // Shards opened for reading, by writer name; kept open across reads.
   std::map<std::string, detail::FileHandle> shards;
   // The store directory, held with a shared flock while the store is open for writing: remove()

@@ -20,6 +20,7 @@ using Clock = std::chrono::steady_clock;
 
 // Merges whose record reaches this size give the freed memory back to the system.
 constexpr std::size_t kTrimRecordBytes = std::size_t{16} << 20;
+
 double seconds_since(Clock::time_point t) {
   return std::chrono::duration<double>(Clock::now() - t).count();
 }

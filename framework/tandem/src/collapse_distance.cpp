@@ -118,10 +118,15 @@ double CollapseDistance::projected(const Vec3& c, double limit) {
     for (const auto& t : triangles) {
       const Point2 &p = at(t[0]), &q = at(t[1]), &r = at(t[2]);
       const double area = cross2(q.u - p.u, q.v - p.v, r.u - p.u, r.v - p.v);
-      w[1] = cross2(x.u - p.u, x.v - p.v, r.u - p.u, r.v - p.v) / area;
-      w[2] = cross2(q.u - p.u, q.v - p.v, x.u - p.u, x.v - p.v) / area;
-      w[0] = 1.0 - w[1] - w[2];
+      const double s1 = cross2(x.u - p.u, x.v - p.v, r.u - p.u, r.v - p.v);
+      const double s2 = cross2(q.u - p.u, q.v - p.v, x.u - p.u, x.v - p.v);
+      // Clearly outside (a weight below twice the slack) without dividing: most triangles tried.
       constexpr double slack = -1e-9;
+      const double margin = -2.0 * slack * std::fabs(area);
+      if ((area > 0.0 && (s1 < -margin || s2 < -margin)) || (area < 0.0 && (s1 > margin || s2 > margin))) continue;
+      w[1] = s1 / area;
+      w[2] = s2 / area;
+      w[0] = 1.0 - w[1] - w[2];
       if (w[0] >= slack && w[1] >= slack && w[2] >= slack) return &t;
     }
     return static_cast<const std::array<int, 3>*>(nullptr);
@@ -174,20 +179,32 @@ double CollapseDistance::projected(const Vec3& c, double limit) {
     }
     if (!require(1.0, old + std::fabs(z - at(2).z))) return -1.0;
   }
-  // Crossings of the old interior edges (at a or b) with the new ones (c x): c is the origin.
+  // Crossings of the old interior edges (at a or b) with the new ones (c x): c is the origin. The
+  // sign tests that rule a pair out are taken without branches (they went either way about half
+  // the time), and only the pairs left are computed.
   const int n_points = static_cast<int>(projected_.size());
+  hits_.resize(projected_.size());
   for (const auto& e : old_edges_) {
     const Point2 &p = at(e[0]), &q = at(e[1]);
     const double du = q.u - p.u, dv = q.v - p.v;
+    const double side_c = cross2(du, dv, -p.u, -p.v);
+    int count = 0;
     for (int x = 3; x < n_points; ++x) {
-      if (x == e[1]) continue;
       const Point2& r = at(x);
-      // p and q on opposite sides of the line c x, and c and x on opposite sides of p q (c is the
+      // p and q on the same side of the line c x, or c and x on the same side of p q (c is the
       // origin): multiplications only, for the many pairs that do not cross.
       const double side_p = cross2(r.u, r.v, p.u, p.v), side_q = cross2(r.u, r.v, q.u, q.v);
-      if ((side_p > 0.0 && side_q > 0.0) || (side_p < 0.0 && side_q < 0.0)) continue;
-      const double side_c = cross2(du, dv, -p.u, -p.v), side_x = cross2(du, dv, r.u - p.u, r.v - p.v);
-      if ((side_c > 0.0 && side_x > 0.0) || (side_c < 0.0 && side_x < 0.0)) continue;
+      const double side_x = cross2(du, dv, r.u - p.u, r.v - p.v);
+      const int apart = (static_cast<int>(side_p > 0.0) & static_cast<int>(side_q > 0.0)) |
+                        (static_cast<int>(side_p < 0.0) & static_cast<int>(side_q < 0.0)) |
+                        (static_cast<int>(side_c > 0.0) & static_cast<int>(side_x > 0.0)) |
+                        (static_cast<int>(side_c < 0.0) & static_cast<int>(side_x < 0.0)) | static_cast<int>(x == e[1]);
+      hits_[static_cast<std::size_t>(count)] = x;
+      count += 1 - apart;
+    }
+    for (int k = 0; k < count; ++k) {
+      const int x = hits_[static_cast<std::size_t>(k)];
+      const Point2& r = at(x);
       const double denom = cross2(r.u, r.v, du, dv);
       if (std::fabs(denom) <= tiny) continue;              // parallel: the extremes are at the end points
       const double t = cross2(p.u, p.v, du, dv) / denom;   // along c -> x

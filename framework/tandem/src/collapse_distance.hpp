@@ -59,6 +59,7 @@ private:
     double u = 0.0, v = 0.0, z = 0.0;
   };
   std::vector<int> ring_; // scratch: one vertex's neighbours, as local numbers
+  std::vector<int> hits_; // scratch: the link vertices whose new edge may cross an old one
   std::vector<Vec3> points_;
   std::vector<double> tolerances_;
   std::vector<Point2> projected_;

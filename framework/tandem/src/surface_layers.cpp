@@ -89,15 +89,14 @@ void WorkingSurface::Engine::add_layer(const Layer& layer) {
     handles[i] = weld_or_create(layer.vertex_ids[i], layer.positions[i], layer.rank, i);
   const std::size_t edges_before = mesh_->n_edges(), faces_before = mesh_->n_faces();
   const std::size_t nt = layer.triangles.size();
-  // Room for every new vertex, and for at most three new edges and one face per triangle: trimmed
-  // to what was used afterwards.
+  // Room for every new vertex, and for at most three new edges and one face per triangle; edges
+  // and faces are appended as the triangles go in, so only the room they use is touched.
   make_room(first_new + new_positions_.size(), edges_before + 3 * nt, faces_before + nt);
-  mesh_->resize(first_new + new_positions_.size(), edges_before + 3 * nt, faces_before + nt);
+  mesh_->resize(first_new + new_positions_.size(), edges_before, faces_before);
   refresh();
   for (std::size_t k = 0; k < new_positions_.size(); ++k)
     points_[first_new + k] =
         detail::HalfedgeMesh::Point(new_positions_[k][0], new_positions_[k][1], new_positions_[k][2]);
-  detail::ElementPool pool{static_cast<int>(edges_before), static_cast<int>(faces_before)};
   for (std::size_t i = 0; i < n; ++i) {
     const VH v = handles[i];
     detail::VertexRecord& r = vrec(v);
@@ -124,7 +123,7 @@ void WorkingSurface::Engine::add_layer(const Layer& layer) {
     const VH v0 = handles[tri[0]], v1 = handles[tri[1]], v2 = handles[tri[2]];
     if (v0 == v1 || v1 == v2 || v0 == v2)
       throw DataError(layer_where(layer.rank) + ": triangle " + std::to_string(t) + " repeats a vertex");
-    const FH f = detail::insert_triangle(*mesh_, v0, v1, v2, &pool);
+    const FH f = detail::insert_triangle(*mesh_, v0, v1, v2);
     if (!f.is_valid())
       throw DataError(layer_where(layer.rank) + ": triangle " + std::to_string(t) + " (lattice edges " +
                           std::to_string(layer.vertex_ids[tri[0]]) + ", " + std::to_string(layer.vertex_ids[tri[1]]) +
@@ -146,8 +145,6 @@ void WorkingSurface::Engine::add_layer(const Layer& layer) {
     }
     components_.unite(components_.unite(vrec(v0).component, vrec(v1).component), vrec(v2).component);
   }
-  mesh_->resize(mesh_->n_vertices(), static_cast<std::size_t>(pool.next_edge),
-                static_cast<std::size_t>(pool.next_face));
   refresh();
   live_faces_ += faces.size();
   // Vertices no triangle uses (a source listing more than it needs) would never be finished: drop

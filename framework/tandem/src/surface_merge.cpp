@@ -88,8 +88,9 @@ void WorkingSurface::Engine::absorb_state(const detail::SurfaceState& t) {
   }
   const std::size_t first_new = mesh_->n_vertices(), edges_before = mesh_->n_edges(), faces_before = mesh_->n_faces();
   // Exactly the room the merge may need: the larger surface does not double its storage for it.
+  // Edges and faces are appended as the triangles go in: the room they do not use is not touched.
   mesh_->reserve(next, edges_before + 3 * nt, faces_before + nt);
-  mesh_->resize(next, edges_before + 3 * nt, faces_before + nt);
+  mesh_->resize(next, edges_before, faces_before);
   refresh();
   for (std::size_t i = 0; i < nb; ++i) {
     const detail::VertexRecord& r = t.vertices[i];
@@ -126,12 +127,11 @@ void WorkingSurface::Engine::absorb_state(const detail::SurfaceState& t) {
   }
 
   // Triangles: the seam's boundary edges, present on both sides, become interior edges.
-  detail::ElementPool pool{static_cast<int>(edges_before), static_cast<int>(faces_before)};
   std::vector<FH> faces;
   faces.reserve(nt);
   for (std::size_t k = 0; k < nt; ++k) {
     const auto& tri = t.triangles[k];
-    const FH f = detail::insert_triangle(*mesh_, vertex[tri[0]], vertex[tri[1]], vertex[tri[2]], &pool);
+    const FH f = detail::insert_triangle(*mesh_, vertex[tri[0]], vertex[tri[1]], vertex[tri[2]]);
     if (!f.is_valid())
       throw DataError(where_ + ": triangle " + std::to_string(k) +
                           " of the other side would make the surface non-manifold",
@@ -139,8 +139,6 @@ void WorkingSurface::Engine::absorb_state(const detail::SurfaceState& t) {
                       "the two surfaces must be the partial surfaces of adjacent blocks of one extraction");
     faces.push_back(f);
   }
-  mesh_->resize(mesh_->n_vertices(), static_cast<std::size_t>(pool.next_edge),
-                static_cast<std::size_t>(pool.next_face));
   refresh();
   for (std::size_t i = edges_before; i < mesh_->n_edges(); ++i) {
     erec_[i] = detail::EdgeRecord{};

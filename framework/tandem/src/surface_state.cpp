@@ -115,7 +115,10 @@ void WorkingSurface::Engine::import_state(detail::SurfaceState&& s) {
   for (std::uint64_t key : s.component_keys)
     components_.create(key, -1);
 
-  mesh_->resize(nv, 3 * nt, nt);
+  // Room for at most three edges and one face per triangle; they are appended as the triangles go
+  // in, so only the room they use is touched.
+  mesh_->reserve(nv, 3 * nt, nt);
+  mesh_->resize(nv, 0, 0);
   refresh();
   for (std::size_t i = 0; i < nv; ++i) {
     detail::VertexRecord r = s.vertices[i];
@@ -136,22 +139,19 @@ void WorkingSurface::Engine::import_state(detail::SurfaceState&& s) {
     if (components_.at(static_cast<std::int32_t>(c)).member < 0)
       throw DataError("working surface state: component " + std::to_string(c) + " has no vertex");
 
-  detail::ElementPool pool{0, 0};
   for (std::size_t t = 0; t < nt; ++t) {
     const auto& tri = s.triangles[t];
     if (tri[0] >= nv || tri[1] >= nv || tri[2] >= nv || tri[0] == tri[1] || tri[1] == tri[2] || tri[0] == tri[2])
       throw DataError("working surface state: triangle " + std::to_string(t) +
                       " repeats a vertex or refers to one beyond the " + std::to_string(nv));
     const FH f = detail::insert_triangle(*mesh_, VH(static_cast<int>(tri[0])), VH(static_cast<int>(tri[1])),
-                                         VH(static_cast<int>(tri[2])), &pool);
+                                         VH(static_cast<int>(tri[2])));
     if (!f.is_valid())
       throw DataError("working surface state: triangle " + std::to_string(t) +
                       " would make the surface non-manifold or flip its orientation");
-    frec_[f.idx()].alive = true;
     if (vrec_[tri[0]].component != vrec_[tri[1]].component || vrec_[tri[1]].component != vrec_[tri[2]].component)
       throw DataError("working surface state: triangle " + std::to_string(t) + " joins different components");
   }
-  mesh_->resize(nv, static_cast<std::size_t>(pool.next_edge), static_cast<std::size_t>(pool.next_face));
   refresh();
   live_faces_ = nt;
   for (std::size_t i = 0; i < mesh_->n_edges(); ++i) {

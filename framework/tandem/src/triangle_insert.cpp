@@ -28,7 +28,7 @@ HH end_of_fan(const HalfedgeMesh& m, HH in) {
 
 } // namespace
 
-FH insert_triangle(HalfedgeMesh& m, VH v0, VH v1, VH v2, ElementPool* pool) {
+FH insert_triangle(HalfedgeMesh& m, VH v0, VH v1, VH v2) {
   const VH v[3] = {v0, v1, v2};
   // inner[i] goes from v[i] to v[i + 1] and will bound the new triangle.
   HH inner[3];
@@ -57,17 +57,8 @@ FH insert_triangle(HalfedgeMesh& m, VH v0, VH v1, VH v2, ElementPool* pool) {
     m.set_next_halfedge_handle(before, after);
   }
 
-  for (int i = 0; i < 3; ++i) {
-    if (!fresh[i]) continue;
-    if (!pool) {
-      inner[i] = m.new_edge(v[i], v[(i + 1) % 3]);
-      continue;
-    }
-    const EH e(pool->next_edge++);
-    inner[i] = m.halfedge_handle(e, 0);
-    m.set_vertex_handle(inner[i], v[(i + 1) % 3]);
-    m.set_vertex_handle(m.halfedge_handle(e, 1), v[i]);
-  }
+  for (int i = 0; i < 3; ++i)
+    if (fresh[i]) inner[i] = m.new_edge(v[i], v[(i + 1) % 3]);
 
   // Links to make, collected first: each reads the boundary loops as they were.
   HH link_from[9], link_to[9];
@@ -108,7 +99,7 @@ FH insert_triangle(HalfedgeMesh& m, VH v0, VH v1, VH v2, ElementPool* pool) {
   for (int k = 0; k < isolated; ++k)
     m.set_halfedge_handle(isolated_corner[k], isolated_out[k]);
 
-  const FH f = pool ? FH(pool->next_face++) : m.new_face();
+  const FH f = m.new_face();
   m.set_halfedge_handle(f, inner[0]);
   for (int i = 0; i < 3; ++i)
     m.set_face_handle(inner[i], f);

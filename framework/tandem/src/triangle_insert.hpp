@@ -16,12 +16,8 @@ namespace geotandem::tandem::detail {
 // interior already, an edge already used in the same direction, or no gap to move fans to (the
 // mesh may then have been relinked and must be dropped). Keeps boundary vertices pointing to a
 // boundary outgoing halfedge.
-// With a pool, new edges and the face are taken from storage reserved in advance (one resize per
-// layer instead of one per element: OpenMesh resizes every property at each new element).
-struct ElementPool {
-  int next_edge = 0; // the first unused reserved edge
-  int next_face = 0;
-};
-FH insert_triangle(HalfedgeMesh& mesh, VH v0, VH v1, VH v2, ElementPool* pool = nullptr);
+// New edges and the face are appended (HalfedgeMesh::new_edge, new_face): callers inserting many
+// triangles reserve the room first, which touches no memory until it is used.
+FH insert_triangle(HalfedgeMesh& mesh, VH v0, VH v1, VH v2);
 
 } // namespace geotandem::tandem::detail

@@ -20,8 +20,9 @@
 # the wall time and memory extrapolated to the whole cube (linear in samples: the extraction is
 # block by block; a rough figure, say so when you quote it). The targets: <= 20 min and <= 4 GiB
 # for the whole cube, file within 1.2x of procedural.
-# Triangles held over time are not in the log of a run with workers (the workers report layers
-# only to their own log); the RSS timeline (rss.tsv in each run's directory) stands in for it.
+# Triangles held over time: the manager logs (at debug level) what the workers' surfaces hold
+# together after each task; the script prints the largest figure of each tenth of the extraction.
+# The RSS timeline is in rss.tsv in each run's directory.
 # Needs python3. The machine may be shared: quote `uptime` with the figures.
 set -euo pipefail
 here="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
@@ -165,6 +166,15 @@ for s in sels:
     p = s["parameters"]
     print(f"  {p.get('step', s['name']):<28} {p.get('before', before):8} -> {s['size']} components")
     before = s["size"]
+held = [(float(l.split()[0]), int(l.rsplit(":", 1)[1])) for l in lines if "triangles held by the workers:" in l]
+if held and t_start is not None and t_extracted is not None and t_extracted > t_start:
+    print(f"  triangles held by the workers, most in each tenth of the extraction (peak {max(h for _, h in held)}):")
+    tenth = (t_extracted - t_start) / 10
+    row = []
+    for k in range(10):
+        inside = [h for t, h in held if t_start + k * tenth <= t <= t_start + (k + 1) * tenth]
+        row.append(f"{max(inside) if inside else 0:>9}")
+    print("    " + " ".join(row))
 PY
 }
 
@@ -173,7 +183,7 @@ if [[ "$skip_paper" == 0 ]]; then
   read -r ni nj nk < <(python3 -c "import math; f=float($fraction); s=math.sqrt(f); print(round(1626/s), round(7028/s), 2000)")
   echo
   echo "paper cube / $fraction: ${ni} x ${nj} x ${nk} samples, procedural, $workers workers"
-  run paper "$bin" run-workflow "$recipe" --fresh --set "output.directory=$out/paper" \
+  run paper "$bin" --log-level debug run-workflow "$recipe" --fresh --set "output.directory=$out/paper" \
     --set "input.synthetic.shape=[$ni,$nj,$nk]" --set execution.scheduler=local --set "execution.workers=$workers"
   python3 - "$out/paper/summary" "$ni" "$nj" "$nk" "$workers" <<'PY'
 import sys
@@ -207,9 +217,9 @@ text = open(sys.argv[1]).read()
 text = re.sub(r"(?ms)^input:\n.*?(?=^steps:)", f"input:\n  file: {sys.argv[3]}\n\n", text)
 open(sys.argv[2], "w").write(text)
 PY
-  run "procedural-$edge" "$bin" run-workflow "$recipe" --fresh --set "output.directory=$out/procedural-$edge" \
+  run "procedural-$edge" "$bin" --log-level debug run-workflow "$recipe" --fresh --set "output.directory=$out/procedural-$edge" \
     --set "input.synthetic.shape=[$edge,$edge,$edge]" --set execution.scheduler=local --set "execution.workers=$workers"
-  run "netcdf-$edge" "$bin" run-workflow "$file_recipe" --fresh --set "output.directory=$out/netcdf-$edge" \
+  run "netcdf-$edge" "$bin" --log-level debug run-workflow "$file_recipe" --fresh --set "output.directory=$out/netcdf-$edge" \
     --set execution.scheduler=local --set "execution.workers=$workers"
   python3 - "$out/procedural-$edge/summary" "$out/netcdf-$edge/summary" <<'PY'
 import sys

@@ -73,6 +73,14 @@ TEST(Workers, OneTwoAndFourWorkersGiveTheComponentsOfTheInProcessRun) {
     const nlohmann::json got = stats(out), ref = stats("ref");
     EXPECT_EQ(got.at("input_triangles").get<std::uint64_t>(), ref.at("input_triangles").get<std::uint64_t>()) << out;
     EXPECT_GT(got.at("collapses").get<std::uint64_t>(), got.at("input_triangles").get<std::uint64_t>() / 4) << out;
+    // The triangles the workers held together, as each reported after its tasks: some (the block
+    // faces keep surfaces waiting for their brothers), never more than marching cubes made.
+    const auto held = got.at("peak_held_triangles").get<std::uint64_t>();
+    EXPECT_GT(held, 0u) << out;
+    EXPECT_LE(held, got.at("input_triangles").get<std::uint64_t>()) << out;
+    EXPECT_NE(read_text(f.dir.file(out + ".log")).find("triangles held by the workers: " + std::to_string(held)),
+              std::string::npos)
+        << "the peak is one of the totals logged";
   }
 }
 

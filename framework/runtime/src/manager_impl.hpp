@@ -36,6 +36,7 @@ struct Manager::Impl {
     std::optional<Decision> task;
     Clock::time_point task_start;
     std::uint64_t tasks = 0;
+    std::uint64_t held_triangles = 0; // its surface's, after its last task
   };
 
   ManagerOptions options;

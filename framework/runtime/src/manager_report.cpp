@@ -26,7 +26,8 @@ std::string ManagerReport::to_json() const {
       {"manager", {{"cpu_seconds", manager_cpu_seconds}, {"peak_rss_kb", manager_peak_rss_kb}}},
       {"worker_peak_rss_kb", worker_peak_rss_kb},
       {"input_triangles", input_triangles},
-      {"collapses", collapses}};
+      {"collapses", collapses},
+      {"peak_held_triangles", peak_held_triangles}};
   return j.dump();
 }
 

@@ -1,5 +1,7 @@
 // The manager's handling of its workers' messages (manager.hpp): HELLO, ASK, the results of tasks,
 // the chunks of partial surfaces, and the decisions that answer them (Schedule).
+#include <algorithm>
+
 #include "manager_impl.hpp"
 
 namespace geotandem::runtime {
@@ -94,6 +96,12 @@ void Manager::Impl::task_done(Peer& p, const Message& m) {
   default: break;
   }
   ++p.tasks;
+  p.held_triangles = static_cast<std::uint64_t>(std::max<std::int64_t>(m.box[4], 0));
+  std::uint64_t held = 0;
+  for (const auto& [token, peer] : peers)
+    held += peer.held_triangles;
+  report.peak_held_triangles = std::max(report.peak_held_triangles, held);
+  log.debug("triangles held by the workers: " + std::to_string(held));
   // An empty surface: its leaves' components are all committed (the COMMIT came first).
   if (m.box[1] == 1) {
     const std::vector<tandem::NodeId> leaves = schedule.held(p.id);

@@ -195,6 +195,8 @@ private:
     d.box[1] = !surface_ || surface_->component_count() == 0 ? 1 : 0;
     d.box[2] = static_cast<std::int64_t>(totals_.input_triangles);
     d.box[3] = static_cast<std::int64_t>(totals_.collapses);
+    // 4: the triangles this worker's surface holds after the task (the run's triangles held).
+    d.box[4] = surface_ ? static_cast<std::int64_t>(surface_->triangle_count()) : 0;
     link_.send(d);
   }
 

@@ -61,6 +61,9 @@ struct ManagerReport {
   // Of the whole surface, as the final worker reports it (totals travel with the partial surfaces):
   // marching-cubes triangles and collapses of every leaf extracted in this run.
   std::uint64_t input_triangles = 0, collapses = 0;
+  // The most triangles the workers' surfaces held together, as they reported after each task
+  // (surfaces on their way between workers are not counted).
+  std::uint64_t peak_held_triangles = 0;
 
   std::string to_json() const;
 };

@@ -242,12 +242,10 @@ std::size_t ComponentStore::commit(const std::vector<IndexEntry>& entries) {
 }
 
 bool ComponentStore::contains(std::uint64_t key) const {
-  std::optional<detail::Statement>& s = impl_->key_lookup;
-  if (!s) s.emplace(impl_->db->prepare("SELECT 1 FROM components WHERE key = ?"));
-  s->reset();
-  s->bind(1, to_sql(key));
-  const bool found = s->step();
-  s->reset();
+  detail::Statement& s = impl_->cached(impl_->key_lookup, "SELECT 1 FROM components WHERE key = ?");
+  s.bind(1, to_sql(key));
+  const bool found = s.step();
+  s.reset();
   return found;
 }
 
@@ -299,10 +297,13 @@ std::uint64_t ComponentStore::count(const Query& q) const {
 }
 
 std::optional<ComponentRow> ComponentStore::find(std::uint64_t key) const {
-  auto s = impl_->db->prepare("SELECT " + select_columns(impl_->cap_columns) + " FROM components WHERE key = ?");
+  detail::Statement& s = impl_->cached(impl_->row_lookup, "SELECT " + select_columns(impl_->cap_columns) +
+                                                              " FROM components WHERE key = ?");
   s.bind(1, to_sql(key));
-  if (!s.step()) return std::nullopt;
-  return read_row(s);
+  std::optional<ComponentRow> row;
+  if (s.step()) row = read_row(s);
+  s.reset();
+  return row;
 }
 
 mesh::SurfaceMesh ComponentStore::read(std::uint64_t key) const {

@@ -46,16 +46,13 @@ void LocalSink::commit(const mesh::Component& component) {
     ++duplicates_;
     return;
   }
-  // contains() first: it reuses one statement, where find() prepares one for every key.
-  if (store_.contains(component.key)) {
-    if (auto row = store_.find(component.key)) {
-      if (!options_.redo_damaged || !verify_component(store_, *row)) {
-        ++duplicates_;
-        return;
-      }
-      replace = true;
-      ++redone_;
+  if (auto row = store_.find(component.key)) {
+    if (!options_.redo_damaged || !verify_component(store_, *row)) {
+      ++duplicates_;
+      return;
     }
+    replace = true;
+    ++redone_;
   }
   IndexEntry entry;
   entry.replace = replace;

@@ -22,10 +22,16 @@ struct ComponentStore::Impl {
   bool writable = false;
   bool cap_columns = true; // the index has cut_faces and cap_area (stores from before caps may not)
   std::unique_ptr<detail::Database> db;
-  // contains()'s statement, prepared once and reset after each use (so that it holds no read
-  // snapshot): preparing it for every key cost hundreds of allocations in SQLite's parser, and a
-  // local sink asks for every component it commits.
-  std::optional<detail::Statement> key_lookup;
+  // The statements of contains() and find(), prepared once and reset after each use (so that they
+  // hold no read snapshot): preparing one for every key cost hundreds of allocations in SQLite's
+  // parser, and a local sink asks for every component it commits, a report for every body it shows.
+  std::optional<detail::Statement> key_lookup, row_lookup;
+  // `slot`'s statement, prepared on first use and reset, ready for its bindings.
+  detail::Statement& cached(std::optional<detail::Statement>& slot, const std::string& sql) {
+    if (!slot) slot.emplace(db->prepare(sql));
+    slot->reset();
+    return *slot;
+  }
   // Shards opened for reading, by writer name; kept open across reads.
   std::map<std::string, detail::FileHandle> shards;
   // The store directory, held with a shared flock while the store is open for writing: remove()

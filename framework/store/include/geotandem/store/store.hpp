@@ -127,7 +127,8 @@ public:
   std::size_t commit(const std::vector<IndexEntry>& entries);
   std::size_t commit(const IndexEntry& entry) { return commit(std::vector<IndexEntry>{entry}); }
 
-  // One prepared statement, kept between calls (a local sink asks for every component).
+  // contains() and find() each keep one prepared statement between calls (a local sink asks for
+  // every component it commits).
   bool contains(std::uint64_t key) const;
   // The keys among `keys` already in the index, in the order given (one statement for all: the
   // manager checks each batch its workers commit).

@@ -119,7 +119,7 @@ void add_extract_command(CLI::App& app, Context& context, Runner& run) {
       s.workers = a->workers.value_or(workflow::default_worker_count(cube->geometry(), s.block_size));
       if (s.workers > 0) {
         s.volume_description = describe_cube_file(a->cube, a->nan, a->variable, a->segy);
-        s.worker_command = {self_executable(), "worker"};
+        s.worker_command = worker_command(context);
       }
       if (a->fresh) store::ComponentStore::remove(a->out); // refuses while another process writes it
       s.parameters = {{"command", "geotandem extract"}, {"cube", a->cube}};

@@ -23,6 +23,11 @@ std::string self_executable() {
   return path.string();
 }
 
+std::vector<std::string> worker_command(const Context& context) {
+  if (context.log_level == "info") return {self_executable(), "worker"};
+  return {self_executable(), "--log-level", context.log_level, "worker"};
+}
+
 std::string describe_cube_file(const std::string& path, const std::string& nan, const std::string& variable,
                                const volume::SegyOptions& segy) {
   return nlohmann::json{{"kind", "file"},

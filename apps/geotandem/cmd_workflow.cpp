@@ -47,7 +47,7 @@ void add_workflow_command(CLI::App& app, Context& context, Runner& run) {
       settings.dry_run = args->dry_run;
       settings.fresh = args->fresh;
       settings.progress = [&context] { return context.progress(); };
-      settings.worker_command = {self_executable(), "worker"};
+      settings.worker_command = worker_command(context);
       auto outcome = workflow::run_workflow(recipe, registry, settings, context.log, context.cancel);
       if (args->dry_run) {
         std::cout << args->recipe << ": valid; nothing computed (dry run)\n";

@@ -6,6 +6,8 @@
 
 #include <functional>
 #include <memory>
+#include <string>
+#include <vector>
 
 #include "geotandem/core/cancel.hpp"
 #include "geotandem/core/log.hpp"
@@ -19,6 +21,8 @@ struct Context {
   Logger& log;
   CancelToken cancel;
   bool quiet = false;
+  // The log level in effect (--log-level, or warning under -q), handed on to the workers.
+  std::string log_level = "info";
   // A fresh progress reporter on stderr (a bar on a terminal, plain lines otherwise).
   std::unique_ptr<Progress> progress() const { return make_stderr_progress(quiet); }
 };
@@ -43,5 +47,8 @@ std::string describe_cube_file(const std::string& path, const std::string& nan, 
 std::shared_ptr<const volume::Volume> open_described_volume(const std::string& description, Logger& log);
 // This executable's path, for the command line of local workers.
 std::string self_executable();
+// The command line of a worker: this executable at the manager's log level (so that -q quiets the
+// workers' info lines too).
+std::vector<std::string> worker_command(const Context& context);
 
 } // namespace geotandem::app

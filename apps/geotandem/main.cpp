@@ -54,8 +54,12 @@ int main(int argc, char** argv) {
   cli.require_subcommand(1);
   cli.set_version_flag("--version", "geotandem 0.1.0");
   std::string level = "info";
-  cli.add_option("--log-level", level, "debug, info, warning, error or quiet")->capture_default_str();
-  cli.add_flag("-q,--quiet", context.quiet, "no progress output");
+  CLI::Option* level_option =
+      cli.add_option("--log-level", level, "debug, info, warning, error or quiet (default: info; warning with -q)")
+          ->capture_default_str();
+  cli.add_flag("-q,--quiet", context.quiet,
+               "no progress output and no info lines: warnings, errors and the summary only (an explicit "
+               "--log-level still applies)");
 
   app::Runner run;
   app::add_synth_command(cli, context, run);
@@ -76,7 +80,10 @@ int main(int argc, char** argv) {
 
   install_interrupt_handling(context.cancel);
   try {
+    // -q silences the info lines too, unless the level was asked for.
+    if (context.quiet && level_option->count() == 0) level = "warning";
     log.set_level(parse_log_level(level));
+    context.log_level = level;
     return run();
   } catch (const Error& e) {
     std::cerr << "geotandem: error: " << e.what() << '\n';

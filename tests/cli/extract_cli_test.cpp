@@ -74,5 +74,25 @@ TEST(ExtractCli, BadRequestsExitWithTheirReason) {
     EXPECT_FALSE(std::filesystem::exists(dir.file(store))) << store << ": a refused request left a store behind";
 }
 
+// -q leaves warnings, errors and the summary: no info lines from the manager nor from the local
+// workers it starts (they get its log level). An explicit --log-level still applies.
+TEST(ExtractCli, QuietLeavesNoInfoLinesFromTheManagerOrItsWorkers) {
+  ScratchDir dir;
+  const std::string cube = dir.file("cube.raw");
+  ASSERT_EQ(run_geotandem("-q synth --kind analytic --shape 40 40 40 --seed 2 --out '" + cube + "'").exit_code, 0);
+  const std::string extract = "extract '" + cube + "' --iso 0.5 --block-size 16 --workers 2 --out ";
+  auto plain = run_geotandem(extract + "'" + dir.file("plain") + "'");
+  ASSERT_EQ(plain.exit_code, 0) << plain.err;
+  EXPECT_NE(plain.err.find("info: worker"), std::string::npos) << "without -q the workers say they joined\n"
+                                                               << plain.err;
+  auto quiet = run_geotandem("-q " + extract + "'" + dir.file("quiet") + "'");
+  ASSERT_EQ(quiet.exit_code, 0) << quiet.err;
+  EXPECT_EQ(quiet.err.find("info:"), std::string::npos) << quiet.err;
+  EXPECT_EQ(volumes_in(dir.file("quiet")).size(), volumes_in(dir.file("plain")).size());
+  auto asked = run_geotandem("-q --log-level info " + extract + "'" + dir.file("asked") + "'");
+  ASSERT_EQ(asked.exit_code, 0) << asked.err;
+  EXPECT_NE(asked.err.find("info:"), std::string::npos) << asked.err;
+}
+
 } // namespace
 } // namespace geotandem

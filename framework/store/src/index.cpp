@@ -242,7 +242,7 @@ std::size_t ComponentStore::commit(const std::vector<IndexEntry>& entries) {
 }
 
 bool ComponentStore::contains(std::uint64_t key) const {
-  detail::Statement& s = impl_->cached(impl_->key_lookup, "SELECT 1 FROM components WHERE key = ?");
+  detail::Statement& s = impl_->cached(impl_->key_lookup, [] { return "SELECT 1 FROM components WHERE key = ?"; });
   s.bind(1, to_sql(key));
   const bool found = s.step();
   s.reset();
@@ -297,8 +297,9 @@ std::uint64_t ComponentStore::count(const Query& q) const {
 }
 
 std::optional<ComponentRow> ComponentStore::find(std::uint64_t key) const {
-  detail::Statement& s = impl_->cached(impl_->row_lookup, "SELECT " + select_columns(impl_->cap_columns) +
-                                                              " FROM components WHERE key = ?");
+  detail::Statement& s = impl_->cached(impl_->row_lookup, [this] {
+    return "SELECT " + select_columns(impl_->cap_columns) + " FROM components WHERE key = ?";
+  });
   s.bind(1, to_sql(key));
   std::optional<ComponentRow> row;
   if (s.step()) row = read_row(s);

@@ -26,9 +26,10 @@ struct ComponentStore::Impl {
   // hold no read snapshot): preparing one for every key cost hundreds of allocations in SQLite's
   // parser, and a local sink asks for every component it commits, a report for every body it shows.
   std::optional<detail::Statement> key_lookup, row_lookup;
-  // `slot`'s statement, prepared on first use and reset, ready for its bindings.
-  detail::Statement& cached(std::optional<detail::Statement>& slot, const std::string& sql) {
-    if (!slot) slot.emplace(db->prepare(sql));
+  // `slot`'s statement, prepared on first use from the text `sql()` gives (built only then) and
+  // reset, ready for its bindings.
+  template <class Sql> detail::Statement& cached(std::optional<detail::Statement>& slot, Sql&& sql) {
+    if (!slot) slot.emplace(db->prepare(sql()));
     slot->reset();
     return *slot;
   }

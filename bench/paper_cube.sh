@@ -5,7 +5,7 @@
 # a netCDF-4 file on disk against the same cube generated procedurally.
 #
 #   bench/paper_cube.sh [--fraction F] [--netcdf-edge N] [--workers W] [--bin GEOTANDEM] [--out DIR]
-#                       [--skip-paper] [--skip-netcdf]
+#                       [--skip-paper] [--skip-netcdf] [--set KEY=VALUE ...]
 #
 #   --fraction F      run on 1/F of the paper cube's volume: inlines and crosslines divided by
 #                     sqrt(F), the 2000 samples per trace kept (default 16: 406 x 1757 x 2000;
@@ -13,6 +13,8 @@
 #   --netcdf-edge N   edge of the cube for the file-against-procedural comparison (default 512;
 #                     the issue asks 1024, which needs 4 GiB of disk and about 4x the time)
 #   --workers W       local workers (default 2)
+#   --set KEY=VALUE   passed on to every run's `geotandem run-workflow` (repeatable), to measure a
+#                     recipe setting: --set steps.extract.block_size=256
 #
 # For each run it prints the wall time per phase (from time-stamped progress lines), the peak
 # resident memory of all geotandem processes together (manager and workers, sampled every 0.2 s
@@ -33,6 +35,7 @@ edge=512
 workers=2
 skip_paper=0
 skip_netcdf=0
+overrides=()
 while [[ $# -gt 0 ]]; do
   case "$1" in
     --fraction) fraction="$2"; shift 2 ;;
@@ -42,7 +45,9 @@ while [[ $# -gt 0 ]]; do
     --out) out="$2"; shift 2 ;;
     --skip-paper) skip_paper=1; shift ;;
     --skip-netcdf) skip_netcdf=1; shift ;;
-    -h|--help) sed -n '2,27p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
+    --set) [[ $# -ge 2 ]] || { echo "bench/paper_cube.sh: --set needs KEY=VALUE" >&2; exit 2; }
+      overrides+=(--set "$2"); shift 2 ;;
+    -h|--help) sed -n '2,28p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
     *) echo "bench/paper_cube.sh: unknown argument '$1' (see --help)" >&2; exit 2 ;;
   esac
 done
@@ -184,7 +189,7 @@ if [[ "$skip_paper" == 0 ]]; then
   echo
   echo "paper cube / $fraction: ${ni} x ${nj} x ${nk} samples, procedural, $workers workers"
   run paper "$bin" --log-level debug run-workflow "$recipe" --fresh --set "output.directory=$out/paper" \
-    --set "input.synthetic.shape=[$ni,$nj,$nk]" --set execution.scheduler=local --set "execution.workers=$workers"
+    --set "input.synthetic.shape=[$ni,$nj,$nk]" --set execution.scheduler=local --set "execution.workers=$workers" "${overrides[@]}"
   python3 - "$out/paper/summary" "$ni" "$nj" "$nk" "$workers" <<'PY'
 import sys
 import os
@@ -218,9 +223,9 @@ text = re.sub(r"(?ms)^input:\n.*?(?=^steps:)", f"input:\n  file: {sys.argv[3]}\n
 open(sys.argv[2], "w").write(text)
 PY
   run "procedural-$edge" "$bin" --log-level debug run-workflow "$recipe" --fresh --set "output.directory=$out/procedural-$edge" \
-    --set "input.synthetic.shape=[$edge,$edge,$edge]" --set execution.scheduler=local --set "execution.workers=$workers"
+    --set "input.synthetic.shape=[$edge,$edge,$edge]" --set execution.scheduler=local --set "execution.workers=$workers" "${overrides[@]}"
   run "netcdf-$edge" "$bin" --log-level debug run-workflow "$file_recipe" --fresh --set "output.directory=$out/netcdf-$edge" \
-    --set execution.scheduler=local --set "execution.workers=$workers"
+    --set execution.scheduler=local --set "execution.workers=$workers" "${overrides[@]}"
   python3 - "$out/procedural-$edge/summary" "$out/netcdf-$edge/summary" <<'PY'
 import sys
 p = open(sys.argv[1]).read().split()

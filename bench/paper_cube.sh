@@ -47,7 +47,7 @@ while [[ $# -gt 0 ]]; do
     --skip-netcdf) skip_netcdf=1; shift ;;
     --set) [[ $# -ge 2 ]] || { echo "bench/paper_cube.sh: --set needs KEY=VALUE" >&2; exit 2; }
       overrides+=(--set "$2"); shift 2 ;;
-    -h|--help) sed -n '2,28p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
+    -h|--help) awk 'NR > 1 && !/^#/ { exit } NR > 1 { sub(/^# ?/, ""); print }' "$0"; exit 0 ;;
     *) echo "bench/paper_cube.sh: unknown argument '$1' (see --help)" >&2; exit 2 ;;
   esac
 done

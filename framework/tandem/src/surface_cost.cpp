@@ -16,21 +16,15 @@ using detail::operator*;
 
 namespace {
 // One corner's share of a triangle's terms: p x q and q - p for the two corners that follow it.
-inline void add_corner(detail::VertexRecord& r, const detail::Isotropy& isotropy, double det, const Vec3& normal,
-                       const Vec3& pq, const Vec3& link) {
+inline void add_corner(detail::VertexRecord& r, const detail::Isotropy& isotropy, const Vec3& pq, const Vec3& link) {
   r.isotropy += isotropy;
-  r.det_sum += det;
   r.cross_sum = r.cross_sum + pq;
   r.link_sum = r.link_sum + link;
-  r.normal_sum = r.normal_sum + normal;
 }
-inline void remove_corner(detail::VertexRecord& r, const detail::Isotropy& isotropy, double det, const Vec3& normal,
-                          const Vec3& pq, const Vec3& link) {
+inline void remove_corner(detail::VertexRecord& r, const detail::Isotropy& isotropy, const Vec3& pq, const Vec3& link) {
   r.isotropy -= isotropy;
-  r.det_sum -= det;
   r.cross_sum = r.cross_sum - pq;
   r.link_sum = r.link_sum - link;
-  r.normal_sum = r.normal_sum - normal;
 }
 } // namespace
 
@@ -55,12 +49,10 @@ void WorkingSurface::Engine::add_face_terms(FH f) {
   const FaceCorners c = corners(f);
   const Vec3 &p0 = c.p[0], &p1 = c.p[1], &p2 = c.p[2];
   const detail::Isotropy isotropy = face_isotropy(c);
-  const Vec3 c0 = detail::cross(p1, p2);
-  const double det = detail::dot(p0, c0);
   frec(f).alive = true;
-  add_corner(vrec(c.v[0]), isotropy, det, c.normal, c0, p2 - p1);
-  add_corner(vrec(c.v[1]), isotropy, det, c.normal, detail::cross(p2, p0), p0 - p2);
-  add_corner(vrec(c.v[2]), isotropy, det, c.normal, detail::cross(p0, p1), p1 - p0);
+  add_corner(vrec(c.v[0]), isotropy, detail::cross(p1, p2), p2 - p1);
+  add_corner(vrec(c.v[1]), isotropy, detail::cross(p2, p0), p0 - p2);
+  add_corner(vrec(c.v[2]), isotropy, detail::cross(p0, p1), p1 - p0);
 }
 
 void WorkingSurface::Engine::remove_face_terms(FH f, VH skip_a, VH skip_b) {
@@ -69,23 +61,17 @@ void WorkingSurface::Engine::remove_face_terms(FH f, VH skip_a, VH skip_b) {
   const FaceCorners c = corners(f);
   const Vec3 &p0 = c.p[0], &p1 = c.p[1], &p2 = c.p[2];
   const detail::Isotropy isotropy = face_isotropy(c);
-  const Vec3 c0 = detail::cross(p1, p2);
-  const double det = detail::dot(p0, c0);
-  if (c.v[0] != skip_a && c.v[0] != skip_b) remove_corner(vrec(c.v[0]), isotropy, det, c.normal, c0, p2 - p1);
-  if (c.v[1] != skip_a && c.v[1] != skip_b)
-    remove_corner(vrec(c.v[1]), isotropy, det, c.normal, detail::cross(p2, p0), p0 - p2);
-  if (c.v[2] != skip_a && c.v[2] != skip_b)
-    remove_corner(vrec(c.v[2]), isotropy, det, c.normal, detail::cross(p0, p1), p1 - p0);
+  if (c.v[0] != skip_a && c.v[0] != skip_b) remove_corner(vrec(c.v[0]), isotropy, detail::cross(p1, p2), p2 - p1);
+  if (c.v[1] != skip_a && c.v[1] != skip_b) remove_corner(vrec(c.v[1]), isotropy, detail::cross(p2, p0), p0 - p2);
+  if (c.v[2] != skip_a && c.v[2] != skip_b) remove_corner(vrec(c.v[2]), isotropy, detail::cross(p0, p1), p1 - p0);
 }
 
 void WorkingSurface::Engine::recompute_face_terms() {
   // From scratch: the running sums drift by rounding over many collapses.
   for (std::size_t i = 0; i < mesh_->n_vertices(); ++i) {
     vrec_[i].isotropy = detail::Isotropy{};
-    vrec_[i].det_sum = 0.0;
     vrec_[i].cross_sum = {0.0, 0.0, 0.0};
     vrec_[i].link_sum = {0.0, 0.0, 0.0};
-    vrec_[i].normal_sum = {0.0, 0.0, 0.0};
   }
   for (std::size_t i = 0; i < mesh_->n_faces(); ++i)
     if (frec_[i].alive) add_face_terms(FH(static_cast<int>(i)));
@@ -100,13 +86,16 @@ void WorkingSurface::Engine::volume_plane(HH h, const FaceCorners* const faces[2
   // vertex this does not depend on s; at a boundary (an open fan) it does, and s = midpoint of ab
   // keeps a flat patch flat. The per-vertex sums are taken from the origin o; with d = s - o,
   //   (p - s) x (q - s) = (p - o) x (q - o) - d x (q - p),   det_s(t) = det_o(t) - d.n_t.
+  // A vertex keeps the sums of p x q and q - p over its triangles (v, p, q); those of det_o and
+  // n_t follow from them and v (relative to o): v.(p x q), and p x q - v x (q - p).
   const VH a = mesh_->from_vertex_handle(h), b = mesh_->to_vertex_handle(h);
   const detail::VertexRecord& ra = vrec_[a.idx()];
   const detail::VertexRecord& rb = vrec_[b.idx()];
+  const Vec3 pa = in.a - origin_, pb = in.b - origin_;
   Vec3 cross_sum = ra.cross_sum + rb.cross_sum;
   Vec3 link_sum = ra.link_sum + rb.link_sum;
-  Vec3 normal_sum = ra.normal_sum + rb.normal_sum;
-  double det_sum = ra.det_sum + rb.det_sum;
+  Vec3 normal_sum = cross_sum - (detail::cross(pa, ra.link_sum) + detail::cross(pb, rb.link_sum));
+  double det_sum = detail::dot(pa, ra.cross_sum) + detail::dot(pb, rb.cross_sum);
   const HH sides[2] = {h, mesh_->opposite_halfedge_handle(h)};
   for (int k = 0; k < 2; ++k) {
     const FaceCorners* fc = faces[k];
@@ -138,7 +127,7 @@ bool WorkingSurface::Engine::prepare_inputs(HH h, CostInputs& in) {
   if (!detail::border_allows_collapse(ra.border, rb.border)) return false;
   const unsigned border = ra.border | rb.border;
   in.shape = ra.shape + rb.shape;
-  in.weight = ra.weight + rb.weight;
+  in.weight = ra.weight() + rb.weight();
   in.isotropy = ra.isotropy;
   in.isotropy += rb.isotropy;
   // The triangles abx and aby are in both sums.

@@ -341,7 +341,6 @@ void WorkingSurface::Engine::collapse(HH h, const Vec3& target, double cost, dou
   --live_vertices_;
 
   rb.shape += ra.shape;
-  rb.weight += ra.weight;
   rb.height = g.height();
   rb.rad = g.rad();
   rb.tolerance = error;
@@ -351,10 +350,8 @@ void WorkingSurface::Engine::collapse(HH h, const Vec3& target, double cost, dou
 
   // New terms of the triangles around c.
   rb.isotropy = detail::Isotropy{};
-  rb.det_sum = 0.0;
   rb.cross_sum = {0.0, 0.0, 0.0};
   rb.link_sum = {0.0, 0.0, 0.0};
-  rb.normal_sum = {0.0, 0.0, 0.0};
   const HH start = mesh_->halfedge_handle(b);
   HH s = start;
   do {

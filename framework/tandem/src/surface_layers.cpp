@@ -138,10 +138,8 @@ void WorkingSurface::Engine::add_layer(const Layer& layer) {
       const Vec3 unit = (1.0 / twice_area) * normal;
       const double d = -detail::dot(unit, p0);
       const double area = 0.5 * twice_area;
-      for (VH v : {v0, v1, v2}) {
+      for (VH v : {v0, v1, v2})
         vrec(v).shape.add_plane(unit, d, area);
-        vrec(v).weight += area;
-      }
     }
     components_.unite(components_.unite(vrec(v0).component, vrec(v1).component), vrec(v2).component);
   }

@@ -103,8 +103,7 @@ void WorkingSurface::Engine::absorb_state(const detail::SurfaceState& t) {
       w.alive = true;
       // The face sums are rebuilt from this side's origin when the triangles go in.
       w.isotropy = detail::Isotropy{};
-      w.det_sum = 0.0;
-      w.cross_sum = w.link_sum = w.normal_sum = {0.0, 0.0, 0.0};
+      w.cross_sum = w.link_sum = {0.0, 0.0, 0.0};
       points_[v.idx()] = detail::HalfedgeMesh::Point(t.points[i][0], t.points[i][1], t.points[i][2]);
       ++live_vertices_;
     } else {
@@ -117,7 +116,6 @@ void WorkingSurface::Engine::absorb_state(const detail::SurfaceState& t) {
                             " has different positions on the two sides",
                         {.block = t.region.to_string()}, "both blocks must come from the same volume and isovalue");
       w.shape += r.shape;
-      w.weight += r.weight;
       w.border |= r.border;
       w.version = std::max(w.version, r.version) + 1; // candidates computed on either side are stale
       components_.unite(w.component, c);

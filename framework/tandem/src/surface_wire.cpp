@@ -89,7 +89,7 @@ detail::Isotropy get_isotropy(Reader& r) {
 }
 
 // Bytes per item, for the count checks.
-constexpr std::size_t kVertexBytes = 32 * 8 + 8 + 4 + 1 + 4;
+constexpr std::size_t kVertexBytes = 27 * 8 + 8 + 4 + 1 + 4;
 constexpr std::size_t kFaceBytes = 3 * 4;
 constexpr std::size_t kEdgeBytes = 4 + 4 + 1 + 1 + 4 + 8 + 3 * 8;
 
@@ -131,12 +131,9 @@ void encode(Writer& w, const detail::SurfaceState& s) {
     w.put(s.points[i]);
     for (double x : v.shape.m)
       w.put(x);
-    w.put(v.weight);
     put_isotropy(w, v.isotropy);
-    w.put(v.det_sum);
     w.put(v.cross_sum);
     w.put(v.link_sum);
-    w.put(v.normal_sum);
     w.put(v.height);
     w.put(v.rad);
     w.put(v.tolerance);
@@ -224,12 +221,9 @@ detail::SurfaceState decode(Reader& r) {
     s.points[i] = r.vec();
     for (double& x : v.shape.m)
       x = r.get<double>();
-    v.weight = r.get<double>();
     v.isotropy = get_isotropy(r);
-    v.det_sum = r.get<double>();
     v.cross_sum = r.vec();
     v.link_sum = r.vec();
-    v.normal_sum = r.vec();
     v.height = r.get<double>();
     v.rad = r.get<double>();
     v.tolerance = r.get<double>();

@@ -42,17 +42,19 @@ inline bool waiting(EdgeState s) {
 }
 
 struct VertexRecord {
-  Quadric shape;       // H_v: sum over the original triangles merged into v of w_t p p^T
-  double weight = 0.0; // W_v: their total area
-  Isotropy isotropy;   // sum of the isotropy terms of the current triangles around v
+  // H_v: sum over the original triangles merged into v of w_t p p^T, w_t the triangle's area and p
+  // its plane (unit normal, offset). The trace of its 3x3 block is W_v, their total area
+  // (weight()), which is therefore not kept apart.
+  Quadric shape;
+  Isotropy isotropy; // sum of the isotropy terms of the current triangles around v
   // Volume terms of the current triangles around v (coordinates relative to the surface's origin):
-  // sums of their determinants det(p0, p1, p2), of the cross products p x q and the differences
-  // q - p of the two corners following v, and of their normals (p1 - p0) x (p2 - p0). With them
-  // the volume plane of a collapse costs O(1) (WorkingSurface::Engine::volume_plane).
-  double det_sum = 0.0;
+  // for each triangle (v, p, q), the cross product p x q and the difference q - p of the two
+  // corners following v. With them the volume plane of a collapse costs O(1)
+  // (WorkingSurface::Engine::volume_plane). The triangles' determinants and normals follow from
+  // them and v's position o: det(o, p, q) = o.(p x q) and (p - o) x (q - o) = p x q - o x (q - p),
+  // so they are not kept either (40 bytes a vertex with W_v).
   Vec3 cross_sum{0.0, 0.0, 0.0};
   Vec3 link_sum{0.0, 0.0, 0.0};
-  Vec3 normal_sum{0.0, 0.0, 0.0};
   double height = 0.0; // time lag: rank at birth, then means
   double rad = 1.0;    // time lag radius
   // The E0 guarantee (collapse_distance.hpp): the distance bound at v, interpolated linearly over
@@ -60,16 +62,19 @@ struct VertexRecord {
   double tolerance = 0.0;
   std::uint64_t lattice_id = kNoLatticeId; // while the vertex is an original MC vertex
   std::int32_t component = -1;             // any member of its component's union-find class
+  // Bumped whenever anything a cost at an edge of v depends on changes: v itself, or a triangle
+  // around it (so for c and all its neighbours at each collapse).
+  std::uint32_t version = 0;
   // Bit 2 * axis + side: the vertex lies on that face of the cube. This is the collapse loop's
   // constraint hook (Engine::prepare_inputs): c keeps the coordinate of every axis with a bit set,
   // so one bit holds a vertex on a plane, two on a line, three in place; an edge whose ends carry
   // both sides of one axis never collapses. Cap or other constrained vertices set these bits.
   std::uint8_t border = 0;
-  // Bumped whenever anything a cost at an edge of v depends on changes: v itself, or a triangle
-  // around it (so for c and all its neighbours at each collapse).
-  std::uint32_t version = 0;
   bool alive = false;
+
+  double weight() const { return shape.m[0] + shape.m[4] + shape.m[7]; }
 };
+static_assert(sizeof(VertexRecord) == 216, "a vertex record's size is counted in docs/algorithm.md (Memory)");
 
 struct EdgeRecord {
   Vec3 target{};    // the candidate c while in Q

@@ -51,7 +51,7 @@ struct VertexRecord {
   // for each triangle (v, p, q), the cross product p x q and the difference q - p of the two
   // corners following v. With them the volume plane of a collapse costs O(1)
   // (WorkingSurface::Engine::volume_plane). The triangles' determinants and normals follow from
-  // them and v's position o: det(o, p, q) = o.(p x q) and (p - o) x (q - o) = p x q - o x (q - p),
+  // them and v's own position: det(v, p, q) = v.(p x q) and (p - v) x (q - v) = p x q - v x (q - p),
   // so they are not kept either (40 bytes a vertex with W_v).
   Vec3 cross_sum{0.0, 0.0, 0.0};
   Vec3 link_sum{0.0, 0.0, 0.0};

@@ -15,7 +15,8 @@ using detail::operator-;
 using detail::operator*;
 
 namespace {
-// One corner's share of a triangle's terms: p x q and q - p for the two corners that follow it.
+// One corner's share of a triangle's terms: p x q and q - p for the two corners p, q that follow it
+// (add_face_terms and remove_face_terms compute them with the same expressions).
 inline void add_corner(detail::VertexRecord& r, const detail::Isotropy& isotropy, const Vec3& pq, const Vec3& link) {
   r.isotropy += isotropy;
   r.cross_sum = r.cross_sum + pq;
@@ -47,23 +48,24 @@ inline detail::Isotropy WorkingSurface::Engine::face_isotropy(const FaceCorners&
 
 void WorkingSurface::Engine::add_face_terms(FH f) {
   const FaceCorners c = corners(f);
-  const Vec3 &p0 = c.p[0], &p1 = c.p[1], &p2 = c.p[2];
   const detail::Isotropy isotropy = face_isotropy(c);
   frec(f).alive = true;
-  add_corner(vrec(c.v[0]), isotropy, detail::cross(p1, p2), p2 - p1);
-  add_corner(vrec(c.v[1]), isotropy, detail::cross(p2, p0), p0 - p2);
-  add_corner(vrec(c.v[2]), isotropy, detail::cross(p0, p1), p1 - p0);
+  for (std::size_t k = 0; k < 3; ++k) {
+    const Vec3 &p = c.p[(k + 1) % 3], &q = c.p[(k + 2) % 3];
+    add_corner(vrec(c.v[k]), isotropy, detail::cross(p, q), q - p);
+  }
 }
 
 void WorkingSurface::Engine::remove_face_terms(FH f, VH skip_a, VH skip_b) {
   // Computed again from the same positions in the same order: they cancel what add_face_terms
   // added exactly.
   const FaceCorners c = corners(f);
-  const Vec3 &p0 = c.p[0], &p1 = c.p[1], &p2 = c.p[2];
   const detail::Isotropy isotropy = face_isotropy(c);
-  if (c.v[0] != skip_a && c.v[0] != skip_b) remove_corner(vrec(c.v[0]), isotropy, detail::cross(p1, p2), p2 - p1);
-  if (c.v[1] != skip_a && c.v[1] != skip_b) remove_corner(vrec(c.v[1]), isotropy, detail::cross(p2, p0), p0 - p2);
-  if (c.v[2] != skip_a && c.v[2] != skip_b) remove_corner(vrec(c.v[2]), isotropy, detail::cross(p0, p1), p1 - p0);
+  for (std::size_t k = 0; k < 3; ++k) {
+    if (c.v[k] == skip_a || c.v[k] == skip_b) continue;
+    const Vec3 &p = c.p[(k + 1) % 3], &q = c.p[(k + 2) % 3];
+    remove_corner(vrec(c.v[k]), isotropy, detail::cross(p, q), q - p);
+  }
 }
 
 void WorkingSurface::Engine::recompute_face_terms() {

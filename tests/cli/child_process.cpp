@@ -69,11 +69,13 @@ Child::~Child() {
 std::optional<int> Child::wait_for(double seconds) {
   const auto deadline = std::chrono::steady_clock::now() + std::chrono::duration<double>(seconds);
   for (;;) {
+    if (reaped_) return exit_code_; // asked again after the end: the same answer, not a 30 s wait
     int status = 0;
     pid_t done = ::waitpid(pid_, &status, WNOHANG);
     if (done == pid_) {
       reaped_ = true;
-      return exit_code_of(status);
+      exit_code_ = exit_code_of(status);
+      return exit_code_;
     }
     if (std::chrono::steady_clock::now() >= deadline) return std::nullopt;
     std::this_thread::sleep_for(std::chrono::milliseconds(20));
@@ -81,7 +83,7 @@ std::optional<int> Child::wait_for(double seconds) {
 }
 
 void Child::signal(int sig) const {
-  ::kill(pid_, sig);
+  if (!reaped_) ::kill(pid_, sig); // a reaped child's pid may already be another process's
 }
 
 std::string Child::out() const {

@@ -31,6 +31,7 @@ public:
 private:
   pid_t pid_ = -1;
   bool reaped_ = false;
+  int exit_code_ = -1; // once reaped
   std::string out_path_, err_path_;
 };
 

@@ -82,7 +82,14 @@ void WorkingSurface::Engine::set_state(EH e, EdgeState state, double key) {
     return;
   }
   switch (old) {
-  case EdgeState::candidate: candidates_.erase(item); break;
+  case EdgeState::candidate:
+    candidates_.erase(item);
+    free_pending_.push_back(r.pending);
+    if (candidates_.empty()) { // every index is free: start again from the first
+      pending_.clear();
+      free_pending_.clear();
+    }
+    break;
   case EdgeState::delayed: delayed_.erase(item, r.key); break;
   case EdgeState::parked: {
     const std::int32_t slot = slots_[static_cast<std::size_t>(item)];
@@ -98,7 +105,16 @@ void WorkingSurface::Engine::set_state(EH e, EdgeState state, double key) {
   r.state = state;
   r.key = key;
   switch (state) {
-  case EdgeState::candidate: candidates_.push(item, key); break;
+  case EdgeState::candidate:
+    candidates_.push(item, key);
+    if (free_pending_.empty()) {
+      r.pending = static_cast<std::uint32_t>(pending_.size());
+      pending_.emplace_back();
+    } else {
+      r.pending = free_pending_.back();
+      free_pending_.pop_back();
+    }
+    break;
   case EdgeState::delayed: delayed_.push(item, key); break;
   case EdgeState::parked:
     slots_[static_cast<std::size_t>(item)] = static_cast<std::int32_t>(parked_.size());
@@ -111,6 +127,15 @@ void WorkingSurface::Engine::set_state(EH e, EdgeState state, double key) {
     const VH a = mesh_->to_vertex_handle(mesh_->halfedge_handle(e, 0));
     components_.add_waiting(vrec(a).component, is_waiting ? 1 : -1);
   }
+}
+
+void WorkingSurface::Engine::enqueue(EH e, double cost, const detail::Vec3& target, bool retried) {
+  set_state(e, EdgeState::candidate, cost);
+  detail::Pending& p = pending(e);
+  p.target = target;
+  p.stamp = stamp_of(e);
+  p.retried = retried;
+  p.dirty = false;
 }
 
 std::uint32_t WorkingSurface::Engine::stamp_of(EH e) const {
@@ -137,17 +162,12 @@ void WorkingSurface::Engine::place(EH e) {
   // (The stamp cannot tell: an edge that lost a to c has new endpoints, whose versions may sum to
   // the old value.)
   if (erec(e).state == EdgeState::candidate) {
-    erec(e).dirty = true;
+    pending(e).dirty = true;
     return;
   }
   Candidate c;
   if (evaluate(h, c)) {
-    detail::EdgeRecord& r = erec(e);
-    r.target = c.position;
-    r.retried = false;
-    r.dirty = false;
-    r.stamp = stamp_of(e);
-    set_state(e, EdgeState::candidate, c.cost);
+    enqueue(e, c.cost, c.position, false);
   } else {
     set_state(e, EdgeState::idle, 0.0);
   }
@@ -189,33 +209,30 @@ void WorkingSurface::Engine::simplify(const CancelToken* cancel) {
   while (!candidates_.empty()) {
     if (cancel && (++steps & 0xFFFu) == 0) cancel->throw_if_cancelled();
     const EH e(candidates_.top().item);
-    double key = candidates_.top().key;
+    const double key = candidates_.top().key;
+    const detail::Pending p = pending(e); // a copy: leaving Q frees its place
     set_state(e, EdgeState::idle, 0.0);
-    detail::EdgeRecord& r = erec(e);
-    if (r.dirty || r.stamp != stamp_of(e)) {
+    if (p.dirty || p.stamp != stamp_of(e)) {
       // Collapses nearby changed what its cost depends on: compute it again, and put it back
       // when it became dearer.
       Candidate c;
       if (!evaluate(mesh_->halfedge_handle(e, 0), c)) continue;
-      r.target = c.position;
-      r.retried = false;
-      r.dirty = false;
-      r.stamp = stamp_of(e);
       if (c.cost > key + 1e-12 * (1.0 + key)) {
-        set_state(e, EdgeState::candidate, c.cost);
+        enqueue(e, c.cost, c.position, false);
         continue;
       }
+      try_collapse(e, key, c.position, false);
+    } else {
+      try_collapse(e, key, p.target, p.retried);
     }
-    try_collapse(e, key);
   }
   // Storage freed by the collapses is reclaimed here too, not only after a dumping: the tandem
   // without dumping would otherwise hold as much as brute force.
   maybe_collect_garbage();
 }
 
-void WorkingSurface::Engine::try_collapse(EH e, double cost) {
+void WorkingSurface::Engine::try_collapse(EH e, double cost, const detail::Vec3& target, bool retried) {
   const HH h = mesh_->halfedge_handle(e, 0);
-  detail::EdgeRecord& r = erec(e);
   if (!detail::link_condition_ok(*mesh_, h, marks_)) {
     ++counters_.rejected_link;
     return;
@@ -223,18 +240,18 @@ void WorkingSurface::Engine::try_collapse(EH e, double cost) {
   // The distance bound first: it refuses many more candidates than the shape test (2 in 3 pops on
   // noisy surfaces, against 1 in 25), so the shape test mostly runs for collapses that happen.
   bool gathered = false; // the patch around h is read once for every position tried
-  const double error = collapse_error(h, r.target, gathered);
+  const double error = collapse_error(h, target, gathered);
   if (!(error <= options_.max_error)) {
     // Retried at the simple positions as after a flip. (Without the retry: 4 % more triangles and
     // a quarter less time on noisy surfaces, but worse seams between blocks.)
     ++counters_.rejected_distance;
-  } else if (!detail::collapse_keeps_shape(*mesh_, h, r.target, points_)) {
+  } else if (!detail::collapse_keeps_shape(*mesh_, h, target, points_)) {
     ++counters_.rejected_flip;
   } else {
-    collapse(h, r.target, cost, error);
+    collapse(h, target, cost, error);
     return;
   }
-  if (r.retried) return;
+  if (retried) return;
   // One more chance at the simple positions (volume-preserving when asked) that keep every
   // triangle's shape.
   CostInputs in;
@@ -254,9 +271,7 @@ void WorkingSurface::Engine::try_collapse(EH e, double cost) {
     if (!(collapse_error(h, o.position, gathered) <= options_.max_error)) continue;
     if (!detail::collapse_keeps_shape(*mesh_, h, o.position, points_)) continue;
     ++counters_.retried;
-    r.target = o.position;
-    r.retried = true;
-    set_state(e, EdgeState::candidate, o.cost);
+    enqueue(e, o.cost, o.position, true);
     return;
   }
 }

@@ -100,6 +100,9 @@ private:
   void place(EH e);
   std::uint32_t stamp_of(EH e) const;
   void set_state(EH e, detail::EdgeState state, double key);
+  // Puts e in Q at `cost` with its candidate position (evaluated now: the stamp is today's).
+  void enqueue(EH e, double cost, const detail::Vec3& target, bool retried);
+  detail::Pending& pending(EH e) { return pending_[erec(e).pending]; }
   bool prepare_inputs(HH h, detail::CostInputs& in);
   // A face's corners from its first halfedge on, their positions relative to the origin and its
   // normal (p1 - p0) x (p2 - p0): what every term of the face is computed from (surface_cost.cpp).
@@ -117,7 +120,7 @@ private:
   // `faces`: the corners of the triangles on both sides of h (null where there is none).
   void volume_plane(HH h, const FaceCorners* const faces[2], detail::CostInputs& in) const;
   bool evaluate(HH h, detail::Candidate& out);
-  void try_collapse(EH e, double cost);
+  void try_collapse(EH e, double cost, const detail::Vec3& target, bool retried);
   // The distance bound the triangles around c would get (the E0 guarantee, collapse_distance.hpp).
   // The patch around h is read when `gathered` is false (then set): several positions of one
   // collapse share it, as long as nothing changes in between.
@@ -125,8 +128,8 @@ private:
   void collapse(HH h, const detail::Vec3& target, double cost, double error);
   void report_collapse(HH h, const detail::Vec3& target, double cost, double error);
 
-  // Puts the edge ab back in its queue with `record`'s state, key and candidate (surface_state.cpp).
-  void restore_edge(VH a, VH b, const detail::EdgeRecord& record, std::size_t index);
+  // Puts the edge ab back in its queue with its state, key and, in Q, candidate (surface_state.cpp).
+  void restore_edge(VH a, VH b, const detail::StateEdge& edge, std::size_t index);
 
   // Dumping and compaction (surface_dump.cpp).
   void dump_component(std::int32_t root);
@@ -153,8 +156,12 @@ private:
   detail::FaceRecord* frec_ = nullptr;
   detail::HalfedgeMesh::Point* points_ = nullptr;
 
-  std::vector<std::int32_t> slots_;  // edge -> position in Q, W or the parked list
-  detail::IndexedHeap candidates_;   // Q, by eps_alpha
+  std::vector<std::int32_t> slots_; // edge -> position in Q, W or the parked list
+  detail::IndexedHeap candidates_;  // Q, by eps_alpha
+  // The Pending of each edge in Q, at the index its record keeps, and the free indices. Emptied
+  // with Q; its room is given back when the surface is set aside (compact()).
+  std::vector<detail::Pending> pending_;
+  std::vector<std::uint32_t> free_pending_;
   detail::BucketQueue delayed_;      // W, by lag key (unit buckets)
   std::vector<std::int32_t> parked_; // W, edges waiting for the region to grow
   detail::ComponentTable components_;

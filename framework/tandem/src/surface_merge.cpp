@@ -150,7 +150,7 @@ void WorkingSurface::Engine::absorb_state(const detail::SurfaceState& t) {
 
   // The other side's queue states (the seam's edges are parked on both sides).
   for (std::size_t i = 0; i < t.edges.size(); ++i)
-    restore_edge(vertex[t.edges[i].v0], vertex[t.edges[i].v1], t.edges[i].record, i);
+    restore_edge(vertex[t.edges[i].v0], vertex[t.edges[i].v1], t.edges[i], i);
 
   SimplifyCounters& c = counters_;
   const SimplifyCounters& o = t.counters;

@@ -63,7 +63,8 @@ detail::SurfaceState WorkingSurface::Engine::export_state() const {
     const HH h = mesh_->halfedge_handle(EH(static_cast<int>(i)), 0);
     std::uint32_t v0 = vertex(mesh_->from_vertex_handle(h)), v1 = vertex(mesh_->to_vertex_handle(h));
     if (v1 < v0) std::swap(v0, v1);
-    s.edges.push_back({v0, v1, r});
+    s.edges.push_back(
+        {v0, v1, r.state, r.key, r.state == EdgeState::candidate ? pending_[r.pending] : detail::Pending{}});
   }
   // Edges and ids in a canonical order (the mesh numbers edges in the order they were made): the
   // record of a surface rebuilt from a record is then the same record.
@@ -81,23 +82,19 @@ detail::SurfaceState WorkingSurface::Engine::export_state() const {
   return s;
 }
 
-void WorkingSurface::Engine::restore_edge(VH a, VH b, const detail::EdgeRecord& record, std::size_t index) {
+void WorkingSurface::Engine::restore_edge(VH a, VH b, const detail::StateEdge& edge, std::size_t index) {
   const HH h = a != b ? detail::find_halfedge(*mesh_, a, b) : HH();
   if (!h.is_valid())
     throw DataError("working surface state: edge " + std::to_string(index) + " (" + std::to_string(a.idx()) + ", " +
                     std::to_string(b.idx()) + ") is not an edge of the surface");
-  const EdgeState state = record.state;
+  const EdgeState state = edge.state;
   if (state != EdgeState::idle && state != EdgeState::candidate && state != EdgeState::delayed &&
       state != EdgeState::parked)
     throw DataError("working surface state: edge " + std::to_string(index) + " has an unknown state");
   const EH e = mesh_->edge_handle(h);
   if (erec(e).state != EdgeState::idle) set_state(e, EdgeState::idle, 0.0);
-  detail::EdgeRecord& r = erec(e);
-  r.target = record.target;
-  r.stamp = record.stamp;
-  r.retried = record.retried;
-  r.dirty = record.dirty;
-  set_state(e, state, record.key);
+  set_state(e, state, edge.key);
+  if (state == EdgeState::candidate) pending(e) = edge.pending;
 }
 
 void WorkingSurface::Engine::import_state(detail::SurfaceState&& s) {
@@ -165,7 +162,7 @@ void WorkingSurface::Engine::import_state(detail::SurfaceState&& s) {
     if (se.v0 >= nv || se.v1 >= nv)
       throw DataError("working surface state: edge " + std::to_string(i) + " refers to a vertex beyond the " +
                       std::to_string(nv));
-    restore_edge(VH(static_cast<int>(se.v0)), VH(static_cast<int>(se.v1)), se.record, i);
+    restore_edge(VH(static_cast<int>(se.v0)), VH(static_cast<int>(se.v1)), se, i);
   }
 
   previous_ids_.clear();

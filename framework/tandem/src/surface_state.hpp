@@ -16,10 +16,13 @@
 namespace geotandem::tandem::detail {
 
 // An edge that is not idle, named by its endpoints (indices into SurfaceState::points), with its
-// record (state, key, candidate, stamp).
+// state and key and, for an edge in Q, what it keeps there (candidate, stamp, flags; zero
+// otherwise).
 struct StateEdge {
   std::uint32_t v0 = 0, v1 = 0;
-  EdgeRecord record;
+  EdgeState state = EdgeState::idle;
+  double key = 0.0;
+  Pending pending;
 };
 
 struct SurfaceState {

@@ -153,11 +153,11 @@ void encode(Writer& w, const detail::SurfaceState& s) {
   for (const detail::StateEdge& e : s.edges) {
     w.put(e.v0);
     w.put(e.v1);
-    w.put(static_cast<std::uint8_t>(e.record.state));
-    w.put(static_cast<std::uint8_t>((e.record.retried ? 1u : 0u) | (e.record.dirty ? 2u : 0u)));
-    w.put(e.record.stamp);
-    w.put(e.record.key);
-    w.put(e.record.target);
+    w.put(static_cast<std::uint8_t>(e.state));
+    w.put(static_cast<std::uint8_t>((e.pending.retried ? 1u : 0u) | (e.pending.dirty ? 2u : 0u)));
+    w.put(e.pending.stamp);
+    w.put(e.key);
+    w.put(e.pending.target);
   }
   // The last layer's ids and its unused vertices.
   w.count(s.previous_ids.size());
@@ -251,14 +251,13 @@ detail::SurfaceState decode(Reader& r) {
     const auto state = r.get<std::uint8_t>();
     if (state > static_cast<std::uint8_t>(detail::EdgeState::parked))
       throw DataError("working-surface record: unknown edge state " + std::to_string(state));
-    e.record.state = static_cast<detail::EdgeState>(state);
+    e.state = static_cast<detail::EdgeState>(state);
     const auto edge_flags = r.get<std::uint8_t>();
-    e.record.retried = (edge_flags & 1u) != 0;
-    e.record.dirty = (edge_flags & 2u) != 0;
-    e.record.stamp = r.get<std::uint32_t>();
-    e.record.key = r.get<double>();
-    e.record.target = r.vec();
-    e.record.alive = true;
+    e.pending.retried = (edge_flags & 1u) != 0;
+    e.pending.dirty = (edge_flags & 2u) != 0;
+    e.pending.stamp = r.get<std::uint32_t>();
+    e.key = r.get<double>();
+    e.pending.target = r.vec();
   }
 
   s.previous_ids.resize(r.count(12, "last-layer ids"));

@@ -76,16 +76,24 @@ struct VertexRecord {
 };
 static_assert(sizeof(VertexRecord) == 216, "a vertex record's size is counted in docs/algorithm.md (Memory)");
 
-struct EdgeRecord {
-  Vec3 target{};    // the candidate c while in Q
-  double key = 0.0; // its queue key: eps_alpha in Q, the lag key in W
+// What an edge in Q keeps beside its key: nothing else reads it. It lives in the engine's pool
+// (WorkingSurface::Engine::pending_), not in the edge record: Q is empty between simplifications,
+// so the surface at rest does not pay 24 bytes an edge for it (36 a triangle).
+struct Pending {
+  Vec3 target{}; // the candidate c
   // version(a) + version(b) when the candidate was computed: it is stale when they moved on.
   std::uint32_t stamp = 0;
-  EdgeState state = EdgeState::idle;
   bool retried = false; // already requeued once at a fallback position
   bool dirty = false;   // kept in Q with an old key although an endpoint changed (lazy evaluation)
+};
+
+struct EdgeRecord {
+  double key = 0.0;          // its queue key: eps_alpha in Q, the lag key in W
+  std::uint32_t pending = 0; // while in Q: its Pending in the engine's pool
+  EdgeState state = EdgeState::idle;
   bool alive = false;
 };
+static_assert(sizeof(EdgeRecord) == 16, "an edge record's size is counted in docs/algorithm.md (Memory)");
 
 // A face keeps no terms of its own: its isotropy and volume terms are a function of its corners'
 // positions, taken from its first halfedge on (surface_cost.cpp, face_terms()), so computing them

@@ -6,6 +6,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <chrono>
 #include <filesystem>
 #include <fstream>
 #include <set>
@@ -313,13 +314,16 @@ TEST(StoreSafetyCli, AStoreThisUserCannotWriteIsListedCheckedAndExported) {
     // is killed once the index holds a component, not after a fixed time: on a slow machine the first
     // component can take longer than any guess (an empty store has nothing to export).
     testing::Child writer(dir.path().string(), {"-q", "extract", cube, "--iso", "0.5", "--out", store});
+    const auto deadline = std::chrono::steady_clock::now() + std::chrono::minutes(2);
     bool committed = false;
-    for (int n = 0; n < 1200 && !committed; ++n) {
+    while (!committed && std::chrono::steady_clock::now() < deadline) {
       if (writer.wait_for(0.05)) break; // finished first: its WAL files stay behind all the same
       if (!std::filesystem::exists(store + "/store.json")) continue;
       auto r = run_geotandem("-q store ls --json " + q(store));
-      committed = r.exit_code == 0 && !nlohmann::json::parse(r.out).empty();
+      const auto rows = nlohmann::json::parse(r.out, nullptr, false);
+      committed = r.exit_code == 0 && rows.is_array() && !rows.empty();
     }
+    ASSERT_TRUE(committed || writer.wait_for(0)) << "no component committed within 2 min: " << writer.err();
     writer.signal(SIGKILL);
     ASSERT_TRUE(writer.wait_for(30)) << "the writer did not end after SIGKILL";
   }

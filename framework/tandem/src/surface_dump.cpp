@@ -121,11 +121,8 @@ void WorkingSurface::Engine::make_room(std::size_t nv, std::size_t ne, std::size
 }
 
 void WorkingSurface::Engine::collect_garbage() {
-  delayed_.clear();          // before the slots are renumbered
-  if (candidates_.empty()) { // the pool of Q's candidates is empty: give its room back too
-    std::vector<detail::Pending>().swap(pending_);
-    std::vector<std::uint32_t>().swap(free_pending_);
-  }
+  delayed_.clear();           // before the slots are renumbered
+  pending_.release_storage(); // exact storage here too, when Q is empty
   const std::vector<std::int32_t> moved = mesh_->compact();
   std::vector<std::int32_t>(mesh_->n_edges(), -1).swap(slots_); // exact storage, as the mesh's
   std::vector<std::int32_t>().swap(local_index_);

@@ -84,11 +84,7 @@ void WorkingSurface::Engine::set_state(EH e, EdgeState state, double key) {
   switch (old) {
   case EdgeState::candidate:
     candidates_.erase(item);
-    free_pending_.push_back(r.pending);
-    if (candidates_.empty()) { // every index is free: start again from the first
-      pending_.clear();
-      free_pending_.clear();
-    }
+    pending_.release(r.pending);
     break;
   case EdgeState::delayed: delayed_.erase(item, r.key); break;
   case EdgeState::parked: {
@@ -107,13 +103,7 @@ void WorkingSurface::Engine::set_state(EH e, EdgeState state, double key) {
   switch (state) {
   case EdgeState::candidate:
     candidates_.push(item, key);
-    if (free_pending_.empty()) {
-      r.pending = static_cast<std::uint32_t>(pending_.size());
-      pending_.emplace_back();
-    } else {
-      r.pending = free_pending_.back();
-      free_pending_.pop_back();
-    }
+    r.pending = pending_.acquire();
     break;
   case EdgeState::delayed: delayed_.push(item, key); break;
   case EdgeState::parked:

@@ -158,10 +158,9 @@ private:
 
   std::vector<std::int32_t> slots_; // edge -> position in Q, W or the parked list
   detail::IndexedHeap candidates_;  // Q, by eps_alpha
-  // The Pending of each edge in Q, at the index its record keeps, and the free indices. Emptied
-  // with Q; its room is given back when the surface is set aside (compact()).
-  std::vector<detail::Pending> pending_;
-  std::vector<std::uint32_t> free_pending_;
+  // The Pending of each edge in Q, at the index its record keeps: emptied with Q, its room given
+  // back at a compaction with Q empty (collect_garbage()).
+  detail::PendingPool pending_;
   detail::BucketQueue delayed_;      // W, by lag key (unit buckets)
   std::vector<std::int32_t> parked_; // W, edges waiting for the region to grow
   detail::ComponentTable components_;

@@ -87,6 +87,43 @@ struct Pending {
   bool dirty = false;   // kept in Q with an old key although an endpoint changed (lazy evaluation)
 };
 
+// The engine's Pending entries, by index, with a free list. When the last entry is released every
+// index is free again, so the next one starts from the first; release_storage() gives the room back.
+class PendingPool {
+public:
+  Pending& operator[](std::uint32_t i) { return entries_[i]; }
+  const Pending& operator[](std::uint32_t i) const { return entries_[i]; }
+  std::uint32_t acquire() {
+    ++live_;
+    if (free_.empty()) {
+      entries_.emplace_back();
+      return static_cast<std::uint32_t>(entries_.size() - 1);
+    }
+    const std::uint32_t i = free_.back();
+    free_.pop_back();
+    return i;
+  }
+  void release(std::uint32_t i) {
+    if (--live_ == 0) {
+      entries_.clear();
+      free_.clear();
+    } else {
+      free_.push_back(i);
+    }
+  }
+  // Only while no entry is held.
+  void release_storage() {
+    if (live_ != 0) return;
+    std::vector<Pending>().swap(entries_);
+    std::vector<std::uint32_t>().swap(free_);
+  }
+
+private:
+  std::vector<Pending> entries_;
+  std::vector<std::uint32_t> free_;
+  std::size_t live_ = 0;
+};
+
 struct EdgeRecord {
   double key = 0.0;          // its queue key: eps_alpha in Q, the lag key in W
   std::uint32_t pending = 0; // while in Q: its Pending in the engine's pool

@@ -2,14 +2,15 @@
 # Installs every Debian 12 package geotandem needs (idempotent), then configures and builds.
 # Usage: scripts/setup.sh [PRESET ...]   (default preset: release)
 # libjs-three: three.js, inlined into run reports for the 3-D view of the bodies; chromium: the
-# headless browser the report test draws that view with.
+# headless browser the report test draws that view with. ccache: a rebuild, or a build of the same
+# commit in another clone, reuses the objects already compiled (GEOTANDEM_CCACHE=OFF turns it off).
 # Environment: GEOTANDEM_SKIP_APT=1 skips the package step (for machines that already have them).
 set -euo pipefail
 here="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 cd "$here"
 
 packages=(
-  build-essential cmake ninja-build pkg-config git ca-certificates
+  build-essential cmake ninja-build pkg-config git ca-certificates ccache
   libgtest-dev libgmock-dev libbenchmark-dev
   libgdal-dev gdal-bin libsegyio-dev
   libopenmesh-dev libeigen3-dev

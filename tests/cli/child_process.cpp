@@ -6,6 +6,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include "test_paths.hpp"
 #include <chrono>
 #include <fstream>
 #include <sstream>
@@ -33,7 +34,7 @@ Child::Child(const std::string& scratch, const std::vector<std::string>& args, u
   const std::string base = scratch + "/child-" + std::to_string(::getpid()) + "-" + std::to_string(counter++);
   out_path_ = base + ".out";
   err_path_ = base + ".err";
-  std::vector<std::string> argv_text{GEOTANDEM_BINARY};
+  std::vector<std::string> argv_text{test_paths::binary()};
   argv_text.insert(argv_text.end(), args.begin(), args.end());
   std::vector<char*> argv; // built before fork: the child only calls async-signal-safe functions
   for (auto& a : argv_text)

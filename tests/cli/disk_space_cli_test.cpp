@@ -13,6 +13,7 @@
 #include <string>
 
 #include "scratch.hpp"
+#include "test_paths.hpp"
 
 namespace fs = std::filesystem;
 using geotandem::testing::CommandResult;
@@ -32,7 +33,7 @@ std::string slurp(const fs::path& path) {
 CommandResult run_on_small_disk(const fs::path& small, const std::string& args) {
   const fs::path out = small.parent_path() / "small.out", err = small.parent_path() / "small.err";
   const std::string script =
-      "mount -t tmpfs -o size=1m tmpfs '" + small.string() + "' && \"" + std::string(GEOTANDEM_BINARY) + "\" " + args;
+      "mount -t tmpfs -o size=1m tmpfs '" + small.string() + "' && \"" + test_paths::binary() + "\" " + args;
   const std::string command =
       "unshare -m sh -c \"$GEOTANDEM_DISK_SCRIPT\" >'" + out.string() + "' 2>'" + err.string() + "' </dev/null";
   ::setenv("GEOTANDEM_DISK_SCRIPT", script.c_str(), 1);

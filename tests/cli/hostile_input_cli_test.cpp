@@ -14,6 +14,7 @@
 
 #include "child_process.hpp"
 #include "scratch.hpp"
+#include "test_paths.hpp"
 
 namespace geotandem {
 namespace {
@@ -118,10 +119,9 @@ TEST(HostileInputCli, RecipeDuplicateKeysSecondDocumentsAndControlCharactersAreE
 #else
   const unsigned long looped_limit = 2UL << 30;
 #endif
-  auto looped =
-      run_child(dir.path().string(),
-                {"validate", std::string(GEOTANDEM_SOURCE_DIR) + "/tests/fuzz/regressions/recipe_loadall_loop.yaml"},
-                60, looped_limit);
+  auto looped = run_child(dir.path().string(),
+                          {"validate", test_paths::source() + "/tests/fuzz/regressions/recipe_loadall_loop.yaml"}, 60,
+                          looped_limit);
   EXPECT_FALSE(looped.hung);
   EXPECT_EQ(looped.exit_code, 2) << looped.err;
 

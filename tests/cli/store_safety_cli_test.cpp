@@ -16,6 +16,7 @@
 #include "child_process.hpp"
 #include "geotandem/store/store.hpp"
 #include "scratch.hpp"
+#include "test_paths.hpp"
 
 namespace geotandem {
 namespace {
@@ -344,7 +345,8 @@ TEST(StoreSafetyCli, AStoreThisUserCannotWriteIsListedCheckedAndExported) {
   auto run = [&](const std::string& args) {
     const std::string base = dir.file("ro");
     int status = std::system(
-        (as_other + "'" + GEOTANDEM_BINARY + "' " + args + " >" + base + ".out 2>" + base + ".err </dev/null").c_str());
+        (as_other + "'" + test_paths::binary() + "' " + args + " >" + base + ".out 2>" + base + ".err </dev/null")
+            .c_str());
     return std::make_pair(WIFEXITED(status) ? WEXITSTATUS(status) : -1, file_text(base + ".err"));
   };
   auto ls = run("-q store ls --json " + q(store));

@@ -13,6 +13,7 @@
 #include "geotandem/volume/io.hpp"
 #include "process_fixtures.hpp"
 #include "scratch.hpp"
+#include "test_paths.hpp"
 
 namespace geotandem::runtime {
 namespace {
@@ -38,7 +39,7 @@ struct ManagerRun {
     options.settings.block_size = 8;
     options.settings.iso = 0.5f;
     options.settings.run = store->begin_run("{}");
-    options.worker_command = {GEOTANDEM_BINARY, "-q", "worker"};
+    options.worker_command = {test_paths::binary(), "-q", "worker"};
   }
 };
 

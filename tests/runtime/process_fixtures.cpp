@@ -15,6 +15,7 @@
 #include <thread>
 
 #include "geotandem/store/store.hpp"
+#include "test_paths.hpp"
 
 extern char** environ;
 
@@ -37,7 +38,7 @@ pid_t spawn_logged(std::vector<std::string> argv, const std::string& log_path) {
 }
 
 pid_t spawn_geotandem(const std::vector<std::string>& args, const std::string& log_path) {
-  std::vector<std::string> argv{GEOTANDEM_BINARY};
+  std::vector<std::string> argv{test_paths::binary()};
   argv.insert(argv.end(), args.begin(), args.end());
   return spawn_logged(std::move(argv), log_path);
 }

@@ -18,6 +18,7 @@
 
 #include "../runtime/process_fixtures.hpp"
 #include "scratch.hpp"
+#include "test_paths.hpp"
 
 namespace geotandem::testing {
 
@@ -49,7 +50,7 @@ inline std::string path_with(const std::string& dir) {
 }
 
 inline std::string quickstart() {
-  return std::string(GEOTANDEM_SOURCE_DIR) + "/workflows/quickstart.yaml";
+  return test_paths::source() + "/workflows/quickstart.yaml";
 }
 
 // The quickstart recipe on a 96x96x64 cube in leaves of 8 cells (several seconds of work for two

@@ -7,6 +7,7 @@
 #include "backend_checks.hpp"
 #include "geotandem/schedulers/lsf_scheduler.hpp"
 #include "scratch.hpp"
+#include "test_paths.hpp"
 
 using namespace geotandem::schedulers;
 using namespace geotandem::testing;
@@ -15,7 +16,7 @@ namespace {
 class LsfStandin : public ::testing::Test {
 protected:
   ScratchDir dir;
-  EnvGuard path{"PATH", path_with(LSF_STANDIN_DIR)};
+  EnvGuard path{"PATH", path_with(test_paths::lsf_standin())};
   EnvGuard state{"LSF_STANDIN_DIR", dir.file("lsf-state")};
   std::filesystem::path jobs() const { return dir.path() / "work"; }
   void SetUp() override { std::filesystem::create_directories(jobs()); }
@@ -124,7 +125,7 @@ TEST_F(LsfStandin, DestructionCancelsUnfinishedJobs) {
 }
 
 TEST_F(LsfStandin, HangingBsubIsAClearErrorWithinABoundedTime) {
-  EnvGuard hang_path("PATH", path_with(HANG_SIMULATOR_DIR));
+  EnvGuard hang_path("PATH", path_with(test_paths::hang_simulator()));
   SchedulerOptions options;
   options.command_timeout = std::chrono::seconds(5);
   LsfScheduler scheduler(options);

@@ -5,6 +5,7 @@
 #include <signal.h>
 
 #include "cluster_run.hpp"
+#include "test_paths.hpp"
 
 namespace geotandem::testing {
 namespace {
@@ -12,7 +13,7 @@ namespace {
 struct LsfRun : ::testing::Test {
   ScratchDir dir;
   std::string reference = dir.file("local");
-  EnvGuard path{"PATH", path_with(LSF_STANDIN_DIR)};
+  EnvGuard path{"PATH", path_with(test_paths::lsf_standin())};
   EnvGuard state{"LSF_STANDIN_DIR", dir.file("lsf-state")};
 
   void SetUp() override {
@@ -112,7 +113,7 @@ TEST(SubmissionFailures, SbatchMissingFromPathIsAClearError) {
 
 TEST(SubmissionFailures, AHangingSbatchOrBsubIsStoppedAtTheTimeout) {
   ScratchDir dir;
-  EnvGuard path{"PATH", path_with(HANG_SIMULATOR_DIR)};
+  EnvGuard path{"PATH", path_with(test_paths::hang_simulator())};
   EnvGuard timeout{"GEOTANDEM_SCHEDULER_COMMAND_TIMEOUT", "3"};
   for (const std::string backend : {"slurm", "lsf"}) {
     const auto start = std::chrono::steady_clock::now();

@@ -10,6 +10,7 @@
 #include <zmq.h>
 
 #include "cluster_run.hpp"
+#include "test_paths.hpp"
 
 namespace geotandem::testing {
 namespace {
@@ -48,8 +49,8 @@ struct TwoHosts : ::testing::Test {
       ASSERT_EQ(sh(c), 0) << c;
     // bsub that submits into the workers' namespace: the stand-in's jobs then run there.
     fs::create_directories(dir.file("bin"));
-    std::ofstream(dir.file("bin/bsub")) << "#!/bin/sh\nexec ip netns exec " << ns_workers << " '" << LSF_STANDIN_DIR
-                                        << "/bsub' \"$@\"\n";
+    std::ofstream(dir.file("bin/bsub")) << "#!/bin/sh\nexec ip netns exec " << ns_workers << " '"
+                                        << test_paths::lsf_standin() << "/bsub' \"$@\"\n";
     fs::permissions(dir.file("bin/bsub"), fs::perms::owner_all);
   }
   void TearDown() override {
@@ -72,10 +73,10 @@ TEST_F(TwoHosts, WorkersInTheOtherNamespaceRunWithCurveAndWrongKeysAreRefused) {
   auto r = run_geotandem("-q" + shell_args(cluster_args(reference, "local", 1)));
   ASSERT_EQ(r.exit_code, 0) << r.err;
 
-  EnvGuard path{"PATH", dir.file("bin") + ":" + path_with(LSF_STANDIN_DIR)};
+  EnvGuard path{"PATH", dir.file("bin") + ":" + path_with(test_paths::lsf_standin())};
   EnvGuard state{"LSF_STANDIN_DIR", dir.file("lsf-state")};
   const std::string out = dir.file("run"), log = dir.file("manager.log");
-  std::vector<std::string> args{GEOTANDEM_BINARY};
+  std::vector<std::string> args{test_paths::binary()};
   for (const std::string& a : cluster_args(out, "lsf", 2))
     args.push_back(a);
   args.insert(args.end(), {"--bind", manager_ip});
@@ -115,10 +116,10 @@ TEST_F(TwoHosts, WorkersInTheOtherNamespaceRunWithCurveAndWrongKeysAreRefused) {
   pid_t wrong = 0, plain = 0;
   {
     EnvGuard key{"GEOTANDEM_CURVE_KEY_FILE", dir.file("wrong.key")};
-    wrong = spawn_in(ns_workers, {GEOTANDEM_BINARY, "worker", "--connect", endpoint, "--token", "intruder"},
+    wrong = spawn_in(ns_workers, {test_paths::binary(), "worker", "--connect", endpoint, "--token", "intruder"},
                      dir.file("wrong.log"));
   }
-  plain = spawn_in(ns_workers, {GEOTANDEM_BINARY, "worker", "--connect", endpoint, "--token", "plain"},
+  plain = spawn_in(ns_workers, {test_paths::binary(), "worker", "--connect", endpoint, "--token", "plain"},
                    dir.file("plain.log"));
   EXPECT_TRUE(wait_for_text(log, "is not this run's", manager, 120)) << read_text(log);
   EXPECT_TRUE(wait_for_text(log, "did not use CURVE", manager, 120)) << read_text(log);

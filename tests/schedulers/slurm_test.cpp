@@ -9,6 +9,7 @@
 #include "geotandem/schedulers/replacement_policy.hpp"
 #include "geotandem/schedulers/slurm_scheduler.hpp"
 #include "scratch.hpp"
+#include "test_paths.hpp"
 
 using namespace geotandem::schedulers;
 using namespace geotandem::testing;
@@ -171,7 +172,7 @@ TEST_F(Slurm, SbatchMissingFromPathIsAClearError) {
 }
 
 TEST_F(Slurm, HangingSbatchIsAClearErrorWithinABoundedTime) {
-  EnvGuard hang_path("PATH", path_with(HANG_SIMULATOR_DIR));
+  EnvGuard hang_path("PATH", path_with(test_paths::hang_simulator()));
   SchedulerOptions options;
   // Long enough for the simulator to have printed its line even on a loaded CI machine.
   options.command_timeout = 5s;

@@ -19,6 +19,7 @@
 #include "geotandem/mesh/measure.hpp"
 #include "geotandem/store/store.hpp"
 #include "scratch.hpp"
+#include "test_paths.hpp"
 
 extern char** environ;
 
@@ -35,8 +36,8 @@ struct Writer {
 };
 
 Writer spawn_writer(const std::filesystem::path& dir, std::uint64_t seed, std::size_t batch) {
-  std::vector<std::string> args = {STORE_CRASH_WRITER, dir.string(), std::to_string(seed), std::to_string(batch),
-                                   std::to_string(key_count)};
+  std::vector<std::string> args = {test_paths::store_crash_writer(), dir.string(), std::to_string(seed),
+                                   std::to_string(batch), std::to_string(key_count)};
   std::vector<char*> argv;
   for (auto& a : args)
     argv.push_back(a.data());

@@ -11,6 +11,7 @@
 #include "geotandem/store/local_sink.hpp"
 #include "geotandem/store/store.hpp"
 #include "scratch.hpp"
+#include "test_paths.hpp"
 
 namespace geotandem::store {
 namespace {
@@ -89,7 +90,7 @@ class QueryTest : public ::testing::Test {
 protected:
   // One store for the suite, in a directory of its own: CTest may run the cases as parallel processes.
   static void SetUpTestSuite() {
-    dir_ = std::filesystem::path(GEOTANDEM_TEST_SCRATCH) / ("QueryTest-" + std::to_string(::getpid()));
+    dir_ = std::filesystem::path(test_paths::scratch()) / ("QueryTest-" + std::to_string(::getpid()));
     std::filesystem::remove_all(dir_);
     store_ = new ComponentStore(ComponentStore::create(dir_, test_geometry()));
     LocalSink sink(*store_, {"local", std::nullopt, 64});

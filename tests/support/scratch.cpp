@@ -4,6 +4,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include "test_paths.hpp"
 #include <cstdio>
 #include <fstream>
 #include <sstream>
@@ -25,7 +26,7 @@ ScratchDir::ScratchDir() {
   std::string name = info ? std::string(info->test_suite_name()) + "." + info->name() : "scratch";
   for (char& c : name)
     if (c == '/' || c == ' ') c = '_';
-  path_ = std::filesystem::path(GEOTANDEM_TEST_SCRATCH) / name;
+  path_ = std::filesystem::path(test_paths::scratch()) / name;
   std::filesystem::remove_all(path_);
   std::filesystem::create_directories(path_);
 }
@@ -39,10 +40,10 @@ ScratchDir::~ScratchDir() {
 
 CommandResult run_geotandem(const std::string& args) {
   static int counter = 0;
-  auto base = std::filesystem::path(GEOTANDEM_TEST_SCRATCH) /
+  auto base = std::filesystem::path(test_paths::scratch()) /
               ("cmd-" + std::to_string(::getpid()) + "-" + std::to_string(counter++));
   std::filesystem::create_directories(base.parent_path());
-  std::string command = std::string("\"") + GEOTANDEM_BINARY + "\" " + args + " >" + base.string() + ".out 2>" +
+  std::string command = std::string("\"") + test_paths::binary() + "\" " + args + " >" + base.string() + ".out 2>" +
                         base.string() + ".err </dev/null";
   int status = std::system(command.c_str());
   CommandResult result;

@@ -13,6 +13,7 @@
 #include "geotandem/core/error.hpp"
 #include "geotandem/volume/volume.hpp"
 #include "geotandem/workflow/registry.hpp"
+#include "test_paths.hpp"
 
 using namespace geotandem;
 using namespace geotandem::workflow;
@@ -20,7 +21,7 @@ using namespace geotandem::workflow;
 namespace {
 
 std::string plugin_file(const std::string& name) {
-  return std::string(TEST_PLUGIN_DIR) + "/" + name + "/geotandem_" + name + ".so";
+  return test_paths::plugins() + "/" + name + "/geotandem_" + name + ".so";
 }
 
 std::shared_ptr<volume::MemoryVolume> wave(volume::Index3 shape) {

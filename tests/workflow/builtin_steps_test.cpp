@@ -18,6 +18,7 @@
 #include "geotandem/workflow/registry.hpp"
 #include "geotandem/workflow/report.hpp"
 #include "scratch.hpp"
+#include "test_paths.hpp"
 
 using namespace geotandem;
 using namespace geotandem::workflow;
@@ -39,7 +40,7 @@ class BuiltinSteps : public ::testing::Test {
 protected:
   void SetUp() override {
     builtin::register_builtins(registry);
-    registry.load_library(std::string(TEST_PLUGIN_DIR) + "/shape_filter/geotandem_shape_filter.so");
+    registry.load_library(test_paths::plugins() + "/shape_filter/geotandem_shape_filter.so");
     synth::AnalyticOptions o;
     o.shape = {40, 40, 40};
     o.seed = 4;

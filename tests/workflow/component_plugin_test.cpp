@@ -14,6 +14,7 @@
 #include "geotandem/workflow/recipe.hpp"
 #include "geotandem/workflow/registry.hpp"
 #include "scratch.hpp"
+#include "test_paths.hpp"
 
 using namespace geotandem;
 using namespace geotandem::workflow;
@@ -21,7 +22,7 @@ using namespace geotandem::workflow;
 namespace {
 
 std::string plugin_file(const std::string& name) {
-  return std::string(TEST_PLUGIN_DIR) + "/" + name + "/geotandem_" + name + ".so";
+  return test_paths::plugins() + "/" + name + "/geotandem_" + name + ".so";
 }
 
 // A closed tetrahedron (4 triangles) or octahedron (8) with the given key.

@@ -10,6 +10,7 @@
 #include <thread>
 
 #include "e2e_support.hpp"
+#include "test_paths.hpp"
 
 namespace fs = std::filesystem;
 using namespace geotandem;
@@ -46,7 +47,7 @@ TEST(WorkflowExecution, SlurmRecipeRunsWithLocalWorkersAndSaysSo) {
 TEST(WorkflowExecution, CustomAttributeRecipeRunsWithTheExamplePlugin) {
   ScratchDir dir;
   fs::path out = dir.path() / "out";
-  ::setenv("GEOTANDEM_PLUGIN_PATH", TEST_PLUGIN_DIR "/avg_abs_amplitude", 1);
+  ::setenv("GEOTANDEM_PLUGIN_PATH", (test_paths::plugins() + "/avg_abs_amplitude").c_str(), 1);
   auto run = run_workflow(workflow_recipe("custom_attribute.yaml"), out, {"input.synthetic.shape=[64, 64, 48]"});
   ::unsetenv("GEOTANDEM_PLUGIN_PATH");
   ASSERT_EQ(run.command.exit_code, 0) << run.command.err;

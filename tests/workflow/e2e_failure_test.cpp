@@ -9,6 +9,7 @@
 #include <set>
 
 #include "e2e_support.hpp"
+#include "test_paths.hpp"
 
 namespace fs = std::filesystem;
 using namespace geotandem;
@@ -49,7 +50,10 @@ std::string write_recipe(const ScratchDir& dir, const std::string& plugin, bool 
 
 class PluginPath {
 public:
-  PluginPath() { ::setenv("GEOTANDEM_PLUGIN_PATH", TEST_PLUGIN_DIR "/failing:" TEST_PLUGIN_DIR "/boxsum", 1); }
+  PluginPath() {
+    ::setenv("GEOTANDEM_PLUGIN_PATH", (test_paths::plugins() + "/failing:" + test_paths::plugins() + "/boxsum").c_str(),
+             1);
+  }
   ~PluginPath() { ::unsetenv("GEOTANDEM_PLUGIN_PATH"); }
 };
 

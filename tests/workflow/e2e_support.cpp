@@ -2,6 +2,7 @@
 
 #include <sys/resource.h>
 
+#include "test_paths.hpp"
 #include <chrono>
 #include <cmath>
 #include <fstream>
@@ -50,7 +51,7 @@ WorkflowRun run_workflow(const std::string& recipe, const std::filesystem::path&
 }
 
 std::string workflow_recipe(const std::string& name) {
-  return std::string(GEOTANDEM_WORKFLOWS_DIR) + "/" + name;
+  return test_paths::workflows() + "/" + name;
 }
 
 nlohmann::json read_json(const std::filesystem::path& path) {

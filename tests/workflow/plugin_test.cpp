@@ -7,6 +7,7 @@
 #include "geotandem/core/error.hpp"
 #include "geotandem/volume/volume.hpp"
 #include "geotandem/workflow/registry.hpp"
+#include "test_paths.hpp"
 
 using namespace geotandem;
 using namespace geotandem::workflow;
@@ -14,7 +15,7 @@ using namespace geotandem::workflow;
 namespace {
 
 std::string plugin_file(const std::string& name) {
-  return std::string(TEST_PLUGIN_DIR) + "/" + name + "/geotandem_" + name + ".so";
+  return test_paths::plugins() + "/" + name + "/geotandem_" + name + ".so";
 }
 
 std::shared_ptr<volume::MemoryVolume> ramp(volume::Index3 shape) {
@@ -106,7 +107,7 @@ TEST(PluginLoader, MissingEntryPointIsAClearError) {
 
 TEST(PluginLoader, NotALibraryIsAClearError) {
   PluginRegistry registry;
-  EXPECT_THROW(registry.load_library(std::string(TEST_PLUGIN_DIR) + "/nonexistent/geotandem_x.so"), FormatError);
+  EXPECT_THROW(registry.load_library(test_paths::plugins() + "/nonexistent/geotandem_x.so"), FormatError);
 }
 
 TEST(PluginLoader, PluginFailureCarriesItsMessage) {
@@ -127,7 +128,7 @@ TEST(PluginLoader, DiscoverySkipsBrokenLibrariesAndExplainsThemOnUse) {
   PluginRegistry registry;
   std::ostringstream log_text;
   Logger log(log_text, LogLevel::warning);
-  std::string dir = TEST_PLUGIN_DIR;
+  std::string dir = test_paths::plugins();
   registry.discover(dir + "/boxsum:" + dir + "/oldabi:" + dir + "/does-not-exist", log);
   EXPECT_NE(registry.find("boxsum"), nullptr);
   EXPECT_NE(log_text.str().find("oldabi"), std::string::npos) << log_text.str();

@@ -5,6 +5,7 @@
 #include "geotandem/core/error.hpp"
 #include "geotandem/workflow/builtin_steps.hpp"
 #include "geotandem/workflow/recipe.hpp"
+#include "test_paths.hpp"
 
 using namespace geotandem;
 using namespace geotandem::workflow;
@@ -39,7 +40,7 @@ class Recipes : public ::testing::Test {
 protected:
   void SetUp() override {
     register_builtin_steps(registry);
-    registry.load_library(std::string(TEST_PLUGIN_DIR) + "/boxsum/geotandem_boxsum.so");
+    registry.load_library(test_paths::plugins() + "/boxsum/geotandem_boxsum.so");
   }
 
   // Parses `text`, expects an InvalidArgument and returns its message.

@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "scratch.hpp"
+#include "test_paths.hpp"
 
 namespace fs = std::filesystem;
 using geotandem::testing::run_geotandem;
@@ -20,7 +21,7 @@ namespace {
 
 std::vector<fs::path> recipes() {
   std::vector<fs::path> found;
-  for (const auto& entry : fs::directory_iterator(GEOTANDEM_WORKFLOWS_DIR))
+  for (const auto& entry : fs::directory_iterator(test_paths::workflows()))
     if (entry.path().extension() == ".yaml" || entry.path().extension() == ".yml") found.push_back(entry.path());
   std::sort(found.begin(), found.end());
   return found;
@@ -29,7 +30,7 @@ std::vector<fs::path> recipes() {
 // Only the example plugin's directory, so that a stray plugin elsewhere cannot make a recipe pass.
 class PluginPath {
 public:
-  PluginPath() { ::setenv("GEOTANDEM_PLUGIN_PATH", TEST_PLUGIN_DIR "/avg_abs_amplitude", 1); }
+  PluginPath() { ::setenv("GEOTANDEM_PLUGIN_PATH", (test_paths::plugins() + "/avg_abs_amplitude").c_str(), 1); }
   ~PluginPath() { ::unsetenv("GEOTANDEM_PLUGIN_PATH"); }
 };
 
@@ -40,7 +41,7 @@ TEST(WorkflowRecipes, TheDocumentedRecipesAreAllThere) {
   for (const auto& r : recipes())
     names.insert(r.filename().string());
   for (const char* expected : {"quickstart.yaml", "segy_chaos.yaml", "slurm.yaml", "custom_attribute.yaml"})
-    EXPECT_TRUE(names.count(expected)) << expected << " is missing from " << GEOTANDEM_WORKFLOWS_DIR;
+    EXPECT_TRUE(names.count(expected)) << expected << " is missing from " << test_paths::workflows();
 }
 
 TEST(WorkflowRecipes, EveryRecipeValidates) {
@@ -55,32 +56,32 @@ TEST(WorkflowRecipes, EveryRecipeValidates) {
 }
 
 TEST(WorkflowRecipes, SegyPlaceholderIsReplacedWithSet) {
-  auto r = run_geotandem("validate '" + std::string(GEOTANDEM_WORKFLOWS_DIR) +
-                         "/segy_chaos.yaml' --set input.file=/data/survey.sgy");
+  auto r =
+      run_geotandem("validate '" + test_paths::workflows() + "/segy_chaos.yaml' --set input.file=/data/survey.sgy");
   EXPECT_EQ(r.exit_code, 0) << r.err;
 }
 
 TEST(WorkflowRecipes, SlurmRecipeKeepsItsExecutionSection) {
-  auto r = run_geotandem("validate '" + std::string(GEOTANDEM_WORKFLOWS_DIR) + "/slurm.yaml'");
+  auto r = run_geotandem("validate '" + test_paths::workflows() + "/slurm.yaml'");
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_NE(r.out.find("scheduler slurm with 8 worker(s)"), std::string::npos) << r.out;
   // A wrong resource is an error with the recipe's line and column.
-  auto bad = run_geotandem("validate '" + std::string(GEOTANDEM_WORKFLOWS_DIR) +
-                           "/slurm.yaml' --set execution.resources.memory=lots");
+  auto bad =
+      run_geotandem("validate '" + test_paths::workflows() + "/slurm.yaml' --set execution.resources.memory=lots");
   EXPECT_NE(bad.exit_code, 0);
   EXPECT_NE(bad.err.find("memory 'lots'"), std::string::npos) << bad.err;
 }
 
 TEST(WorkflowRecipes, CustomAttributeRecipeNeedsItsPlugin) {
   ::unsetenv("GEOTANDEM_PLUGIN_PATH");
-  auto r = run_geotandem("validate '" + std::string(GEOTANDEM_WORKFLOWS_DIR) + "/custom_attribute.yaml'");
+  auto r = run_geotandem("validate '" + test_paths::workflows() + "/custom_attribute.yaml'");
   EXPECT_NE(r.exit_code, 0);
   EXPECT_NE(r.err.find("avg_abs_amplitude"), std::string::npos) << r.err;
 }
 
 TEST(WorkflowRecipes, ValidateRefusesWhatExtractionWouldRefuseAndDryRunWritesNothing) {
   geotandem::testing::ScratchDir dir;
-  const std::string quickstart = std::string(GEOTANDEM_WORKFLOWS_DIR) + "/quickstart.yaml";
+  const std::string quickstart = test_paths::workflows() + "/quickstart.yaml";
   // block_size 4 used to pass validate and fail when extraction started.
   auto small = run_geotandem("validate '" + quickstart + "' --set steps.extract.block_size=4");
   EXPECT_EQ(small.exit_code, 2) << small.err;

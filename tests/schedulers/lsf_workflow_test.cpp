@@ -4,6 +4,10 @@
 // command, within a bounded time, and leave the output directory usable.
 #include <signal.h>
 
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+
 #include "cluster_run.hpp"
 #include "test_paths.hpp"
 
@@ -16,8 +20,12 @@ struct LsfRun : ::testing::Test {
   EnvGuard path{"PATH", path_with(test_paths::lsf_standin())};
   EnvGuard state{"LSF_STANDIN_DIR", dir.file("lsf-state")};
 
+  double reference_s = 0; // the reference run's wall time
+
   void SetUp() override {
+    const auto t0 = std::chrono::steady_clock::now();
     const auto r = run_geotandem("-q" + shell_args(cluster_args(reference, "local", 1)));
+    reference_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     ASSERT_EQ(r.exit_code, 0) << r.err;
   }
 };
@@ -46,15 +54,20 @@ TEST_F(LsfRun, ABkilledWorkerJobIsReplacedAndTheRunCompletes) {
   expect_same_components(reference + "/store", out + "/store");
 }
 
-// Worker jobs with a 5 s walltime (execution.resources.walltime, which the launcher exports to them
-// as GEOTANDEM_WALLTIME_SECONDS) and a margin of 3 s retire 2 s after they start: each hands its
-// surface to another worker and a replacement job is submitted as it retires; the run ends with the
-// components of the in-process run.
+// Worker jobs with a short walltime (execution.resources.walltime, which the launcher exports to
+// them as GEOTANDEM_WALLTIME_SECONDS) and a margin of 3 s retire soon after they start: each hands
+// its surface to another worker and a replacement job is submitted as it retires; the run ends with
+// the components of the in-process run. A job's working time is 2 s plus the whole reference run's
+// time, so that the largest single task (the last merges) fits in one job on a slow or loaded
+// machine too; with a fixed 2 s, every job retired before finishing the last merge, forever.
 TEST_F(LsfRun, WorkerJobsNearTheirWalltimeHandBackTheirSurfacesAndAreReplaced) {
   EnvGuard margin{"GEOTANDEM_WALLTIME_MARGIN_SECONDS", "3"};
   const std::string out = dir.file("walltime");
+  const int walltime_s = 3 + 2 + static_cast<int>(std::ceil(reference_s));
+  char walltime[32];
+  std::snprintf(walltime, sizeof walltime, "%02d:%02d:%02d", walltime_s / 3600, walltime_s / 60 % 60, walltime_s % 60);
   auto args = cluster_args(out, "lsf", 2);
-  args.insert(args.end(), {"--set", "execution.resources.walltime=00:00:05"});
+  args.insert(args.end(), {"--set", std::string("execution.resources.walltime=") + walltime});
   const auto r = run_geotandem(shell_args(args));
   ASSERT_EQ(r.exit_code, 0) << r.err;
   if (r.err.find(" retires (") == std::string::npos)

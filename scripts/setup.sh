@@ -3,7 +3,7 @@
 # Usage: scripts/setup.sh [PRESET ...]   (default preset: release)
 # libjs-three: three.js, inlined into run reports for the 3-D view of the bodies; chromium: the
 # headless browser the report test draws that view with. ccache: a rebuild, or a build of the same
-# commit in another clone, reuses the objects already compiled (GEOTANDEM_CCACHE=OFF turns it off).
+# commit in another clone, reuses the objects already compiled (cmake -DGEOTANDEM_CCACHE=OFF turns it off).
 # Environment: GEOTANDEM_SKIP_APT=1 skips the package step (for machines that already have them).
 set -euo pipefail
 here="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"

@@ -89,7 +89,7 @@ TEST(Workers, OneTwoAndFourWorkersGiveTheComponentsOfTheInProcessRun) {
 // chain rebuilt and fused block by block in 2 and 3 workers, against the in-process run.
 TEST(Workers, ARecipesAttributeChainRunsInTheWorkers) {
   ScratchDir dir;
-  const std::string recipe = test_paths::source() + "/workflows/quickstart.yaml";
+  const std::string recipe = test_paths::workflows() + "/quickstart.yaml";
   const std::string small = " --set 'input.synthetic.shape=[64,64,48]' --set steps.extract.block_size=16";
   auto r = run_geotandem("-q run-workflow '" + recipe + "' --set output.directory='" + dir.file("w1") + "'" + small);
   ASSERT_EQ(r.exit_code, 0) << r.err;

@@ -50,7 +50,7 @@ inline std::string path_with(const std::string& dir) {
 }
 
 inline std::string quickstart() {
-  return test_paths::source() + "/workflows/quickstart.yaml";
+  return test_paths::workflows() + "/quickstart.yaml";
 }
 
 // The quickstart recipe on a 96x96x64 cube in leaves of 8 cells (several seconds of work for two

@@ -233,7 +233,6 @@ TEST(Manager, SurfacesOverTheSizeCapAreDroppedNotACrash) {
   run.options.max_restarts = 2;
   run.options.max_surface = 2048;
   run.options.settings.chunk_bytes = 512;
-  run.options.connect_timeout = std::chrono::milliseconds(3000);
   LocalLauncher launcher;
   std::ostringstream text;
   Logger log(text, LogLevel::info);
@@ -242,8 +241,30 @@ TEST(Manager, SurfacesOverTheSizeCapAreDroppedNotACrash) {
   EXPECT_NE(text.str().find("past the cap of 2048 bytes"), std::string::npos) << text.str();
   EXPECT_NE(text.str().find("sent a damaged partial surface"), std::string::npos) << text.str();
   if (!error.empty()) {
-    EXPECT_NE(error.find("no worker connected"), std::string::npos) << error;
+    EXPECT_NE(error.find("every worker died"), std::string::npos) << error;
   }
+  EXPECT_EQ(launcher.running(), 0u);
+}
+
+// Once the last worker died and no replacement may start, the run ends with that reason at
+// once; before, it waited out the connect timeout (half an hour under a scheduler) and then
+// blamed the network.
+TEST(Manager, WorkersDeadPastTheRestartLimitEndTheRunAtOnceSayingWhy) {
+  ManagerRun run("48 44 40");
+  run.options.workers = 2;
+  run.options.max_restarts = 1;
+  run.options.lease = std::chrono::milliseconds(1); // each worker is soon found silent, and dropped
+  run.options.connect_timeout = std::chrono::minutes(30);
+  LocalLauncher launcher;
+  std::ostringstream text;
+  Logger log(text, LogLevel::info);
+  Manager manager(run.options, *run.store, &launcher, log, run.progress, run.cancel);
+  const std::string error = message_of([&] { manager.run(); });
+  EXPECT_NE(error.find("every worker died, and the limit of 1 replacement workers is reached"), std::string::npos)
+      << error << "\n"
+      << text.str();
+  EXPECT_NE(error.find("a rerun of the same command resumes"), std::string::npos) << error;
+  EXPECT_NE(text.str().find("has been silent"), std::string::npos) << text.str();
   EXPECT_EQ(launcher.running(), 0u);
 }
 

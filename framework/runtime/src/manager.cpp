@@ -55,6 +55,9 @@ void Manager::Impl::kill_peer(const std::string& token, const std::string& why) 
 }
 
 void Manager::Impl::heartbeats() {
+  // Asked before ended(), so that every worker it no longer counts is handled below first.
+  const bool exhausted = launcher && peers.empty() && !schedule.complete() && report.restarts >= options.max_restarts &&
+                         launcher->running() == 0;
   if (launcher)
     for (const std::string& token : launcher->ended()) {
       if (peers.count(token)) {
@@ -70,6 +73,14 @@ void Manager::Impl::heartbeats() {
         launch_one();
       }
     }
+  // Every worker died and no replacement may start: nothing can connect any more, and waiting out
+  // the connect timeout (half an hour under a scheduler) would only delay this error.
+  if (exhausted && peers.empty())
+    throw Error("every worker died, and the limit of " + std::to_string(options.max_restarts) +
+                    " replacement workers is reached",
+                {},
+                "see the log above for why each worker died; the finished blocks are in the store, and a rerun "
+                "of the same command resumes from them");
   const auto now = Clock::now();
   std::vector<std::string> silent;
   for (auto& [token, p] : peers)

@@ -1,9 +1,11 @@
 #include "geotandem/tandem/region.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 #include <tuple>
+#include <unordered_map>
 #include <utility>
 
 #include "geotandem/core/error.hpp"
@@ -76,8 +78,18 @@ Region::Region(const volume::Box& cube_cells, std::vector<volume::Box> blocks)
 
 void Region::compute_open_faces() {
   open_faces_.clear();
+  // The boxes whose low (high) face lies on each plane of each axis, in the order of blocks_: only
+  // those can cover a face of another box. A worker's region may hold thousands of leaves, and
+  // looking at every other box for every face cost O(n^2).
+  std::array<std::unordered_map<std::int64_t, std::vector<std::size_t>>, 3> low_faces, high_faces;
+  for (std::size_t n = 0; n < blocks_.size(); ++n)
+    for (std::size_t axis = 0; axis < 3; ++axis) {
+      low_faces[axis][blocks_[n].lo[axis]].push_back(n);
+      high_faces[axis][blocks_[n].hi[axis]].push_back(n);
+    }
   std::vector<Rect> pieces, next;
-  for (const volume::Box& b : blocks_) {
+  for (std::size_t i = 0; i < blocks_.size(); ++i) {
+    const volume::Box& b = blocks_[i];
     for (int axis = 0; axis < 3; ++axis) {
       int u = 0, v = 0;
       other_axes(axis, u, v);
@@ -88,16 +100,19 @@ void Region::compute_open_faces() {
         pieces.assign(1, Rect{static_cast<double>(b.lo[u]), static_cast<double>(b.hi[u]), static_cast<double>(b.lo[v]),
                               static_cast<double>(b.hi[v])});
         // Parts covered by a block of the region on the other side are interior, not open.
-        for (const volume::Box& c : blocks_) {
-          const bool touches = side == 0 ? c.hi[axis] == plane : c.lo[axis] == plane;
-          if (&c == &b || !touches) continue;
-          const Rect cover{static_cast<double>(c.lo[u]), static_cast<double>(c.hi[u]), static_cast<double>(c.lo[v]),
-                           static_cast<double>(c.hi[v])};
-          next.clear();
-          for (const Rect& r : pieces)
-            subtract(r, cover, next);
-          pieces.swap(next);
-        }
+        const auto& facing = (side == 0 ? high_faces : low_faces)[static_cast<std::size_t>(axis)];
+        const auto touching = facing.find(plane);
+        if (touching != facing.end())
+          for (std::size_t n : touching->second) {
+            if (n == i) continue;
+            const volume::Box& c = blocks_[n];
+            const Rect cover{static_cast<double>(c.lo[u]), static_cast<double>(c.hi[u]), static_cast<double>(c.lo[v]),
+                             static_cast<double>(c.hi[v])};
+            next.clear();
+            for (const Rect& r : pieces)
+              subtract(r, cover, next);
+            pieces.swap(next);
+          }
         for (const Rect& r : pieces)
           open_faces_.push_back(OpenFace{axis, static_cast<double>(plane), {r.lo0, r.lo1}, {r.hi0, r.hi1}});
       }

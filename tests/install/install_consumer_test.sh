@@ -7,7 +7,9 @@
 #   4. `geotandem validate` accepts the example recipe, and a wrong parameter of the plugin is
 #      reported with its name, the recipe's line and column, and the nearest valid name;
 #   5. `geotandem run-workflow` runs the example recipe and its store holds components computed
-#      from the plugin's attribute.
+#      from the plugin's attribute;
+#   6. the installed geotandem writes and reads a netCDF-4 cube (the GDAL module, loaded on first use,
+#      is installed beside the libraries).
 # Usage: install_consumer_test.sh CMAKE BUILD_DIR EXAMPLE_SOURCE_DIR
 set -euo pipefail
 
@@ -96,5 +98,14 @@ out=$("$geotandem" store ls "$store" 2>&1) || fail "store ls failed: $out"
 expect_in "$out" "# $components of $components components" "store ls"
 out=$("$geotandem" store runs "$store" 2>&1) || fail "store runs failed: $out"
 expect_in "$out" "\"source\":\"$plugin(" "store runs (the extraction read the plugin's attribute)"
+
+echo "install_consumer: the installed geotandem writes and reads netCDF-4 through the installed GDAL module"
+module=$prefix/lib/libgeotandem_volume_gdal.so
+[[ -f $module ]] || fail "the GDAL module is not installed at $module"
+cube=$run/cube.nc
+out=$(cd "$run" && "$geotandem" synth --shape 40 40 40 --out "$cube" 2>&1) || fail "synth to netCDF-4 failed: $out"
+out=$("$geotandem" info "$cube" 2>&1) || fail "info on the netCDF-4 cube failed: $out"
+expect_in "$out" "format:     netCDF-4" "info"
+expect_in "$out" "40 inlines x 40 crosslines x 40 samples" "info"
 
 echo "install_consumer: passed"

@@ -17,7 +17,9 @@ enum class Format { netcdf, hdf5, zarr, geotiff, envi, segy, raw, unknown };
 Format sniff_format(const std::string& path);
 const char* format_name(Format format);
 
-// GDAL multidimensional API: netCDF-4, HDF5 (read only), Zarr. (gdal_md.cpp)
+// GDAL multidimensional API: netCDF-4, HDF5 (read only), Zarr. These and the two GDAL raster
+// functions below forward to the GDAL module, loaded on first use (gdal_module.hpp, gdal_loader.cpp);
+// the readers and writers themselves are gdal_md.cpp, gdal_md_write.cpp and gdal_raster*.cpp.
 std::unique_ptr<Volume> open_gdal_md(const std::string& path, Format format, const OpenOptions& options);
 // open_gdal_dataset without the NaN guard and the geometry check.
 std::unique_ptr<Volume> open_gdal_dataset(GDALDataset* dataset, const std::string& name, const OpenOptions& options);
@@ -25,7 +27,7 @@ void write_gdal_md(const Volume& volume, const std::string& path, Format format,
                    Progress& progress, const CancelToken& cancel);
 
 // GDAL classic rasters, GeoTIFF and ENVI: time-slice stacks (band = sample), or inline slices in
-// files geotandem wrote. (gdal_raster.cpp; writer: gdal_raster_write.cpp)
+// files geotandem wrote.
 std::unique_ptr<Volume> open_gdal_raster(const std::string& path, Format format, const OpenOptions& options);
 void write_geotiff(const Volume& volume, const std::string& path, const WriteOptions& options, Progress& progress,
                    const CancelToken& cancel);

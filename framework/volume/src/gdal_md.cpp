@@ -6,6 +6,7 @@
 #include "formats.hpp"
 #include "gdal_common.hpp"
 #include "gdal_md_inspect.hpp"
+#include "gdal_module.hpp"
 #include "geotandem/core/error.hpp"
 
 namespace geotandem::volume::detail {
@@ -105,14 +106,15 @@ std::unique_ptr<Volume> volume_of(gdal::DatasetPtr dataset, const std::string& p
 
 } // namespace
 
-std::unique_ptr<Volume> open_gdal_md(const std::string& path, Format format, const OpenOptions& options) {
+std::unique_ptr<Volume> gdal::open_md(const std::string& path, Format format, const OpenOptions& options) {
   const char* driver = driver_of(format);
   if (!driver) throw InvalidArgument(std::string("not a multidimensional format: ") + format_name(format), {path});
   return volume_of(gdal::open_dataset(path, GDAL_OF_MULTIDIM_RASTER, driver, format_name(format)), path, format,
                    options);
 }
 
-std::unique_ptr<Volume> open_gdal_dataset(GDALDataset* dataset, const std::string& name, const OpenOptions& options) {
+std::unique_ptr<Volume> gdal::open_md_dataset(GDALDataset* dataset, const std::string& name,
+                                              const OpenOptions& options) {
   gdal::DatasetPtr owned(dataset);
   if (!owned) throw InvalidArgument("no GDAL dataset given", {name});
   return volume_of(std::move(owned), name, Format::netcdf, options);

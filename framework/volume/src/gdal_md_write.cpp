@@ -7,6 +7,7 @@
 
 #include "formats.hpp"
 #include "gdal_common.hpp"
+#include "gdal_module.hpp"
 #include "geotandem/core/error.hpp"
 
 namespace geotandem::volume::detail {
@@ -106,8 +107,8 @@ void create(Output& out, const Volume& volume, const std::string& path, Format f
 
 } // namespace
 
-void write_gdal_md(const Volume& volume, const std::string& path, Format format, const WriteOptions& options,
-                   Progress& progress, const CancelToken& cancel) {
+void gdal::write_md(const Volume& volume, const std::string& path, Format format, const WriteOptions& options,
+                    Progress& progress, const CancelToken& cancel) {
   if (format != Format::netcdf && format != Format::zarr)
     throw InvalidArgument(std::string("geotandem cannot write ") + format_name(format) + " through GDAL", {path},
                           "write netCDF-4 (.nc) or Zarr (.zarr)");

@@ -16,6 +16,7 @@
 
 #include "formats.hpp"
 #include "gdal_common.hpp"
+#include "gdal_module.hpp"
 #include "geotandem/core/error.hpp"
 
 namespace geotandem::volume::detail {
@@ -162,7 +163,7 @@ Geometry geometry_of(GDALDataset& dataset, RasterLayout layout, const std::strin
 
 } // namespace
 
-std::unique_ptr<Volume> open_gdal_raster(const std::string& path, Format format, const OpenOptions&) {
+std::unique_ptr<Volume> gdal::open_raster(const std::string& path, Format format, const OpenOptions&) {
   const char* driver = format == Format::geotiff ? "GTiff" : format == Format::envi ? "ENVI" : nullptr;
   if (!driver) throw InvalidArgument(std::string("not a classic raster format: ") + format_name(format), {path});
   gdal::DatasetPtr dataset = gdal::open_dataset(path, GDAL_OF_RASTER, driver, format_name(format));

@@ -10,6 +10,7 @@
 
 #include "formats.hpp"
 #include "gdal_common.hpp"
+#include "gdal_module.hpp"
 #include "geotandem/core/error.hpp"
 
 namespace geotandem::volume::detail {
@@ -27,8 +28,8 @@ int tile_edge(int chunk) {
 
 } // namespace
 
-void write_geotiff(const Volume& volume, const std::string& path, const WriteOptions& options, Progress& progress,
-                   const CancelToken& cancel) {
+void gdal::write_geotiff(const Volume& volume, const std::string& path, const WriteOptions& options, Progress& progress,
+                         const CancelToken& cancel) {
   const Geometry& g = volume.geometry();
   constexpr auto int_max = static_cast<std::int64_t>(std::numeric_limits<int>::max());
   if (g.shape[0] > 65535 || g.shape[1] > int_max || g.shape[2] > int_max)

@@ -249,8 +249,12 @@ TEST(Manager, SurfacesOverTheSizeCapAreDroppedNotACrash) {
 // Once the last worker died and no replacement may start, the run ends with that reason at
 // once; before, it waited out the connect timeout (half an hour under a scheduler) and then
 // blamed the network.
+// The cube is one leaf, whose extraction takes far longer than the manager's 100 ms poll: a worker
+// that answered every poll within the 1 ms lease would never be found silent (with many small
+// leaves, a lone fast worker did just that and finished the run).
 TEST(Manager, WorkersDeadPastTheRestartLimitEndTheRunAtOnceSayingWhy) {
-  ManagerRun run("48 44 40");
+  ManagerRun run("192 176 160");
+  run.options.settings.block_size = 256;
   run.options.workers = 2;
   run.options.max_restarts = 1;
   run.options.lease = std::chrono::milliseconds(1); // each worker is soon found silent, and dropped

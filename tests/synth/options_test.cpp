@@ -4,7 +4,9 @@
 
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <limits>
+#include <string>
 
 #include "geotandem/core/error.hpp"
 #include "geotandem/synth/synthetic.hpp"
@@ -150,6 +152,23 @@ TEST(SynthTruth, WrittenFileReadsBack) {
   write_ground_truth(cube->truth(), path);
   std::ifstream in(path);
   EXPECT_EQ(nlohmann::json::parse(in), to_json(cube->truth()));
+
+  // Written body by body, it is still the text of the whole document: with bodies, with keys after
+  // them (a seismic cube's "seismic"), and with none.
+  SeismicOptions s;
+  s.shape = {48, 48, 40};
+  GroundTruth empty = cube->truth();
+  empty.bodies.clear();
+  int written = 0;
+  for (const GroundTruth& truth : {cube->truth(), make_seismic(s)->truth(), empty}) {
+    SCOPED_TRACE("cube " + std::to_string(written));
+    const std::string file = dir.file("truth" + std::to_string(written++) + ".json");
+    write_ground_truth(truth, file);
+    std::ifstream text_in(file);
+    const std::string text((std::istreambuf_iterator<char>(text_in)), std::istreambuf_iterator<char>());
+    EXPECT_EQ(text, to_json(truth).dump(2) + "\n");
+  }
+  EXPECT_GT(cube->truth().bodies.size(), 1u);
   EXPECT_THROW(write_ground_truth(cube->truth(), dir.file("missing/dir/cube.truth.json")), IoError);
   EXPECT_EQ(truth_path_for("out/cube.zarr/"), "out/cube.zarr.truth.json");
 }

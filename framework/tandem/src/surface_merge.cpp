@@ -76,7 +76,7 @@ void WorkingSurface::Engine::absorb_state(const detail::SurfaceState& t) {
   std::vector<VH> vertex(nb);
   std::size_t next = mesh_->n_vertices();
   for (std::size_t i = 0; i < nb; ++i) {
-    const detail::VertexRecord& r = t.vertices[i];
+    const detail::StateVertex& r = t.vertices[i];
     if (r.component < 0 || static_cast<std::size_t>(r.component) >= component.size())
       throw DataError(where_ + ": vertex " + std::to_string(i) + " of the other side has no component");
     const std::int32_t j = r.lattice_id == detail::kNoLatticeId ? -1 : ids.find(r.lattice_id);
@@ -93,17 +93,12 @@ void WorkingSurface::Engine::absorb_state(const detail::SurfaceState& t) {
   mesh_->resize(next, edges_before, faces_before);
   refresh();
   for (std::size_t i = 0; i < nb; ++i) {
-    const detail::VertexRecord& r = t.vertices[i];
+    const detail::StateVertex& r = t.vertices[i];
     const VH v = vertex[i];
     const std::int32_t c = component[static_cast<std::size_t>(r.component)];
     detail::VertexRecord& w = vrec(v);
     if (static_cast<std::size_t>(v.idx()) >= first_new) {
-      w = r;
-      w.component = c;
-      w.alive = true;
-      // The face sums are rebuilt from this side's origin when the triangles go in.
-      w.isotropy = detail::Isotropy{};
-      w.cross_sum = w.link_sum = {0.0, 0.0, 0.0};
+      w = detail::vertex_record(r, c); // its face sums are added from this side's origin below
       points_[v.idx()] = detail::HalfedgeMesh::Point(t.points[i][0], t.points[i][1], t.points[i][2]);
       ++live_vertices_;
     } else {

@@ -37,16 +37,22 @@ detail::SurfaceState WorkingSurface::Engine::export_state() const {
   for (std::size_t i = 0; i < mesh_->n_vertices(); ++i) {
     if (!vrec_[i].alive) continue;
     vertex_index[i] = static_cast<std::int32_t>(s.points.size());
-    detail::VertexRecord r = vrec_[i];
+    const detail::VertexRecord& r = vrec_[i];
     const std::int32_t root = root_of(r.component);
     std::int32_t& c = component_index[static_cast<std::size_t>(root)];
     if (c < 0) {
       c = static_cast<std::int32_t>(s.component_keys.size());
       s.component_keys.push_back(components_.at(root).key);
     }
-    r.component = c;
     s.points.push_back(detail::to_vec(points_[i]));
-    s.vertices.push_back(r);
+    s.vertices.push_back({.shape = r.shape,
+                          .height = r.height,
+                          .rad = r.rad,
+                          .tolerance = r.tolerance,
+                          .lattice_id = r.lattice_id,
+                          .component = c,
+                          .version = r.version,
+                          .border = r.border});
   }
   auto vertex = [&](VH v) { return static_cast<std::uint32_t>(vertex_index[static_cast<std::size_t>(v.idx())]); };
 
@@ -118,12 +124,11 @@ void WorkingSurface::Engine::import_state(detail::SurfaceState&& s) {
   mesh_->resize(nv, 0, 0);
   refresh();
   for (std::size_t i = 0; i < nv; ++i) {
-    detail::VertexRecord r = s.vertices[i];
+    const detail::StateVertex& r = s.vertices[i];
     if (r.component < 0 || static_cast<std::size_t>(r.component) >= s.component_keys.size())
       throw DataError("working surface state: vertex " + std::to_string(i) + " belongs to component " +
                       std::to_string(r.component) + " of " + std::to_string(s.component_keys.size()));
-    r.alive = true;
-    vrec_[i] = r;
+    vrec_[i] = detail::vertex_record(r, r.component);
     const detail::Vec3& p = s.points[i];
     if (!std::isfinite(p[0]) || !std::isfinite(p[1]) || !std::isfinite(p[2]))
       throw DataError("working surface state: vertex " + std::to_string(i) + " has a non-finite position");
@@ -155,6 +160,9 @@ void WorkingSurface::Engine::import_state(detail::SurfaceState&& s) {
     erec_[i] = detail::EdgeRecord{};
     erec_[i].alive = true;
   }
+  // The vertices' sums over their triangles, which the state does not carry.
+  for (std::size_t i = 0; i < mesh_->n_faces(); ++i)
+    add_face_terms(FH(static_cast<int>(i)));
 
   // Queues: every edge that is not idle goes back to its place with its key.
   for (std::size_t i = 0; i < s.edges.size(); ++i) {

@@ -25,6 +25,36 @@ struct StateEdge {
   Pending pending;
 };
 
+// What a vertex carries in a state: its record without the sums over its current triangles
+// (isotropy, cross and link sums), which follow from the triangles and are computed again when the
+// state goes back into an engine (import_state, absorb_state). 128 bytes against the record's 216.
+struct StateVertex {
+  Quadric shape;
+  double height = 0.0;
+  double rad = 1.0;
+  double tolerance = 0.0;
+  std::uint64_t lattice_id = kNoLatticeId;
+  std::int32_t component = -1; // an index into SurfaceState::component_keys
+  std::uint32_t version = 0;
+  std::uint8_t border = 0;
+};
+static_assert(sizeof(StateVertex) == 128, "a state vertex's size is counted in docs/algorithm.md (Memory)");
+
+// A live vertex record of v in `component`, its sums over its triangles still to be added.
+inline VertexRecord vertex_record(const StateVertex& v, std::int32_t component) {
+  VertexRecord r;
+  r.shape = v.shape;
+  r.height = v.height;
+  r.rad = v.rad;
+  r.tolerance = v.tolerance;
+  r.lattice_id = v.lattice_id;
+  r.component = component;
+  r.version = v.version;
+  r.border = v.border;
+  r.alive = true;
+  return r;
+}
+
 struct SurfaceState {
   volume::Geometry cube;
   Region region;
@@ -36,8 +66,7 @@ struct SurfaceState {
   SimplifyCounters counters;
 
   std::vector<Vec3> points;
-  // Per vertex; `component` is an index into component_keys.
-  std::vector<VertexRecord> vertices;
+  std::vector<StateVertex> vertices; // per vertex
   // Oriented outward, into points; the first corner is the one the face's terms start from
   // (working_mesh.hpp, FaceRecord).
   std::vector<std::array<std::uint32_t, 3>> triangles;

@@ -75,21 +75,8 @@ SimplifyCounters get_counters(Reader& r) {
   return c;
 }
 
-void put_isotropy(Writer& w, const detail::Isotropy& i) {
-  w.put(i.area);
-  w.put(i.s);
-  w.put(i.q);
-}
-detail::Isotropy get_isotropy(Reader& r) {
-  detail::Isotropy i;
-  i.area = r.get<double>();
-  i.s = r.vec();
-  i.q = r.get<double>();
-  return i;
-}
-
 // Bytes per item, for the count checks.
-constexpr std::size_t kVertexBytes = 27 * 8 + 8 + 4 + 1 + 4;
+constexpr std::size_t kVertexBytes = 16 * 8 + 8 + 4 + 1 + 4;
 constexpr std::size_t kFaceBytes = 3 * 4;
 constexpr std::size_t kEdgeBytes = 4 + 4 + 1 + 1 + 4 + 8 + 3 * 8;
 
@@ -127,13 +114,10 @@ void encode(Writer& w, const detail::SurfaceState& s) {
   // Vertices.
   w.count(s.points.size());
   for (std::size_t i = 0; i < s.points.size(); ++i) {
-    const detail::VertexRecord& v = s.vertices[i];
+    const detail::StateVertex& v = s.vertices[i];
     w.put(s.points[i]);
     for (double x : v.shape.m)
       w.put(x);
-    put_isotropy(w, v.isotropy);
-    w.put(v.cross_sum);
-    w.put(v.link_sum);
     w.put(v.height);
     w.put(v.rad);
     w.put(v.tolerance);
@@ -217,13 +201,10 @@ detail::SurfaceState decode(Reader& r) {
   s.points.resize(nv);
   s.vertices.resize(nv);
   for (std::size_t i = 0; i < nv; ++i) {
-    detail::VertexRecord& v = s.vertices[i];
+    detail::StateVertex& v = s.vertices[i];
     s.points[i] = r.vec();
     for (double& x : v.shape.m)
       x = r.get<double>();
-    v.isotropy = get_isotropy(r);
-    v.cross_sum = r.vec();
-    v.link_sum = r.vec();
     v.height = r.get<double>();
     v.rad = r.get<double>();
     v.tolerance = r.get<double>();
@@ -234,7 +215,6 @@ detail::SurfaceState decode(Reader& r) {
     v.component = r.get<std::int32_t>();
     v.border = r.get<std::uint8_t>();
     v.version = r.get<std::uint32_t>();
-    v.alive = true;
   }
 
   const std::size_t nt = r.count(kFaceBytes, "triangles");

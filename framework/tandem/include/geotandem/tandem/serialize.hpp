@@ -19,8 +19,9 @@ namespace geotandem::tandem {
 
 // Version of the record this build writes and reads.
 // 2: per-vertex distance bounds (E0 guarantee); 3: triangles without their terms (computed again);
-// 4: vertices without W_v, the determinant sum and the normal sum (they follow from the others).
-inline constexpr std::uint32_t kSurfaceWireVersion = 4;
+// 4: vertices without W_v, the determinant sum and the normal sum (they follow from the others);
+// 5: vertices without their sums over their triangles (computed again from the triangles).
+inline constexpr std::uint32_t kSurfaceWireVersion = 5;
 // Size of the fixed header in front of the payload: magic (8 bytes), version (4), flags (4),
 // payload length (8), XXH64 of the payload (8).
 inline constexpr std::size_t kSurfaceWireHeaderSize = 32;

@@ -63,8 +63,9 @@ public:
   // data (exported from its engine, or decoded from its wire form), welded by lattice ids; the
   // region becomes the union, but the parked edges are not placed again yet (surface_merge.cpp).
   // Throws InvalidArgument when the surfaces do not fit together and DataError when two vertices
-  // with the same lattice id differ in position; the engine is then in an unspecified state.
-  void absorb_state(const detail::SurfaceState& other);
+  // with the same lattice id differ in position; the engine is then in an unspecified state. The
+  // state's parts are given back as soon as they are in: the larger surface grows while they go.
+  void absorb_state(detail::SurfaceState&& other);
   // The union of both regions; throws InvalidArgument as absorb_state() does when the two do not
   // fit.
   Region merge_region(const Engine& other) const;

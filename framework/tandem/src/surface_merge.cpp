@@ -5,9 +5,12 @@
 // region, simplifies and dumps (WorkingSurface::merge). Appending in place costs O(other); the
 // larger surface absorbs the smaller.
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <cstdint>
 #include <cstring>
 #include <string>
+#include <vector>
 
 #include "geotandem/core/error.hpp"
 #include "surface_engine.hpp"
@@ -55,7 +58,7 @@ Region WorkingSurface::Engine::merge_region_of(const Region& region, int axis, c
   return region_.merged_with(region); // throws when the blocks overlap
 }
 
-void WorkingSurface::Engine::absorb_state(const detail::SurfaceState& t) {
+void WorkingSurface::Engine::absorb_state(detail::SurfaceState&& t) {
   const Region region = merge_region_state(t);
   const std::string where_ = where(region_, t.region);
   const std::size_t nb = t.points.size(), nt = t.triangles.size();
@@ -119,6 +122,9 @@ void WorkingSurface::Engine::absorb_state(const detail::SurfaceState& t) {
     if (cr.member < 0) cr.member = v.idx();
   }
 
+  std::vector<detail::Vec3>().swap(t.points);
+  std::vector<detail::StateVertex>().swap(t.vertices);
+
   // Triangles: the seam's boundary edges, present on both sides, become interior edges.
   std::vector<FH> faces;
   faces.reserve(nt);
@@ -132,6 +138,7 @@ void WorkingSurface::Engine::absorb_state(const detail::SurfaceState& t) {
                       "the two surfaces must be the partial surfaces of adjacent blocks of one extraction");
     faces.push_back(f);
   }
+  std::vector<std::array<std::uint32_t, 3>>().swap(t.triangles);
   refresh();
   for (std::size_t i = edges_before; i < mesh_->n_edges(); ++i) {
     erec_[i] = detail::EdgeRecord{};
@@ -146,6 +153,7 @@ void WorkingSurface::Engine::absorb_state(const detail::SurfaceState& t) {
   // The other side's queue states (the seam's edges are parked on both sides).
   for (std::size_t i = 0; i < t.edges.size(); ++i)
     restore_edge(vertex[t.edges[i].v0], vertex[t.edges[i].v1], t.edges[i], i);
+  std::vector<detail::StateEdge>().swap(t.edges);
 
   SimplifyCounters& c = counters_;
   const SimplifyCounters& o = t.counters;

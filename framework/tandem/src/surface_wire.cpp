@@ -21,9 +21,9 @@ namespace detail {
 // Friend of WorkingSurface: reaches the engine to export and import its state.
 struct SurfaceAccess {
   static SurfaceState state(const WorkingSurface& s) { return s.engine_->export_state(); }
-  static std::size_t merge(WorkingSurface& into, const SurfaceState& state, const CancelToken* cancel) {
+  static std::size_t merge(WorkingSurface& into, SurfaceState&& state, const CancelToken* cancel) {
     WorkingSurface::Engine& e = *into.engine_;
-    e.absorb_state(state);
+    e.absorb_state(std::move(state)); // gives the state's parts back before the simplification
     e.set_region(e.region()); // the region grew: edges parked by faces now inside it are placed again
     e.simplify(cancel);
     return e.dump();
@@ -343,9 +343,9 @@ WorkingSurface deserialize(std::span<const std::byte> record, mesh::ComponentSin
 }
 
 namespace {
-std::size_t merge_state(WorkingSurface& into, const detail::SurfaceState& state, const CancelToken* cancel) {
+std::size_t merge_state(WorkingSurface& into, detail::SurfaceState&& state, const CancelToken* cancel) {
   try {
-    return detail::SurfaceAccess::merge(into, state, cancel);
+    return detail::SurfaceAccess::merge(into, std::move(state), cancel);
   } catch (const InvalidArgument& e) {
     throw DataError("working-surface record: " + e.message());
   }
@@ -357,9 +357,9 @@ std::size_t merge_record(WorkingSurface& into, std::span<const std::byte> record
 }
 
 std::size_t merge_record(WorkingSurface& into, std::vector<std::byte>&& record, const CancelToken* cancel) {
-  const detail::SurfaceState state = decode_record(record);
+  detail::SurfaceState state = decode_record(record);
   std::vector<std::byte>().swap(record); // given back before the surface grows
-  return merge_state(into, state, cancel);
+  return merge_state(into, std::move(state), cancel);
 }
 
 } // namespace geotandem::tandem

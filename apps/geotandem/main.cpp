@@ -56,8 +56,10 @@ namespace {
 // in mappings of their own and go back when freed, while the leaves' arrays, allocated and freed
 // by the thousand, reuse the heap's pages instead of faulting fresh ones in each time. Analytic
 // 1024^3, extract only (docs/algorithm.md, "Memory"): glibc's default 366 MiB peak in 3:30; a
-// threshold of 1 MiB 281 MiB in 4:58 (5.5 M page faults against 0.4 M). A threshold the user set
-// (GLIBC_TUNABLES, MALLOC_MMAP_THRESHOLD_, MALLOC_TRIM_THRESHOLD_) is left as it is.
+// threshold of 1 MiB 281 MiB in 4:58 (5.5 M page faults against 0.4 M); these two 287 MiB in 3:55.
+// The paper's cube at 1/16 with two workers: 494.6 s wall with 1 MiB, 265.9 s with these. A
+// threshold the user set (GLIBC_TUNABLES, MALLOC_MMAP_THRESHOLD_, MALLOC_TRIM_THRESHOLD_) is left
+// as it is.
 void fix_malloc_thresholds() {
 #if defined(__GLIBC__) && !defined(__SANITIZE_ADDRESS__) && !defined(__SANITIZE_THREAD__)
   const char* tunables = std::getenv("GLIBC_TUNABLES");

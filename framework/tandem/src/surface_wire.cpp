@@ -23,8 +23,10 @@ struct SurfaceAccess {
   static SurfaceState state(const WorkingSurface& s) { return s.engine_->export_state(); }
   static std::size_t merge(WorkingSurface& into, SurfaceState&& state, const CancelToken* cancel) {
     WorkingSurface::Engine& e = *into.engine_;
-    e.absorb_state(std::move(state)); // gives the state's parts back before the simplification
-    e.set_region(e.region()); // the region grew: edges parked by faces now inside it are placed again
+    // absorb_state gives the state's parts back before the simplification. The region grew: the
+    // edges parked by faces now inside it are placed again.
+    e.absorb_state(std::move(state));
+    e.set_region(e.region());
     e.simplify(cancel);
     return e.dump();
   }

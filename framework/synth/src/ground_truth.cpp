@@ -1,7 +1,9 @@
 #include "geotandem/synth/ground_truth.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <fstream>
+#include <string>
 
 #include "geotandem/core/error.hpp"
 
@@ -136,9 +138,10 @@ void write_ground_truth(const GroundTruth& truth, const std::string& path) {
     for (std::size_t n = 0; n < truth.bodies.size(); ++n) {
       const std::string text = body_json(truth.bodies[n]).dump(2);
       out << (n == 0 ? "\n    " : ",\n    ");
-      for (char c : text) {
-        out << c;
-        if (c == '\n') out << "    ";
+      for (std::size_t from = 0, to; from < text.size(); from = to + 1) {
+        to = std::min(text.find('\n', from), text.size());
+        out.write(text.data() + from, static_cast<std::streamsize>(to - from));
+        if (to < text.size()) out << "\n    ";
       }
     }
     out << "\n  ]" << header.substr(at + empty.size()) << '\n';

@@ -45,14 +45,7 @@ detail::SurfaceState WorkingSurface::Engine::export_state() const {
       s.component_keys.push_back(components_.at(root).key);
     }
     s.points.push_back(detail::to_vec(points_[i]));
-    s.vertices.push_back({.shape = r.shape,
-                          .height = r.height,
-                          .rad = r.rad,
-                          .tolerance = r.tolerance,
-                          .lattice_id = r.lattice_id,
-                          .component = c,
-                          .version = r.version,
-                          .border = r.border});
+    s.vertices.push_back(detail::state_vertex(r, c));
   }
   auto vertex = [&](VH v) { return static_cast<std::uint32_t>(vertex_index[static_cast<std::size_t>(v.idx())]); };
 
@@ -160,9 +153,7 @@ void WorkingSurface::Engine::import_state(detail::SurfaceState&& s) {
     erec_[i] = detail::EdgeRecord{};
     erec_[i].alive = true;
   }
-  // The vertices' sums over their triangles, which the state does not carry.
-  for (std::size_t i = 0; i < mesh_->n_faces(); ++i)
-    add_face_terms(FH(static_cast<int>(i)));
+  recompute_face_terms(); // the vertices' sums over their triangles, which the state does not carry
 
   // Queues: every edge that is not idle goes back to its place with its key.
   for (std::size_t i = 0; i < s.edges.size(); ++i) {

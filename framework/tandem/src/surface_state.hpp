@@ -40,7 +40,18 @@ struct StateVertex {
 };
 static_assert(sizeof(StateVertex) == 128, "a state vertex's size is counted in docs/algorithm.md (Memory)");
 
-// A live vertex record of v in `component`, its sums over its triangles still to be added.
+// The two ways between a vertex record and a state vertex, `component` numbered for the target.
+inline StateVertex state_vertex(const VertexRecord& r, std::int32_t component) {
+  return {.shape = r.shape,
+          .height = r.height,
+          .rad = r.rad,
+          .tolerance = r.tolerance,
+          .lattice_id = r.lattice_id,
+          .component = component,
+          .version = r.version,
+          .border = r.border};
+}
+// A live record, its sums over its triangles still to be added.
 inline VertexRecord vertex_record(const StateVertex& v, std::int32_t component) {
   VertexRecord r;
   r.shape = v.shape;

@@ -107,8 +107,9 @@ std::set<std::array<std::array<double, 3>, 3>> live_triangles(const HalfedgeMesh
   return out;
 }
 
-// Random legal collapses, then compaction: the same live surface, nothing dead, no spare room.
-void collapse_then_compact(HalfedgeMesh& m, long euler, unsigned seed) {
+// Random legal collapses, then compaction: the same live surface, nothing dead; no spare room when
+// it gives back, all the room it had when it keeps it (for the layers still to come).
+void collapse_then_compact(HalfedgeMesh& m, long euler, unsigned seed, bool give_back) {
   VertexMarks marks;
   marks.ensure(m.n_vertices());
   std::mt19937 rng(seed);
@@ -127,13 +128,21 @@ void collapse_then_compact(HalfedgeMesh& m, long euler, unsigned seed) {
     alive.push_back(!m.deleted(VH(static_cast<int>(i))));
   const std::size_t live_vertices = static_cast<std::size_t>(std::count(alive.begin(), alive.end(), true));
 
-  const std::vector<std::int32_t> moved = m.compact();
+  const std::size_t rooms[3] = {m.vertex_capacity(), m.edge_capacity(), m.face_capacity()};
+  const std::vector<std::int32_t> moved = m.compact(give_back);
   ASSERT_EQ(moved.size(), alive.size());
   EXPECT_EQ(m.n_vertices(), live_vertices);
   EXPECT_EQ(m.n_faces(), before.size());
-  EXPECT_EQ(m.vertex_capacity(), m.n_vertices());
-  EXPECT_EQ(m.edge_capacity(), m.n_edges());
-  EXPECT_EQ(m.face_capacity(), m.n_faces());
+  EXPECT_LT(m.n_vertices(), rooms[0]);
+  if (give_back) {
+    EXPECT_EQ(m.vertex_capacity(), m.n_vertices());
+    EXPECT_EQ(m.edge_capacity(), m.n_edges());
+    EXPECT_EQ(m.face_capacity(), m.n_faces());
+  } else {
+    EXPECT_EQ(m.vertex_capacity(), rooms[0]);
+    EXPECT_EQ(m.edge_capacity(), rooms[1]);
+    EXPECT_EQ(m.face_capacity(), rooms[2]);
+  }
   for (std::size_t i = 0; i < m.n_edges(); ++i)
     EXPECT_FALSE(m.deleted(EH(static_cast<int>(i))));
   std::int32_t next = 0;
@@ -265,24 +274,28 @@ TEST(CollapseOps, BoundaryCollapsesKeepADisc) {
 
 TEST(HalfedgeMesh, CompactionInPlaceKeepsTheLiveSurfaceOfATorus) {
   const mesh::SurfaceMesh s = torus_surface();
-  HalfedgeMesh m;
-  ASSERT_NO_FATAL_FAILURE(build(m, s));
-  collapse_then_compact(m, 0, 3);
+  for (const bool give_back : {true, false}) {
+    HalfedgeMesh m;
+    ASSERT_NO_FATAL_FAILURE(build(m, s));
+    collapse_then_compact(m, 0, 3, give_back);
+  }
 }
 
 TEST(HalfedgeMesh, CompactionInPlaceKeepsTheBoundaryOfADisc) {
-  HalfedgeMesh m;
-  const int n = 12;
-  for (int i = 0; i < n; ++i)
-    for (int j = 0; j < n; ++j)
-      m.add_vertex(HalfedgeMesh::Point(i, j, 0.1 * ((i * j) % 3)));
-  const auto at = [&](int i, int j) { return VH(i * n + j); };
-  for (int i = 0; i + 1 < n; ++i)
-    for (int j = 0; j + 1 < n; ++j) {
-      ASSERT_TRUE(insert_triangle(m, at(i, j), at(i + 1, j), at(i + 1, j + 1)).is_valid());
-      ASSERT_TRUE(insert_triangle(m, at(i, j), at(i + 1, j + 1), at(i, j + 1)).is_valid());
-    }
-  collapse_then_compact(m, 1, 8);
+  for (const bool give_back : {true, false}) {
+    HalfedgeMesh m;
+    const int n = 12;
+    for (int i = 0; i < n; ++i)
+      for (int j = 0; j < n; ++j)
+        m.add_vertex(HalfedgeMesh::Point(i, j, 0.1 * ((i * j) % 3)));
+    const auto at = [&](int i, int j) { return VH(i * n + j); };
+    for (int i = 0; i + 1 < n; ++i)
+      for (int j = 0; j + 1 < n; ++j) {
+        ASSERT_TRUE(insert_triangle(m, at(i, j), at(i + 1, j), at(i + 1, j + 1)).is_valid());
+        ASSERT_TRUE(insert_triangle(m, at(i, j), at(i + 1, j + 1), at(i, j + 1)).is_valid());
+      }
+    collapse_then_compact(m, 1, 8, give_back);
+  }
 }
 
 } // namespace

@@ -101,15 +101,18 @@ void WorkingSurface::Engine::dump_component(std::int32_t root) {
 void WorkingSurface::Engine::maybe_collect_garbage() {
   // Compaction costs a pass over everything held; do it when half the storage is dead (amortised
   // O(1) per removed element) and there is enough of it to matter. (At two thirds, as before, the
-  // storage held was up to three times the live surface.)
+  // storage held was up to three times the live surface.) The room stays: the next layers fill it
+  // again, in pages already faulted in (giving it back made the kernel zero and map them anew
+  // after every compaction).
   const std::size_t dead_faces = mesh_->n_faces() - live_faces_;
-  if (dead_faces > options_.compaction_min_dead && dead_faces > live_faces_) collect_garbage();
+  if (dead_faces > options_.compaction_min_dead && dead_faces > live_faces_) collect_garbage(false);
 }
 
 void WorkingSurface::Engine::compact() {
   // A compacted mesh has exactly the room it needs; only compact when that gives back enough.
   const std::size_t room = mesh_->vertex_capacity();
-  if (mesh_->n_faces() - live_faces_ > live_faces_ / 8 || room > live_vertices_ + live_vertices_ / 8) collect_garbage();
+  if (mesh_->n_faces() - live_faces_ > live_faces_ / 8 || room > live_vertices_ + live_vertices_ / 8)
+    collect_garbage(true);
 }
 
 void WorkingSurface::Engine::make_room(std::size_t nv, std::size_t ne, std::size_t nf) {
@@ -120,10 +123,10 @@ void WorkingSurface::Engine::make_room(std::size_t nv, std::size_t ne, std::size
   if (nv > v || ne > e || nf > f) mesh_->reserve(room(nv, v), room(ne, e), room(nf, f));
 }
 
-void WorkingSurface::Engine::collect_garbage() {
+void WorkingSurface::Engine::collect_garbage(bool give_back) {
   delayed_.clear();           // before the slots are renumbered
   pending_.release_storage(); // exact storage here too, when Q is empty
-  const std::vector<std::int32_t> moved = mesh_->compact();
+  const std::vector<std::int32_t> moved = mesh_->compact(give_back);
   std::vector<std::int32_t>(mesh_->n_edges(), -1).swap(slots_); // exact storage, as the mesh's
   std::vector<std::int32_t>().swap(local_index_);
   marks_.clear();

@@ -135,7 +135,10 @@ private:
   // Dumping and compaction (surface_dump.cpp).
   void dump_component(std::int32_t root);
   void maybe_collect_garbage();
-  void collect_garbage();
+  // Compacts the mesh; `give_back` returns the room beyond the live elements (a surface set aside),
+  // else the room stays for the layers still to come (a surface being swept: the room freed now
+  // would be faulted in again within a few layers).
+  void collect_garbage(bool give_back);
 
   volume::Geometry cube_;
   LatticeIds lattice_;

@@ -50,7 +50,7 @@ void HalfedgeMesh::reserve(std::size_t nv, std::size_t ne, std::size_t nf) {
   faces_.reserve(nf);
 }
 
-std::vector<std::int32_t> HalfedgeMesh::compact() {
+std::vector<std::int32_t> HalfedgeMesh::compact(bool give_back) {
   const std::size_t nv = n_vertices(), ne = n_edges(), nf = n_faces();
   std::vector<std::int32_t> vmap(nv, -1), emap(ne, -1), fmap(nf, -1);
   std::int32_t cv = 0, ce = 0, cf = 0;
@@ -91,6 +91,7 @@ std::vector<std::int32_t> HalfedgeMesh::compact() {
     faces_[to] = faces_[i];
   }
   resize(static_cast<std::size_t>(cv), static_cast<std::size_t>(ce), static_cast<std::size_t>(cf));
+  if (!give_back) return vmap;
   out_.shrink_to_fit();
   points_.shrink_to_fit();
   vertices_.shrink_to_fit();

@@ -277,8 +277,9 @@ public:
   void resize(std::size_t nv, std::size_t ne, std::size_t nf);
   void reserve(std::size_t nv, std::size_t ne, std::size_t nf);
   // Moves the live elements (alive records) down in place, keeping their order, and gives back
-  // every byte beyond them. Returns old -> new vertex index (-1 for a deleted vertex).
-  std::vector<std::int32_t> compact();
+  // every byte beyond them when `give_back` (else the room stays for the elements still to come).
+  // Returns old -> new vertex index (-1 for a deleted vertex).
+  std::vector<std::int32_t> compact(bool give_back);
 
 private:
   struct Halfedge {

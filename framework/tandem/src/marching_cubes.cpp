@@ -282,4 +282,8 @@ const LatticeIds& LayerExtractor::lattice() const {
   return impl_->lattice;
 }
 
+void release_slab_storage() {
+  detail::SlabReader::release_spare();
+}
+
 } // namespace geotandem::tandem

@@ -5,8 +5,14 @@
 
 namespace geotandem::tandem::detail {
 
+namespace {
+// The slab storage of the last reader destroyed on this thread, for the next one.
+thread_local std::vector<float> spare_slab;
+} // namespace
+
 SlabReader::SlabReader(const volume::Volume& volume, const volume::Box& samples, int axis, std::int64_t slab_samples)
     : volume_(volume), samples_(samples), axis_(axis) {
+  values_.swap(spare_slab); // its old values stay until the first read replaces them
   const std::int64_t section =
       std::max<std::int64_t>(1, samples.count() / std::max<std::int64_t>(1, samples.size(axis)));
   // As many sections as the budget holds, but at least 8 halos' worth (a computed volume then pays
@@ -14,6 +20,14 @@ SlabReader::SlabReader(const volume::Volume& volume, const volume::Box& samples,
   const std::int64_t by_budget = slab_samples / section;
   const std::int64_t by_halo = std::min(8 * volume.source_halo()[axis], 4 * slab_samples / section);
   per_slab_ = std::clamp<std::int64_t>(std::max(by_budget, by_halo), 1, samples.size(axis));
+}
+
+void SlabReader::release_spare() {
+  std::vector<float>().swap(spare_slab);
+}
+
+SlabReader::~SlabReader() {
+  if (values_.capacity() > spare_slab.capacity()) values_.swap(spare_slab);
 }
 
 void SlabReader::read(std::int64_t section, std::span<float> out) {

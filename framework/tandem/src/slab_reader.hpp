@@ -12,7 +12,10 @@
 // so that the halo costs at most (8 + 2) / 8 of the slab, unless that takes more than 4 budgets.
 //
 // Memory: one slab of at most max(4 slab_samples, one cross-section) samples, plus the copy of the
-// section handed out.
+// section handed out. A reader takes over the slab storage its thread's last reader left (kept
+// while no reader is alive: one slab a thread), so that the next block reuses pages already
+// faulted in instead of having the kernel zero and map a fresh slab's worth for every block (two
+// thirds of the page faults of an analytic 512^3 extraction before).
 
 #include <cstdint>
 #include <span>
@@ -27,6 +30,9 @@ public:
   // `samples`: the block's samples; `axis`: the axis the sections are stacked along;
   // `slab_samples`: the budget of one slab (at least one section is always read).
   SlabReader(const volume::Volume& volume, const volume::Box& samples, int axis, std::int64_t slab_samples);
+  ~SlabReader();
+  SlabReader(const SlabReader&) = delete;
+  SlabReader& operator=(const SlabReader&) = delete;
 
   // Writes cross-section `section` (a global index along the axis, inside the block) into `out`, in
   // the C order of the one-sample-thick box. Sections are expected in increasing order; asking
@@ -34,6 +40,8 @@ public:
   void read(std::int64_t section, std::span<float> out);
 
   std::int64_t sections_per_slab() const { return per_slab_; }
+  // Frees the storage kept on the calling thread for its next reader.
+  static void release_spare();
 
 private:
   const volume::Volume& volume_;

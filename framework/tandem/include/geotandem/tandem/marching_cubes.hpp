@@ -60,7 +60,9 @@ volume::Box cube_cells(const volume::Index3& shape);
 // cube's cells; read errors of the volume (IoError, FormatError, ...) pass through.
 // Memory: about 30 bytes per sample of one cross-section of the block (two cross-sections of
 // values, their sign bits, vertex numbers per lattice edge), plus one slab and the layer's output.
-// The volume must outlive the extractor; one extractor per thread.
+// The volume must outlive the extractor; one extractor per thread. An extractor takes over the
+// slab storage the last one on its thread left, so that block after block reuses the same pages
+// (release_slab_storage() gives them back).
 class LayerExtractor {
 public:
   LayerExtractor(const volume::Volume& volume, const volume::Box& cells, const McOptions& options);
@@ -83,6 +85,11 @@ private:
   struct Impl;
   std::unique_ptr<Impl> impl_;
 };
+
+// Gives back the slab storage kept on the calling thread for its next LayerExtractor (at most one
+// slab: the largest a block read there). For a driver about to need the memory more, e.g. before a
+// large merge; the next extractor allocates its slab again.
+void release_slab_storage();
 
 // The whole surface of a block of cells in one mesh, vertices welded by lattice-edge id (the
 // oracle for tests and the "brute" route). `ids`, when given, receives the lattice-edge id of

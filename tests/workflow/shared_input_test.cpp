@@ -138,6 +138,13 @@ TEST_P(SharedInputs, TheInputIsFetchedOncePerReadOfTheResult) {
   EXPECT_EQ(after.fetched - before.fetched, grown);
   EXPECT_EQ(after.direct, before.direct) << "an attribute read the input outside the fetched box";
   EXPECT_GT(after.served - before.served, 3 * read);
+  // The fetched box ends with the read of the result (its storage stays for the next fetch): a
+  // read of the input afterwards goes to the input, never to values left from the last box.
+  const volume::Box inside{{2, 3, 4}, {6, 7, 9}};
+  const std::vector<float> direct = prefetching->input().read(inside);
+  EXPECT_EQ(prefetching->input().counts().direct - after.direct, inside.count());
+  EXPECT_EQ(prefetching->input().counts().served, after.served);
+  EXPECT_EQ(direct.size(), static_cast<std::size_t>(inside.count()));
 }
 
 INSTANTIATE_TEST_SUITE_P(Normalise, SharedInputs, ::testing::Values("percentile", "fixed"));

@@ -19,9 +19,10 @@ void SharedInput::fetch(const volume::Box& box) const {
 
 void SharedInput::release() const {
   Fetched& f = mine();
+  // The storage stays for the thread's next fetch: the next block's box is about as large, and
+  // pages already faulted in cost nothing to fill again (giving them back made the kernel zero a
+  // fresh box's worth for every block).
   f.box = volume::Box{};
-  f.values.clear();
-  f.values.shrink_to_fit();
 }
 
 SharedInput::Counts SharedInput::counts() const {

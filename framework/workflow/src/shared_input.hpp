@@ -10,8 +10,8 @@
 // fall outside it (a normalise step's percentile sample, an attribute that under-states its halo)
 // go to the input directly. Values never depend on it: the input is box-independent.
 //
-// Memory: per thread reading the result, one fetched box (the block plus the halo), released when
-// the read ends.
+// Memory: per thread reading the result, one fetched box (the block plus the halo); its storage
+// stays for the thread's next fetch when the read ends, until the SharedInput goes.
 //
 // Thread safety: as the input's; each thread has its own fetched box.
 
@@ -34,7 +34,8 @@ public:
   std::string source() const override { return input_->source(); }
   std::vector<volume::FormatDetail> format_details() const override { return input_->format_details(); }
 
-  // Fetches `box` (inside the cube) for the calling thread's next reads; release() drops it.
+  // Fetches `box` (inside the cube) for the calling thread's next reads; release() ends its use (the
+  // storage is kept for the next fetch).
   void fetch(const volume::Box& box) const;
   void release() const;
 

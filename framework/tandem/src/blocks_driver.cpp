@@ -73,7 +73,8 @@ public:
       sent.reset();
       stats_.seconds_wire += seconds_since(t);
       record_bytes = record.size();
-      // The large merges make the peak: the slab kept for the next leaf waits elsewhere.
+      // The large merges make the peak: the slab kept for the next leaf goes back first (the next
+      // leaf allocates one again).
       if (record_bytes >= kTrimRecordBytes) release_slab_storage();
       stats_.wire_bytes += record.size();
       stats_.largest_record = std::max<std::uint64_t>(stats_.largest_record, record.size());

@@ -268,15 +268,16 @@ TEST(McBlocks, ReadsEachSampleOnceInSlabsAndLayersDoNotDependOnTheSlab) {
 // An extractor takes over the slab storage of the one before it on the same thread (SlabReader):
 // what it hands out comes from its own volume, never from what the last block left there. Each
 // block's layers equal those its own thread extracts from scratch, whatever came before: a larger
-// slab of another field, a smaller one, the same cells of another field.
+// slab of another field, a smaller one, the same cells of another field, read whole (one slab, as
+// the default budget reads a leaf) or four sections at a time.
 TEST(McBlocks, AnExtractorAfterAnotherOnTheSameThreadReadsOnlyItsOwnVolume) {
   const auto first = mixed_field({14, 13, 15}, 11);
   const auto second = noise({14, 13, 15}, 12);
   const Box all = cube_cells(first->geometry().shape);
   const Box part{{2, 1, 3}, {9, 10, 8}};
-  auto layers_of = [](const volume::Volume& v, const Box& cells) {
+  auto layers_of = [](const volume::Volume& v, const Box& cells, bool whole) {
     McOptions options{0.0f, 0};
-    options.slab_samples = 4 * (cells.size(1) + 1) * (cells.size(2) + 1);
+    if (!whole) options.slab_samples = 4 * (cells.size(1) + 1) * (cells.size(2) + 1);
     LayerExtractor x(v, cells, options);
     std::vector<Layer> layers;
     for (Layer layer; x.next(layer);)
@@ -285,7 +286,7 @@ TEST(McBlocks, AnExtractorAfterAnotherOnTheSameThreadReadsOnlyItsOwnVolume) {
   };
   auto alone = [&](const volume::Volume& v, const Box& cells) {
     std::vector<Layer> layers;
-    std::thread([&] { layers = layers_of(v, cells); }).join();
+    std::thread([&] { layers = layers_of(v, cells, false); }).join();
     return layers;
   };
   const std::vector<Layer> first_all = alone(*first, all), second_all = alone(*second, all);
@@ -296,19 +297,24 @@ TEST(McBlocks, AnExtractorAfterAnotherOnTheSameThreadReadsOnlyItsOwnVolume) {
     Box cells;
     const std::vector<Layer>* want;
   };
-  const Step steps[] = {{first.get(), all, &first_all},   {second.get(), part, &second_part},
-                        {first.get(), part, &first_part}, {second.get(), all, &second_all},
-                        {first.get(), all, &first_all},   {second.get(), part, &second_part}};
-  std::size_t n = 0;
-  for (const Step& step : steps) {
-    const std::vector<Layer> got = layers_of(*step.volume, step.cells);
-    ASSERT_EQ(got.size(), step.want->size()) << "step " << n;
-    for (std::size_t k = 0; k < got.size(); ++k) {
-      EXPECT_EQ(got[k].vertex_ids, (*step.want)[k].vertex_ids) << "step " << n << ", layer " << k;
-      EXPECT_EQ(got[k].positions, (*step.want)[k].positions) << "step " << n << ", layer " << k;
-      EXPECT_EQ(got[k].triangles, (*step.want)[k].triangles) << "step " << n << ", layer " << k;
+  const Step steps[] = {{first.get(), all, &first_all},   {second.get(), all, &second_all},
+                        {first.get(), part, &first_part}, {second.get(), part, &second_part},
+                        {first.get(), all, &first_all},   {second.get(), part, &second_part},
+                        {first.get(), part, &first_part}};
+  for (const bool whole : {true, false}) {
+    std::size_t n = 0;
+    for (const Step& step : steps) {
+      const std::vector<Layer> got = layers_of(*step.volume, step.cells, whole);
+      ASSERT_EQ(got.size(), step.want->size()) << "step " << n;
+      for (std::size_t k = 0; k < got.size(); ++k) {
+        const std::string where =
+            "step " + std::to_string(n) + (whole ? " (whole)" : " (slabs)") + ", layer " + std::to_string(k);
+        EXPECT_EQ(got[k].vertex_ids, (*step.want)[k].vertex_ids) << where;
+        EXPECT_EQ(got[k].positions, (*step.want)[k].positions) << where;
+        EXPECT_EQ(got[k].triangles, (*step.want)[k].triangles) << where;
+      }
+      ++n;
     }
-    ++n;
   }
 }
 

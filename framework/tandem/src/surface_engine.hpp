@@ -66,6 +66,9 @@ public:
   // with the same lattice id differ in position; the engine is then in an unspecified state. The
   // state's parts are given back as soon as they are in: the larger surface grows while they go.
   void absorb_state(detail::SurfaceState&& other);
+  // absorb_state(), then the edges parked by faces now inside the grown region placed again, the
+  // simplification and the dumping: a whole merge. Returns the components dumped.
+  std::size_t merge_state(detail::SurfaceState&& other, const CancelToken* cancel);
   // The union of both regions; throws InvalidArgument as absorb_state() does when the two do not
   // fit.
   Region merge_region(const Engine& other) const;

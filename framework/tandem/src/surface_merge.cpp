@@ -58,6 +58,13 @@ Region WorkingSurface::Engine::merge_region_of(const Region& region, int axis, c
   return region_.merged_with(region); // throws when the blocks overlap
 }
 
+std::size_t WorkingSurface::Engine::merge_state(detail::SurfaceState&& other, const CancelToken* cancel) {
+  absorb_state(std::move(other)); // gives the state's parts back before the simplification
+  set_region(region_);            // the region grew: edges parked by faces now inside it are placed again
+  simplify(cancel);
+  return dump();
+}
+
 void WorkingSurface::Engine::absorb_state(detail::SurfaceState&& t) {
   const Region region = merge_region_state(t);
   const std::string where_ = where(region_, t.region);

@@ -22,13 +22,7 @@ namespace detail {
 struct SurfaceAccess {
   static SurfaceState state(const WorkingSurface& s) { return s.engine_->export_state(); }
   static std::size_t merge(WorkingSurface& into, SurfaceState&& state, const CancelToken* cancel) {
-    WorkingSurface::Engine& e = *into.engine_;
-    // absorb_state gives the state's parts back before the simplification. The region grew: the
-    // edges parked by faces now inside it are placed again.
-    e.absorb_state(std::move(state));
-    e.set_region(e.region());
-    e.simplify(cancel);
-    return e.dump();
+    return into.engine_->merge_state(std::move(state), cancel);
   }
   static WorkingSurface make(SurfaceState&& state, mesh::ComponentSink* sink, CollapseObserver* observer) {
     auto engine =

@@ -57,15 +57,9 @@ std::size_t WorkingSurface::merge(WorkingSurface&& other, const CancelToken* can
   }
   // The smaller side as plain data, then its engine goes before the larger one grows: the two
   // engines and the state are never held at once.
-  {
-    detail::SurfaceState state = other.engine_->export_state();
-    { const WorkingSurface gone = std::move(other); }
-    engine_->absorb_state(std::move(state));
-  }
-  // The region grew: the edges parked by faces that are now inside it are placed again.
-  engine_->set_region(engine_->region());
-  engine_->simplify(cancel);
-  return engine_->dump();
+  detail::SurfaceState state = other.engine_->export_state();
+  { const WorkingSurface gone = std::move(other); }
+  return engine_->merge_state(std::move(state), cancel);
 }
 
 void WorkingSurface::compact() {

@@ -4,6 +4,8 @@
 
 #include <cmath>
 #include <memory>
+#include <random>
+#include <thread>
 #include <vector>
 
 #include "geotandem/core/error.hpp"
@@ -11,6 +13,7 @@
 #include "geotandem/mesh/topology.hpp"
 #include "geotandem/tandem/marching_cubes.hpp"
 #include "simplify_fixtures.hpp"
+#include "surface_engine.hpp"
 
 namespace geotandem::tandem {
 namespace {
@@ -94,6 +97,101 @@ TEST(TandemBlock, FinishedBodiesGoToTheSinkTheRestWaits) {
     EXPECT_GT(on_face, 10u);
     EXPECT_EQ(found, on_face);
   }
+}
+
+// What a block run gives: the components in the order they were committed, what waits, and the
+// collapses made.
+struct Outcome {
+  std::vector<mesh::Component> components;
+  mesh::SurfaceMesh remaining;
+  std::uint64_t collapses = 0;
+};
+
+// The two balls with noise on top: many small bodies, so a surface whose storage is larger than
+// the two balls' alone.
+std::unique_ptr<volume::MemoryVolume> noisy_balls(unsigned seed) {
+  const auto clean = two_balls();
+  std::vector<float> samples(clean->geometry().bounds().count());
+  clean->read(clean->geometry().bounds(), samples);
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<float> jitter(-0.9f, 0.9f);
+  for (float& v : samples)
+    v += jitter(rng);
+  return std::make_unique<volume::MemoryVolume>(clean->geometry(), std::move(samples), "noisy balls");
+}
+
+// A surface takes over the mesh storage the last one destroyed on its thread left (emptied, the
+// room kept): what it gives never depends on what came before. Each run, one block or two merged,
+// gives the same components, the same surface waiting and the same collapses as on a thread of its
+// own, after a larger surface of another field, a smaller one, or the same cells of another field.
+TEST(TandemBlock, ASurfaceAfterAnotherOnTheSameThreadGivesWhatItsOwnThreadGives) {
+  const auto clean = two_balls();
+  const auto noisy = noisy_balls(5), other = noisy_balls(6);
+  const volume::Box all = cube_cells(clean->geometry().shape);
+  const volume::Box rest{{30, 0, 0}, {47, 23, 23}}; // kBlock's brother
+  auto block = [](const volume::Volume& v, const volume::Box& cells, fixtures::CollectingSink& sink) {
+    TandemOptions options;
+    options.axis = 0;
+    std::unique_ptr<WorkingSurface> remaining;
+    extract_block(v, cells, options, &sink, &remaining);
+    return remaining;
+  };
+  // One block, or (merged) kBlock and its brother, then finished.
+  auto run = [&](const volume::Volume& v, const volume::Box& cells, bool merged) {
+    fixtures::CollectingSink sink;
+    Outcome out;
+    std::unique_ptr<WorkingSurface> surface = block(v, merged ? kBlock : cells, sink);
+    if (merged) {
+      std::unique_ptr<WorkingSurface> brother = block(v, rest, sink);
+      out.collapses += brother->counters().collapses;
+      surface->merge(std::move(*brother));
+      brother.reset();
+      out.remaining = surface->snapshot();
+      surface->finish();
+    } else {
+      out.remaining = surface->snapshot();
+    }
+    out.collapses += surface->counters().collapses;
+    out.components = std::move(sink.components);
+    return out;
+  };
+  auto alone = [&](const volume::Volume& v, const volume::Box& cells, bool merged) {
+    Outcome out;
+    std::thread([&] { out = run(v, cells, merged); }).join();
+    return out;
+  };
+  struct Step {
+    const volume::Volume* volume;
+    volume::Box cells;
+    bool merged;
+  };
+  const Step steps[] = {{noisy.get(), all, false},    {clean.get(), kBlock, false}, {other.get(), all, false},
+                        {noisy.get(), kBlock, false}, {other.get(), all, true},     {clean.get(), all, true},
+                        {noisy.get(), all, true},     {other.get(), kBlock, false}};
+  release_surface_storage();
+  std::size_t n = 0;
+  for (const Step& step : steps) {
+    const Outcome want = alone(*step.volume, step.cells, step.merged);
+    const bool reused = detail::spare_surface_storage_bytes() > 0;
+    EXPECT_EQ(reused, n > 0) << "step " << n << ": the storage the last step left";
+    const Outcome got = run(*step.volume, step.cells, step.merged);
+    const std::string where = "step " + std::to_string(n);
+    ASSERT_EQ(got.components.size(), want.components.size()) << where;
+    EXPECT_GT(want.components.size() + want.remaining.triangles.size(), 0u) << where;
+    for (std::size_t k = 0; k < got.components.size(); ++k) {
+      EXPECT_EQ(got.components[k].key, want.components[k].key) << where << ", component " << k;
+      EXPECT_EQ(got.components[k].surface.points, want.components[k].surface.points) << where << ", component " << k;
+      EXPECT_EQ(got.components[k].surface.triangles, want.components[k].surface.triangles)
+          << where << ", component " << k;
+    }
+    EXPECT_EQ(got.remaining.points, want.remaining.points) << where;
+    EXPECT_EQ(got.remaining.triangles, want.remaining.triangles) << where;
+    EXPECT_EQ(got.collapses, want.collapses) << where;
+    ++n;
+  }
+  EXPECT_GT(detail::spare_surface_storage_bytes(), 0u);
+  release_surface_storage();
+  EXPECT_EQ(detail::spare_surface_storage_bytes(), 0u);
 }
 
 TEST(TandemBlock, InvalidRequestsAreRefused) {

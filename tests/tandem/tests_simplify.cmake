@@ -18,6 +18,7 @@ geotandem_add_test(simplify_mesh_ops_test SOURCES simplify_mesh_ops_test.cpp
                    DEPS geotandem_simplify_fixtures OpenMeshCore LABELS tandem)
 target_include_directories(simplify_mesh_ops_test PRIVATE ${PROJECT_SOURCE_DIR}/framework/tandem/src)
 geotandem_add_test(tandem_block_test SOURCES tandem_block_test.cpp DEPS geotandem_simplify_fixtures LABELS tandem)
+target_include_directories(tandem_block_test PRIVATE ${PROJECT_SOURCE_DIR}/framework/tandem/src)
 # The E0 guarantee's per-collapse bound against sampled Hausdorff distances of random patches.
 geotandem_add_test(collapse_distance_test SOURCES collapse_distance_test.cpp
                    DEPS geotandem::tandem geotandem::mesh OpenMeshCore LABELS tandem)

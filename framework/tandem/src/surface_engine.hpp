@@ -28,10 +28,19 @@
 
 namespace geotandem::tandem {
 
+namespace detail {
+// The bytes of mesh storage kept on this thread for its next surface (for tests).
+std::size_t spare_surface_storage_bytes();
+} // namespace detail
+
 class WorkingSurface::Engine {
 public:
   Engine(const volume::Geometry& cube, Region region, int axis, const SimplifyOptions& options,
          mesh::ComponentSink* sink, CollapseObserver* observer);
+  // Leaves its mesh's room to the next surface made on this thread (release_surface_storage()).
+  ~Engine();
+  Engine(const Engine&) = delete;
+  Engine& operator=(const Engine&) = delete;
 
   void add_layer(const Layer& layer);
   void activate(double front);
@@ -157,7 +166,7 @@ private:
   std::unique_ptr<detail::FrontRule> front_rule_;
   std::unique_ptr<detail::FaceRule> face_rule_;
 
-  std::unique_ptr<detail::HalfedgeMesh> mesh_ = std::make_unique<detail::HalfedgeMesh>();
+  std::unique_ptr<detail::HalfedgeMesh> mesh_; // empty, with the room the last surface on the thread left
   detail::VertexRecord* vrec_ = nullptr;
   detail::EdgeRecord* erec_ = nullptr;
   detail::FaceRecord* frec_ = nullptr;

@@ -40,6 +40,33 @@ void HalfedgeMesh::resize(std::size_t nv, std::size_t ne, std::size_t nf) {
   faces_.resize(nf, FaceRecord{});
 }
 
+void HalfedgeMesh::clear() {
+  out_.clear();
+  points_.clear();
+  vertices_.clear();
+  halfedges_.clear();
+  edges_.clear();
+  face_halfedge_.clear();
+  faces_.clear();
+}
+
+void HalfedgeMesh::trim(std::size_t nv, std::size_t ne, std::size_t nf) {
+  out_.trim(nv);
+  points_.trim(nv);
+  vertices_.trim(nv);
+  halfedges_.trim(2 * ne);
+  edges_.trim(ne);
+  face_halfedge_.trim(nf);
+  faces_.trim(nf);
+}
+
+std::size_t HalfedgeMesh::capacity_bytes() const {
+  return out_.capacity() * sizeof(HH) + points_.capacity() * sizeof(Point) +
+         vertices_.capacity() * sizeof(VertexRecord) + halfedges_.capacity() * sizeof(Halfedge) +
+         edges_.capacity() * sizeof(EdgeRecord) + face_halfedge_.capacity() * sizeof(HH) +
+         faces_.capacity() * sizeof(FaceRecord);
+}
+
 void HalfedgeMesh::reserve(std::size_t nv, std::size_t ne, std::size_t nf) {
   out_.reserve(nv);
   points_.reserve(nv);

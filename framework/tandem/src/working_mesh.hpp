@@ -184,6 +184,12 @@ public:
     new (data_ + size_) T(value);
     ++size_;
   }
+  // Forgets the elements and keeps the room.
+  void clear() { size_ = 0; }
+  // Gives back the room beyond n elements (beyond the size when that is more).
+  void trim(std::size_t n) {
+    if (capacity_ > std::max(n, size_)) reallocate(std::max(n, size_));
+  }
   // Gives back the room beyond the size.
   void shrink_to_fit() {
     if (capacity_ > size_) reallocate(size_);
@@ -280,6 +286,12 @@ public:
   // every byte beyond them when `give_back` (else the room stays for the elements still to come).
   // Returns old -> new vertex index (-1 for a deleted vertex).
   std::vector<std::int32_t> compact(bool give_back);
+  // No elements left, the room kept (for a mesh taken over by another surface).
+  void clear();
+  // Gives back the room beyond nv vertices, ne edges and nf faces.
+  void trim(std::size_t nv, std::size_t ne, std::size_t nf);
+  // The bytes of room held, used or not.
+  std::size_t capacity_bytes() const;
 
 private:
   struct Halfedge {

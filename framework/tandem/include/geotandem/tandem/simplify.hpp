@@ -174,4 +174,10 @@ private:
   std::unique_ptr<Engine> engine_;
 };
 
+// A surface destroyed leaves its mesh's storage, emptied, to the next surface made on the same
+// thread, so that leaf after leaf reuses the same pages: at most two meshes are kept, each with no
+// more room than the largest one-block surface destroyed there needed. This gives them back, for
+// a driver about to need the memory more (before a merge, at the end of a run).
+void release_surface_storage();
+
 } // namespace geotandem::tandem

@@ -120,10 +120,11 @@ std::unique_ptr<volume::MemoryVolume> noisy_balls(unsigned seed) {
   return std::make_unique<volume::MemoryVolume>(clean->geometry(), std::move(samples), "noisy balls");
 }
 
-// A surface takes over the mesh storage the last one destroyed on its thread left (emptied, the
-// room kept): what it gives never depends on what came before. Each run, one block or two merged,
-// gives the same components, the same surface waiting and the same collapses as on a thread of its
-// own, after a larger surface of another field, a smaller one, or the same cells of another field.
+// With keep_surface_storage() on (as in a worker), a surface takes over the mesh storage the last
+// one destroyed on its thread left (emptied, the room kept): what it gives never depends on what
+// came before. Each run, one block or two merged, gives the same components, the same surface
+// waiting and the same collapses as on a thread of its own, after a larger surface of another
+// field, a smaller one, or the same cells of another field. Off (the default), nothing is kept.
 TEST(TandemBlock, ASurfaceAfterAnotherOnTheSameThreadGivesWhatItsOwnThreadGives) {
   const auto clean = two_balls();
   const auto noisy = noisy_balls(5), other = noisy_balls(6);
@@ -168,7 +169,12 @@ TEST(TandemBlock, ASurfaceAfterAnotherOnTheSameThreadGivesWhatItsOwnThreadGives)
   const Step steps[] = {{noisy.get(), all, false},    {clean.get(), kBlock, false}, {other.get(), all, false},
                         {noisy.get(), kBlock, false}, {other.get(), all, true},     {clean.get(), all, true},
                         {noisy.get(), all, true},     {other.get(), kBlock, false}};
-  release_surface_storage();
+  {
+    fixtures::CollectingSink sink;
+    block(*noisy, all, sink).reset();
+    EXPECT_EQ(detail::spare_surface_storage_bytes(), 0u) << "kept while off";
+  }
+  keep_surface_storage(true);
   std::size_t n = 0;
   for (const Step& step : steps) {
     const Outcome want = alone(*step.volume, step.cells, step.merged);
@@ -191,6 +197,13 @@ TEST(TandemBlock, ASurfaceAfterAnotherOnTheSameThreadGivesWhatItsOwnThreadGives)
   }
   EXPECT_GT(detail::spare_surface_storage_bytes(), 0u);
   release_surface_storage();
+  EXPECT_EQ(detail::spare_surface_storage_bytes(), 0u);
+  {
+    fixtures::CollectingSink sink;
+    block(*noisy, all, sink).reset();
+  }
+  EXPECT_GT(detail::spare_surface_storage_bytes(), 0u);
+  keep_surface_storage(false);
   EXPECT_EQ(detail::spare_surface_storage_bytes(), 0u);
 }
 

@@ -350,6 +350,15 @@ void end_with_local_manager(Logger& log, const std::string& token) {
 int run_worker(const WorkerOptions& options, const VolumeFactory& factory, Logger& log, const CancelToken& cancel) {
   store::validate_writer_name(options.token);
   end_with_local_manager(log, options.token);
+  // Each leaf's surface takes over the mesh storage the one before it left (it is merged into the
+  // worker's surface and dropped): no fresh pages faulted in and no growth by copies, leaf after
+  // leaf. Given back when the worker ends.
+  struct KeepSurfaceStorage {
+    KeepSurfaceStorage() { tandem::keep_surface_storage(true); }
+    ~KeepSurfaceStorage() { tandem::keep_surface_storage(false); }
+    KeepSurfaceStorage(const KeepSurfaceStorage&) = delete;
+    KeepSurfaceStorage& operator=(const KeepSurfaceStorage&) = delete;
+  } keep;
   Worker worker(options, factory, log, cancel);
   return worker.run();
 }

@@ -71,10 +71,6 @@ public:
       const auto t = Clock::now();
       std::vector<std::byte> record = serialize(std::move(*sent));
       sent.reset();
-      // Its mesh's room is not kept for the next leaf (release_surface_storage()): here surfaces
-      // are set aside or merged, never dropped after a leaf as in a worker, so it would only hold
-      // a sent surface's room (at 512^3: 10 MiB more at the peak, more page faults, no time gained).
-      release_surface_storage();
       stats_.seconds_wire += seconds_since(t);
       record_bytes = record.size();
       // The large merges make the peak: the slab kept for the next leaf goes back first (the next
@@ -183,9 +179,8 @@ BlocksStats extract_blocks(const volume::Volume& volume, const volume::Box& cell
   total.counters = after;
   total.remaining_triangles = root->triangle_count();
   total.seconds_total = seconds_since(start);
-  // What this thread kept for a next leaf is not needed after the last one.
+  // The slab this thread kept for a next leaf is not needed after the last one.
   release_slab_storage();
-  release_surface_storage();
   if (options.progress) options.progress->end();
   if (remaining) *remaining = std::move(root);
   return stats;

@@ -25,12 +25,14 @@ using detail::operator*;
 
 namespace {
 // Meshes of surfaces destroyed on this thread, emptied with their room kept, for the next surfaces
-// made there: a worker extracts leaf after leaf, and each leaf's surface would otherwise fault in
-// fresh pages and grow its arrays by copies, layer after layer. A worker holds two meshes at a
-// time (its surface and the leaf being extracted), hence two spares. A mesh keeps at most the room
-// of the largest leaf (one-block surface) destroyed on the thread: a merged surface's mesh is
-// trimmed to that, so that what is kept serves a leaf and no more.
+// made there (when keep_surface_storage() turned it on): a worker extracts leaf after leaf, and
+// each leaf's surface would otherwise fault in fresh pages and grow its arrays by copies, layer
+// after layer. A worker holds two meshes at a time (its surface and the leaf being extracted),
+// hence two spares. A mesh keeps at most the room of the largest leaf (one-block surface)
+// destroyed on the thread: a merged surface's mesh is trimmed to that, so that what is kept serves
+// a leaf and no more.
 constexpr std::size_t kSpareMeshes = 2;
+thread_local bool keep_storage = false;
 thread_local std::vector<std::unique_ptr<detail::HalfedgeMesh>> spare_meshes;
 thread_local std::array<std::size_t, 3> leaf_room{0, 0, 0}; // vertices, edges, faces
 
@@ -60,6 +62,11 @@ void keep_spare_mesh(std::unique_ptr<detail::HalfedgeMesh> mesh, bool leaf) {
 }
 } // namespace
 
+void keep_surface_storage(bool on) {
+  keep_storage = on;
+  if (!on) release_surface_storage();
+}
+
 void release_surface_storage() {
   std::vector<std::unique_ptr<detail::HalfedgeMesh>>().swap(spare_meshes);
 }
@@ -72,7 +79,7 @@ std::size_t detail::spare_surface_storage_bytes() {
 }
 
 WorkingSurface::Engine::~Engine() {
-  if (!mesh_) return;
+  if (!mesh_ || !keep_storage) return;
   try {
     keep_spare_mesh(std::move(mesh_), region_.blocks().size() == 1);
   } catch (const std::bad_alloc&) {

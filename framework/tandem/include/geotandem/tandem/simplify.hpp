@@ -174,10 +174,14 @@ private:
   std::unique_ptr<Engine> engine_;
 };
 
-// A surface destroyed leaves its mesh's storage, emptied, to the next surface made on the same
-// thread, so that leaf after leaf reuses the same pages: at most two meshes are kept, each with no
-// more room than the largest one-block surface destroyed there needed. This gives them back, for
-// a driver about to need the memory more (before a merge, at the end of a run).
+// Per thread, off by default: when on, a surface destroyed leaves its mesh's storage, emptied, to
+// the next surface made on the same thread, so that leaf after leaf reuses the same pages (a
+// worker turns it on: each of its leaves is merged into its surface and dropped). At most two
+// meshes are kept, each with no more room than the largest one-block surface destroyed there
+// needed. Turning it off gives them back, as release_surface_storage() does (for a driver about
+// to need the memory more). The in-process block driver leaves it off: its surfaces are set aside
+// or merged, never dropped after a leaf, so the spares only added to its peak.
+void keep_surface_storage(bool on);
 void release_surface_storage();
 
 } // namespace geotandem::tandem

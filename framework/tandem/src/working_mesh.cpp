@@ -41,23 +41,11 @@ void HalfedgeMesh::resize(std::size_t nv, std::size_t ne, std::size_t nf) {
 }
 
 void HalfedgeMesh::clear() {
-  out_.clear();
-  points_.clear();
-  vertices_.clear();
-  halfedges_.clear();
-  edges_.clear();
-  face_halfedge_.clear();
-  faces_.clear();
+  for_each_array(0, 0, 0, [](auto& array, std::size_t) { array.clear(); });
 }
 
 void HalfedgeMesh::trim(std::size_t nv, std::size_t ne, std::size_t nf) {
-  out_.trim(nv);
-  points_.trim(nv);
-  vertices_.trim(nv);
-  halfedges_.trim(2 * ne);
-  edges_.trim(ne);
-  face_halfedge_.trim(nf);
-  faces_.trim(nf);
+  for_each_array(nv, ne, nf, [](auto& array, std::size_t n) { array.trim(n); });
 }
 
 std::size_t HalfedgeMesh::capacity_bytes() const {
@@ -68,13 +56,7 @@ std::size_t HalfedgeMesh::capacity_bytes() const {
 }
 
 void HalfedgeMesh::reserve(std::size_t nv, std::size_t ne, std::size_t nf) {
-  out_.reserve(nv);
-  points_.reserve(nv);
-  vertices_.reserve(nv);
-  halfedges_.reserve(2 * ne);
-  edges_.reserve(ne);
-  face_halfedge_.reserve(nf);
-  faces_.reserve(nf);
+  for_each_array(nv, ne, nf, [](auto& array, std::size_t n) { array.reserve(n); });
 }
 
 std::vector<std::int32_t> HalfedgeMesh::compact(bool give_back) {
@@ -118,14 +100,7 @@ std::vector<std::int32_t> HalfedgeMesh::compact(bool give_back) {
     faces_[to] = faces_[i];
   }
   resize(static_cast<std::size_t>(cv), static_cast<std::size_t>(ce), static_cast<std::size_t>(cf));
-  if (!give_back) return vmap;
-  out_.shrink_to_fit();
-  points_.shrink_to_fit();
-  vertices_.shrink_to_fit();
-  halfedges_.shrink_to_fit();
-  edges_.shrink_to_fit();
-  face_halfedge_.shrink_to_fit();
-  faces_.shrink_to_fit();
+  if (give_back) trim(0, 0, 0); // every byte beyond the live elements
   return vmap;
 }
 

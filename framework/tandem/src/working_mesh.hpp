@@ -190,10 +190,6 @@ public:
   void trim(std::size_t n) {
     if (capacity_ > std::max(n, size_)) reallocate(std::max(n, size_));
   }
-  // Gives back the room beyond the size.
-  void shrink_to_fit() {
-    if (capacity_ > size_) reallocate(size_);
-  }
 
 private:
   void reallocate(std::size_t n) {
@@ -301,6 +297,16 @@ private:
     FH face;
   };
   template <class Handle> static std::size_t idx(Handle h) { return static_cast<std::size_t>(h.idx()); }
+  // op(array, n) on every array, n its element count for nv vertices, ne edges and nf faces.
+  template <class Op> void for_each_array(std::size_t nv, std::size_t ne, std::size_t nf, Op op) {
+    op(out_, nv);
+    op(points_, nv);
+    op(vertices_, nv);
+    op(halfedges_, 2 * ne);
+    op(edges_, ne);
+    op(face_halfedge_, nf);
+    op(faces_, nf);
+  }
 
   PodArray<HH> out_;                // per vertex: an outgoing halfedge (a boundary one on the boundary)
   PodArray<Point> points_;          // per vertex

@@ -37,7 +37,7 @@ class WorkingSurface::Engine {
 public:
   Engine(const volume::Geometry& cube, Region region, int axis, const SimplifyOptions& options,
          mesh::ComponentSink* sink, CollapseObserver* observer);
-  // Leaves its mesh's room to the next surface made on this thread (release_surface_storage()).
+  // With keep_surface_storage() on, leaves its mesh's room to the next surface made on this thread.
   ~Engine();
   Engine(const Engine&) = delete;
   Engine& operator=(const Engine&) = delete;
@@ -166,7 +166,7 @@ private:
   std::unique_ptr<detail::FrontRule> front_rule_;
   std::unique_ptr<detail::FaceRule> face_rule_;
 
-  std::unique_ptr<detail::HalfedgeMesh> mesh_; // empty, with the room the last surface on the thread left
+  std::unique_ptr<detail::HalfedgeMesh> mesh_; // made empty, with any room a surface destroyed here left
   detail::VertexRecord* vrec_ = nullptr;
   detail::EdgeRecord* erec_ = nullptr;
   detail::FaceRecord* frec_ = nullptr;

@@ -5,6 +5,7 @@ set(TANDEM_SIMPLIFY_SOURCES
   src/collapse_distance.cpp
   src/component_table.cpp
   src/region.cpp
+  src/spare_meshes.cpp
   src/surface_engine.cpp
   src/surface_cost.cpp
   src/triangle_insert.cpp

@@ -13,7 +13,7 @@
 #include "geotandem/mesh/topology.hpp"
 #include "geotandem/tandem/marching_cubes.hpp"
 #include "simplify_fixtures.hpp"
-#include "surface_engine.hpp"
+#include "spare_meshes.hpp"
 
 namespace geotandem::tandem {
 namespace {

@@ -28,11 +28,6 @@
 
 namespace geotandem::tandem {
 
-namespace detail {
-// The bytes of mesh storage kept on this thread for its next surface (for tests).
-std::size_t spare_surface_storage_bytes();
-} // namespace detail
-
 class WorkingSurface::Engine {
 public:
   Engine(const volume::Geometry& cube, Region region, int axis, const SimplifyOptions& options,

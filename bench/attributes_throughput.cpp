@@ -15,6 +15,7 @@
 #include <string>
 #include <vector>
 
+#include "bench_args.hpp"
 #include "geotandem/attributes/chaos.hpp"
 #include "geotandem/attributes/envelope.hpp"
 #include "geotandem/attributes/normalise.hpp"
@@ -96,14 +97,12 @@ void run(const std::string& label, const volume::Volume& attribute, std::int64_t
 
 } // namespace
 
-int main(int argc, char** argv) {
-  const std::int64_t n = argc > 1 ? std::atoll(argv[1]) : 256;
-  const std::int64_t block = argc > 2 ? std::atoll(argv[2]) : 64;
-  if (argc > 3) only = argv[3];
-  if (n <= 0 || block <= 0) {
-    std::fprintf(stderr, "usage: %s [size > 0] [block > 0]\n", argv[0]);
-    return 2;
-  }
+int bench_main(int argc, char** argv) {
+  const geotandem::bench::Args args(
+      argc, argv, "bench_attributes [size=256] [block=64] [only: run the attributes whose label contains it]");
+  const std::int64_t n = args.integer(1, 256, 1);
+  const std::int64_t block = args.integer(2, 64, 1);
+  only = args.text(3, only);
   double start = cpu_seconds();
   VolumePtr input = make_input(n);
   std::printf("input %lld^3 generated in %.2f s; blocks %lld^3; one thread, CPU seconds\n", static_cast<long long>(n),
@@ -136,4 +135,8 @@ int main(int argc, char** argv) {
   run("normalise(envelope)" + halo_text(*normalised), *normalised, block);
   run("chaos x normalise(envelope)" + halo_text(*product), *product, block);
   return 0;
+}
+
+int main(int argc, char** argv) {
+  return geotandem::bench::guarded_main("bench_attributes", [&] { return bench_main(argc, argv); });
 }

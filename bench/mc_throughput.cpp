@@ -17,6 +17,7 @@
 #include <string>
 #include <vector>
 
+#include "bench_args.hpp"
 #include "geotandem/tandem/marching_cubes.hpp"
 #include "geotandem/volume/volume.hpp"
 
@@ -101,15 +102,15 @@ void report(const char* field, const char* mode, int axis, std::int64_t n, const
 
 } // namespace
 
-int main(int argc, char** argv) {
-  const std::int64_t n = argc > 1 ? std::atoll(argv[1]) : 256;
-  const int repeats = argc > 2 ? std::atoi(argv[2]) : 3;
-  const std::string only_field = argc > 3 ? argv[3] : "";
-  const int only_axis = argc > 4 ? std::atoi(argv[4]) : -1;
-  if (n < 2 || repeats < 1) {
-    std::fprintf(stderr, "usage: %s [n >= 2] [repeats >= 1]\n", argv[0]);
-    return 2;
-  }
+int bench_main(int argc, char** argv) {
+  const geotandem::bench::Args args(argc, argv,
+                                    "bench_mc_throughput [n=256] [repeats=3] [field: blobs, smooth or empty; default "
+                                    "all] [axis: 0, 1 or 2; default all]");
+  const std::int64_t n = args.integer(1, 256, 2);
+  const auto repeats = static_cast<int>(args.integer(2, 3, 1));
+  const std::string only_field = args.has(3) ? args.words(3, "", {"blobs", "smooth", "empty"}).front() : "";
+  const auto only_axis = static_cast<int>(args.integer(4, -1, 0));
+  if (only_axis > 2) args.fail(4, "is not an axis (0, 1 or 2)");
   std::printf("marching cubes, one thread, %lld^3 samples (%lld^3 cells), best of %d\n", static_cast<long long>(n),
               static_cast<long long>(n - 1), repeats);
   struct Field {
@@ -145,4 +146,8 @@ int main(int argc, char** argv) {
     report(f.name, "welded", 0, n, welded);
   }
   return 0;
+}
+
+int main(int argc, char** argv) {
+  return geotandem::bench::guarded_main("bench_mc_throughput", [&] { return bench_main(argc, argv); });
 }

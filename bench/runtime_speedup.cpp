@@ -21,15 +21,16 @@
 using namespace geotandem;
 namespace fs = std::filesystem;
 
-int main(int argc, char** argv) {
-  if (argc < 2) {
-    std::cerr << "usage: bench_runtime_speedup GEOTANDEM_EXECUTABLE [edge=256] [block=64] [workers=1,2]\n";
-    return 2;
-  }
-  const std::string exe = argv[1];
-  const std::int64_t edge = argc > 2 ? std::stoll(argv[2]) : 256;
-  const std::int64_t block = argc > 3 ? std::stoll(argv[3]) : 64;
-  const std::vector<std::string> counts = bench::split(argc > 4 ? argv[4] : "1,2");
+int bench_main(int argc, char** argv) {
+  const geotandem::bench::Args args(argc, argv,
+                                    "bench_runtime_speedup GEOTANDEM_EXECUTABLE [edge=256] [block=64] [workers=1,2]");
+  if (args.size() < 1) args.fail(1, "is missing: the geotandem executable that runs the workers");
+  const std::string exe = args.text(1, "");
+  const std::int64_t edge = args.integer(2, 256, 2);
+  const std::int64_t block = args.integer(3, 64, 1);
+  for (const double w : args.reals(4, "1,2", 1.0))
+    if (w != static_cast<double>(static_cast<std::int64_t>(w))) args.fail(4, "is not a list of worker counts");
+  const std::vector<std::string> counts = bench::split(args.text(4, "1,2"));
   synth::AnalyticOptions a;
   a.shape = {edge, edge, edge};
   a.seed = 1;
@@ -83,4 +84,8 @@ int main(int argc, char** argv) {
   }
   fs::remove_all(root);
   return 0;
+}
+
+int main(int argc, char** argv) {
+  return geotandem::bench::guarded_main("bench_runtime_speedup", [&] { return bench_main(argc, argv); });
 }

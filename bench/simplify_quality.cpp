@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "bench_args.hpp"
 #include "geotandem/mesh/quality.hpp"
 #include "geotandem/mesh/topology.hpp"
 #include "geotandem/tandem/marching_cubes.hpp"
@@ -19,15 +20,6 @@
 using namespace geotandem;
 
 namespace {
-
-std::vector<double> parse_list(const char* text) {
-  std::vector<double> out;
-  std::stringstream ss(text);
-  std::string item;
-  while (std::getline(ss, item, ','))
-    out.push_back(std::stod(item));
-  return out;
-}
 
 class Collect final : public mesh::ComponentSink {
 public:
@@ -44,10 +36,12 @@ public:
 
 } // namespace
 
-int main(int argc, char** argv) {
-  const double radius = argc > 1 ? std::atof(argv[1]) : 11.0;
-  const std::vector<double> errors = parse_list(argc > 2 ? argv[2] : "0.1,0.2,0.3,0.5");
-  const std::vector<double> alphas = parse_list(argc > 3 ? argv[3] : "0,0.4,1");
+int bench_main(int argc, char** argv) {
+  const geotandem::bench::Args args(
+      argc, argv, "bench_simplify_quality [radius=11] [E0 list=0.1,0.2,0.3,0.5] [alpha list=0,0.4,1]");
+  const double radius = args.real(1, 11.0, 1.0);
+  const std::vector<double> errors = args.reals(2, "0.1,0.2,0.3,0.5", 0.0);
+  const std::vector<double> alphas = args.reals(3, "0,0.4,1", 0.0);
   const auto n = static_cast<std::int64_t>(2 * radius + 10);
   volume::Geometry g;
   g.shape = {n, n + 1, n + 2};
@@ -87,4 +81,8 @@ int main(int argc, char** argv) {
                   mesh::anisotropy(sink.all), closed ? "yes" : "NO");
     }
   return 0;
+}
+
+int main(int argc, char** argv) {
+  return geotandem::bench::guarded_main("bench_simplify_quality", [&] { return bench_main(argc, argv); });
 }

@@ -103,14 +103,15 @@ public:
 
 } // namespace
 
-using geotandem::bench::split;
-
-int main(int argc, char** argv) {
-  const std::int64_t n = argc > 1 ? std::atoll(argv[1]) : 256;
-  const std::vector<std::string> fields = split(argc > 2 ? argv[2] : "blobs,smooth");
-  const double e0 = argc > 3 ? std::atof(argv[3]) : 0.5;
-  const std::vector<std::string> modes = split(argc > 4 ? argv[4] : "tandem,brute");
-  const std::size_t min_dead = argc > 5 ? static_cast<std::size_t>(std::atoll(argv[5])) : 16384;
+int bench_main(int argc, char** argv) {
+  const geotandem::bench::Args args(argc, argv,
+                                    "bench_simplify_throughput [n=256] [fields=blobs,smooth] [E0=0.5] "
+                                    "[modes=tandem,brute,seed] [compaction_min_dead=16384]");
+  const std::int64_t n = args.integer(1, 256, 2);
+  const std::vector<std::string> fields = args.words(2, "blobs,smooth", {"blobs", "smooth"});
+  const double e0 = args.real(3, 0.5, 0.0);
+  const std::vector<std::string> modes = args.words(4, "tandem,brute", {"tandem", "brute", "seed"});
+  const auto min_dead = static_cast<std::size_t>(args.integer(5, 16384, 0));
   std::printf("cube %lld^3, E0 %.2f voxel, alpha 0.4, extraction along axis 0, one thread\n", static_cast<long long>(n),
               e0);
   for (const std::string& kind : fields) {
@@ -174,4 +175,8 @@ int main(int argc, char** argv) {
     }
   }
   return 0;
+}
+
+int main(int argc, char** argv) {
+  return geotandem::bench::guarded_main("bench_simplify_throughput", [&] { return bench_main(argc, argv); });
 }

@@ -282,9 +282,11 @@ std::string endpoint_for(int salt) {
 
 } // namespace
 
-int main(int argc, char** argv) {
-  const std::vector<std::string> sizes = geotandem::bench::split(argc > 1 ? argv[1] : "1,4,16");
-  const int surfaces = argc > 2 ? std::stoi(argv[2]) : 16;
+int bench_main(int argc, char** argv) {
+  const geotandem::bench::Args args(argc, argv, "bench_surface_route [MiB list=1,4,16] [surfaces=16]");
+  args.reals(1, "1,4,16", 1.0 / 1024); // checked here, used as written
+  const std::vector<std::string> sizes = geotandem::bench::split(args.text(1, "1,4,16"));
+  const auto surfaces = static_cast<int>(args.integer(2, 16, 1));
   std::printf("partial surfaces from one worker process to another, %d per size, chunks of %zu KiB, window %zu\n",
               surfaces, kChunkBytes >> 10, kChunkWindow);
   int salt = 0;
@@ -322,4 +324,8 @@ int main(int argc, char** argv) {
     }
   }
   return 0;
+}
+
+int main(int argc, char** argv) {
+  return geotandem::bench::guarded_main("bench_surface_route", [&] { return bench_main(argc, argv); });
 }

@@ -12,6 +12,7 @@
 #include <cstdlib>
 #include <functional>
 
+#include "bench_args.hpp"
 #include "geotandem/synth/synthetic.hpp"
 
 namespace {
@@ -62,10 +63,11 @@ void run(const char* label, const std::function<std::unique_ptr<geotandem::synth
 
 } // namespace
 
-int main(int argc, char** argv) {
-  const std::int64_t edge = argc > 1 ? std::atoll(argv[1]) : 256;
-  const std::int64_t box = argc > 2 ? std::atoll(argv[2]) : 64;
-  const std::uint64_t seed = argc > 3 ? std::strtoull(argv[3], nullptr, 10) : 1;
+int bench_main(int argc, char** argv) {
+  const geotandem::bench::Args args(argc, argv, "bench_synth_throughput [edge=256] [box=64] [seed=1]");
+  const std::int64_t edge = args.integer(1, 256, 1);
+  const std::int64_t box = args.integer(2, 64, 1);
+  const auto seed = static_cast<std::uint64_t>(args.integer(3, 1, 0));
   run(
       "analytic",
       [&] {
@@ -95,4 +97,8 @@ int main(int argc, char** argv) {
       },
       box);
   return 0;
+}
+
+int main(int argc, char** argv) {
+  return geotandem::bench::guarded_main("bench_synth_throughput", [&] { return bench_main(argc, argv); });
 }

@@ -294,13 +294,13 @@ int main(int argc, char** argv) {
       options.simplify.guarantee_distance = false; // the seed's algorithm: eps_0 <= E0 only
     } else if (arg == "--seed" && has_value) {
       cube.seed = std::strtoull(argv[++a], nullptr, 10);
-    } else if (!arg.empty() && arg[0] != '-') {
-      n = std::atoll(arg.c_str());
+    } else if (std::int64_t edge = 0; geotandem::bench::to_integer(arg, 2, edge)) {
+      n = edge;
     } else {
-      std::fprintf(stderr,
+      std::fprintf(arg == "--help" ? stdout : stderr,
                    "usage: %s [N=512] [--svg PATH] [--e0 X] [--axis A] [--modes LIST] [--seed S] [--no-guarantee]\n",
                    argv[0]);
-      return 2;
+      return arg == "--help" ? 0 : 2;
     }
   }
   cube.shape = {n, n, n};

@@ -19,6 +19,7 @@
 #include <string>
 #include <vector>
 
+#include "bench_args.hpp"
 #include "geotandem/mesh/component.hpp"
 #include "geotandem/mesh/quality.hpp"
 #include "geotandem/synth/synthetic.hpp"
@@ -182,11 +183,12 @@ int main(int argc, char** argv) {
       guarantee = false; // the seed's algorithm: eps_0 <= E0 only
     } else if (arg == "--seed" && has_value) {
       cube_options.seed = std::strtoull(argv[++a], nullptr, 10);
-    } else if (!arg.empty() && arg[0] != '-') {
-      n = std::atoll(arg.c_str());
+    } else if (std::int64_t edge = 0; geotandem::bench::to_integer(arg, 2, edge)) {
+      n = edge;
     } else {
-      std::fprintf(stderr, "usage: %s [N=128] [--svg PATH] [--e0 X] [--seed S] [--no-guarantee]\n", argv[0]);
-      return 2;
+      std::fprintf(arg == "--help" ? stdout : stderr,
+                   "usage: %s [N=128] [--svg PATH] [--e0 X] [--seed S] [--no-guarantee]\n", argv[0]);
+      return arg == "--help" ? 0 : 2;
     }
   }
   try {

@@ -16,6 +16,7 @@
 #include <string>
 #include <vector>
 
+#include "bench_args.hpp"
 #include "geotandem/volume/io.hpp"
 
 namespace fs = std::filesystem;
@@ -91,15 +92,17 @@ void time_reads(const char* name, const Volume& volume) {
 
 } // namespace
 
-int main(int argc, char** argv) {
+int bench_main(int argc, char** argv) {
+  const geotandem::bench::Args args(argc, argv, "bench_volume_io [NI NJ NK] [DIR]");
+  if (args.size() != 0 && args.size() != 3 && args.size() != 4)
+    args.fail(args.size(), "is out of place: give NI NJ NK [DIR], or nothing");
   Geometry g;
-  g.shape = {256, 256, 400};
-  if (argc >= 4) g.shape = {std::stoll(argv[1]), std::stoll(argv[2]), std::stoll(argv[3])};
-  const bool own_dir = argc < 5;
+  g.shape = {args.integer(1, 256, 1), args.integer(2, 256, 1), args.integer(3, 400, 1)};
+  const bool own_dir = !args.has(4);
   const fs::path dir = own_dir ? fs::temp_directory_path() /
                                      ("geotandem-bench-volume-io-" +
                                       std::to_string(std::chrono::steady_clock::now().time_since_epoch().count()))
-                               : fs::path(argv[4]);
+                               : fs::path(args.text(4, ""));
   fs::create_directories(dir);
   const Procedural cube(g);
   std::printf("cube %lld x %lld x %lld float32 (%.1f MiB) in %s\n", static_cast<long long>(g.shape[0]),
@@ -117,4 +120,8 @@ int main(int argc, char** argv) {
   }
   if (own_dir) fs::remove_all(dir);
   return 0;
+}
+
+int main(int argc, char** argv) {
+  return geotandem::bench::guarded_main("bench_volume_io", [&] { return bench_main(argc, argv); });
 }

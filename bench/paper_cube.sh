@@ -22,6 +22,8 @@
 # the wall time and memory extrapolated to the whole cube (linear in samples: the extraction is
 # block by block; a rough figure, say so when you quote it). The targets: <= 20 min and <= 4 GiB
 # for the whole cube, file within 1.2x of procedural.
+# It also prints the disk the store and the exports take, and that figure extrapolated too: at the
+# whole cube it can exceed the free space (the three exports of the recipe hold every triangle kept).
 # Triangles held over time: the manager logs (at debug level) what the workers' surfaces hold
 # together after each task; the script prints the largest figure of each tenth of the extraction.
 # The RSS timeline is in rss.tsv in each run's directory.
@@ -203,6 +205,20 @@ print(f"    wall as measured (this machine's load included): {float(wall) * scal
 print(f"    CPU / {cores} cores (an idle machine, perfect overlap): {float(cpu) * scale / cores / 60:.0f} min  (target 20 min)")
 print(f"    memory is per block and per worker: the peak should stay near {int(peak) / 2**20:.0f} MiB plus what grows "
       f"with the component count (target 4 GiB)")
+# Disk: the store and the exports grow with the triangles kept, so linearly too.
+run_dir = os.path.dirname(sys.argv[1])
+def tree_bytes(path):
+    if os.path.isfile(path):
+        return os.path.getsize(path)
+    return sum(os.path.getsize(os.path.join(d, f)) for d, _, files in os.walk(path) for f in files)
+store = tree_bytes(os.path.join(run_dir, "store"))
+exports = sum(tree_bytes(os.path.join(run_dir, f)) for f in os.listdir(run_dir)
+              if f.startswith("bodies.") or f == "report.html")
+free = os.statvfs(run_dir).f_bavail * os.statvfs(run_dir).f_frsize
+gb = 1e9
+print(f"    disk: store {store / gb:.1f} GB and exports + report {exports / gb:.1f} GB here, so about "
+      f"{store * scale / gb:.0f} and {exports * scale / gb:.0f} GB for the whole cube ({free / gb:.0f} GB free on "
+      f"this output's file system now)")
 PY
 fi
 

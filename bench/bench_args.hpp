@@ -72,16 +72,29 @@ public:
     if (out.empty()) fail(i, "is an empty list");
     return out;
   }
+  // A comma-separated list of whole numbers of at least `min`.
+  std::vector<std::int64_t> integers(std::size_t i, const std::string& fallback, std::int64_t min) const {
+    std::vector<std::int64_t> out;
+    for (const std::string& item : split(text(i, fallback)))
+      if (std::int64_t v = 0; to_integer(item, min, v))
+        out.push_back(v);
+      else
+        fail(i, "is not a list of whole numbers of at least " + std::to_string(min));
+    if (out.empty()) fail(i, "is an empty list");
+    return out;
+  }
+  // One word of `allowed`.
+  std::string word(std::size_t i, const std::string& fallback, const std::vector<std::string>& allowed) const {
+    const std::string w = text(i, fallback);
+    check_word(i, w, allowed);
+    return w;
+  }
   // A comma-separated list of words, each one of `allowed`.
   std::vector<std::string> words(std::size_t i, const std::string& fallback,
                                  const std::vector<std::string>& allowed) const {
     std::vector<std::string> out = split(text(i, fallback));
-    std::string choices;
-    for (const std::string& a : allowed)
-      choices += (choices.empty() ? "" : ", ") + a;
     for (const std::string& w : out)
-      if (std::find(allowed.begin(), allowed.end(), w) == allowed.end())
-        fail(i, "names '" + w + "': the choices are " + choices);
+      check_word(i, w, allowed);
     if (out.empty()) fail(i, "is an empty list");
     return out;
   }
@@ -99,6 +112,14 @@ private:
     const double v = std::strtod(s.c_str(), &end);
     if (s.empty() || *end != '\0' || !(v >= min)) fail(i, "is not a number of at least " + shortest(min));
     return v;
+  }
+
+  void check_word(std::size_t i, const std::string& w, const std::vector<std::string>& allowed) const {
+    if (std::find(allowed.begin(), allowed.end(), w) != allowed.end()) return;
+    std::string choices;
+    for (const std::string& a : allowed)
+      choices += (choices.empty() ? "" : ", ") + a;
+    fail(i, "names '" + w + "': the choices are " + choices);
   }
 
   static std::string shortest(double v) {

@@ -108,7 +108,7 @@ int bench_main(int argc, char** argv) {
                                     "all] [axis: 0, 1 or 2; default all]");
   const std::int64_t n = args.integer(1, 256, 2);
   const auto repeats = static_cast<int>(args.integer(2, 3, 1));
-  const std::string only_field = args.has(3) ? args.words(3, "", {"blobs", "smooth", "empty"}).front() : "";
+  const std::string only_field = args.has(3) ? args.word(3, "", {"blobs", "smooth", "empty"}) : "";
   const auto only_axis = static_cast<int>(args.integer(4, -1, 0));
   if (only_axis > 2) args.fail(4, "is not an axis (0, 1 or 2)");
   std::printf("marching cubes, one thread, %lld^3 samples (%lld^3 cells), best of %d\n", static_cast<long long>(n),

@@ -214,7 +214,8 @@ def tree_bytes(path):
 store = tree_bytes(os.path.join(run_dir, "store"))
 exports = sum(tree_bytes(os.path.join(run_dir, f)) for f in os.listdir(run_dir)
               if f.startswith("bodies.") or f == "report.html")
-free = os.statvfs(run_dir).f_bavail * os.statvfs(run_dir).f_frsize
+fs = os.statvfs(run_dir)
+free = fs.f_bavail * fs.f_frsize
 gb = 1e9
 print(f"    disk: store {store / gb:.1f} GB and exports + report {exports / gb:.1f} GB here, so about "
       f"{store * scale / gb:.0f} and {exports * scale / gb:.0f} GB for the whole cube ({free / gb:.0f} GB free on "

@@ -28,9 +28,7 @@ int bench_main(int argc, char** argv) {
   const std::string exe = args.text(1, "");
   const std::int64_t edge = args.integer(2, 256, 2);
   const std::int64_t block = args.integer(3, 64, 1);
-  for (const double w : args.reals(4, "1,2", 1.0))
-    if (w != static_cast<double>(static_cast<std::int64_t>(w))) args.fail(4, "is not a list of worker counts");
-  const std::vector<std::string> counts = bench::split(args.text(4, "1,2"));
+  const std::vector<std::int64_t> counts = args.integers(4, "1,2", 1);
   synth::AnalyticOptions a;
   a.shape = {edge, edge, edge};
   a.seed = 1;
@@ -44,7 +42,8 @@ int bench_main(int argc, char** argv) {
   std::printf("analytic cube %lld^3, leaves of %lld cells\n", static_cast<long long>(edge),
               static_cast<long long>(block));
   double one = 0;
-  for (const std::string& n : counts) {
+  for (const std::int64_t workers : counts) {
+    const std::string n = std::to_string(workers);
     auto store = store::ComponentStore::create(root / ("w" + n), cube->geometry());
     runtime::ManagerOptions options;
     options.settings.volume = description;
@@ -52,12 +51,12 @@ int bench_main(int argc, char** argv) {
     options.settings.block_size = block;
     options.settings.iso = 0.5f;
     options.settings.run = store.begin_run("{}");
-    options.workers = std::stoul(n);
+    options.workers = static_cast<std::size_t>(workers);
     options.worker_command = {exe, "-q", "--log-level", "warning", "worker"};
     runtime::LocalLauncher launcher;
     runtime::Manager manager(options, store, &launcher, Logger::null(), progress, cancel);
     const runtime::ManagerReport r = manager.run();
-    if (n == "1") one = r.seconds;
+    if (workers == 1) one = r.seconds;
     std::printf("%2s worker(s): %7.2f s (speed-up %.2fx), %llu components, %llu sends, %.1f KiB per merge "
                 "(largest %.1f KiB), worker peak RSS %lld MiB, manager peak RSS %lld MiB, manager CPU %.1f %% "
                 "of the wall time; worker seconds: extract %.2f, merge %.2f, finish %.2f\n",

@@ -284,14 +284,13 @@ std::string endpoint_for(int salt) {
 
 int bench_main(int argc, char** argv) {
   const geotandem::bench::Args args(argc, argv, "bench_surface_route [MiB list=1,4,16] [surfaces=16]");
-  args.reals(1, "1,4,16", 1.0 / 1024); // checked here, used as written
-  const std::vector<std::string> sizes = geotandem::bench::split(args.text(1, "1,4,16"));
+  const std::vector<double> sizes = args.reals(1, "1,4,16", 1.0 / 1024);
   const auto surfaces = static_cast<int>(args.integer(2, 16, 1));
   std::printf("partial surfaces from one worker process to another, %d per size, chunks of %zu KiB, window %zu\n",
               surfaces, kChunkBytes >> 10, kChunkWindow);
   int salt = 0;
-  for (const std::string& mib : sizes) {
-    const Plan plan{static_cast<std::size_t>(std::stod(mib) * 1024 * 1024), surfaces};
+  for (const double mib : sizes) {
+    const Plan plan{static_cast<std::size_t>(mib * 1024 * 1024), surfaces};
     for (const bool via_manager : {false, true}) {
       const std::string endpoint = endpoint_for(++salt);
       const auto start = Clock::now();
@@ -309,18 +308,18 @@ int bench_main(int argc, char** argv) {
       const double wall = std::chrono::duration<double>(Clock::now() - start).count();
       const double total_mib = static_cast<double>(plan.bytes) * surfaces / (1024.0 * 1024.0);
       if (!ok) {
-        std::printf("%6s MiB %-7s: FAILED\n", mib.c_str(), via_manager ? "relay" : "direct");
+        std::printf("%6g MiB %-7s: FAILED\n", mib, via_manager ? "relay" : "direct");
         return 1;
       }
       if (via_manager)
         std::printf(
-            "%6s MiB relay : %7.2f ms per surface, %7.0f MiB/s; CPU s: sender %.3f, manager %.3f, receiver %.3f "
+            "%6g MiB relay : %7.2f ms per surface, %7.0f MiB/s; CPU s: sender %.3f, manager %.3f, receiver %.3f "
             "(manager %.2f ms per MiB)\n",
-            mib.c_str(), 1000.0 * wall / surfaces, total_mib / wall, children[2].cpu, children[0].cpu, children[1].cpu,
+            mib, 1000.0 * wall / surfaces, total_mib / wall, children[2].cpu, children[0].cpu, children[1].cpu,
             1000.0 * children[0].cpu / total_mib);
       else
-        std::printf("%6s MiB direct: %7.2f ms per surface, %7.0f MiB/s; CPU s: sender %.3f, receiver %.3f\n",
-                    mib.c_str(), 1000.0 * wall / surfaces, total_mib / wall, children[1].cpu, children[0].cpu);
+        std::printf("%6g MiB direct: %7.2f ms per surface, %7.0f MiB/s; CPU s: sender %.3f, receiver %.3f\n", mib,
+                    1000.0 * wall / surfaces, total_mib / wall, children[1].cpu, children[0].cpu);
     }
   }
   return 0;

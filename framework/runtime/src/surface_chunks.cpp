@@ -22,6 +22,9 @@ SurfaceAssembler::SurfaceAssembler(std::uint64_t max_total, std::optional<std::u
                                    std::size_t chunk_bytes)
     : max_total_(max_total), announced_(announced), chunk_bytes_(chunk_bytes) {
   if (announced_ && *announced_ > max_total_) broken_ = true;
+  // Room for the whole record at once when its size is announced: grown chunk by chunk, it would
+  // be copied at every doubling, into pages faulted in anew each time.
+  if (announced_ && !broken_) bytes_.reserve(*announced_);
 }
 
 std::optional<std::string> SurfaceAssembler::add(std::uint64_t offset, std::span<const std::byte> piece) {
@@ -43,9 +46,6 @@ std::optional<std::string> SurfaceAssembler::add(std::uint64_t offset, std::span
   if (end > max_total_) return refuse("a surface growing past the cap of " + std::to_string(max_total_) + " bytes");
   if (announced_ && end > *announced_)
     return refuse("a chunk past the announced " + std::to_string(*announced_) + " bytes");
-  // Room for the whole record at once when its size was announced: grown chunk by chunk, it would
-  // be copied at every doubling, into pages faulted in anew each time.
-  if (announced_ && bytes_.capacity() < *announced_) bytes_.reserve(*announced_);
   bytes_.insert(bytes_.end(), piece.begin(), piece.end());
   return std::nullopt;
 }

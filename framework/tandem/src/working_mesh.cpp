@@ -41,22 +41,22 @@ void HalfedgeMesh::resize(std::size_t nv, std::size_t ne, std::size_t nf) {
 }
 
 void HalfedgeMesh::clear() {
-  for_each_array(0, 0, 0, [](auto& array, std::size_t) { array.clear(); });
+  for_each_array(*this, 0, 0, 0, [](auto& array, std::size_t) { array.clear(); });
 }
 
 void HalfedgeMesh::trim(std::size_t nv, std::size_t ne, std::size_t nf) {
-  for_each_array(nv, ne, nf, [](auto& array, std::size_t n) { array.trim(n); });
+  for_each_array(*this, nv, ne, nf, [](auto& array, std::size_t n) { array.trim(n); });
 }
 
 std::size_t HalfedgeMesh::capacity_bytes() const {
-  return out_.capacity() * sizeof(HH) + points_.capacity() * sizeof(Point) +
-         vertices_.capacity() * sizeof(VertexRecord) + halfedges_.capacity() * sizeof(Halfedge) +
-         edges_.capacity() * sizeof(EdgeRecord) + face_halfedge_.capacity() * sizeof(HH) +
-         faces_.capacity() * sizeof(FaceRecord);
+  std::size_t bytes = 0;
+  for_each_array(*this, 0, 0, 0,
+                 [&bytes](const auto& array, std::size_t) { bytes += array.capacity() * sizeof(*array.data()); });
+  return bytes;
 }
 
 void HalfedgeMesh::reserve(std::size_t nv, std::size_t ne, std::size_t nf) {
-  for_each_array(nv, ne, nf, [](auto& array, std::size_t n) { array.reserve(n); });
+  for_each_array(*this, nv, ne, nf, [](auto& array, std::size_t n) { array.reserve(n); });
 }
 
 std::vector<std::int32_t> HalfedgeMesh::compact(bool give_back) {

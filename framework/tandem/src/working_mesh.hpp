@@ -297,15 +297,17 @@ private:
     FH face;
   };
   template <class Handle> static std::size_t idx(Handle h) { return static_cast<std::size_t>(h.idx()); }
-  // op(array, n) on every array, n its element count for nv vertices, ne edges and nf faces.
-  template <class Op> void for_each_array(std::size_t nv, std::size_t ne, std::size_t nf, Op op) {
-    op(out_, nv);
-    op(points_, nv);
-    op(vertices_, nv);
-    op(halfedges_, 2 * ne);
-    op(edges_, ne);
-    op(face_halfedge_, nf);
-    op(faces_, nf);
+  // op(array, n) on every array of `mesh` (const or not), n its element count for nv vertices, ne
+  // edges and nf faces.
+  template <class Mesh, class Op>
+  static void for_each_array(Mesh& mesh, std::size_t nv, std::size_t ne, std::size_t nf, Op op) {
+    op(mesh.out_, nv);
+    op(mesh.points_, nv);
+    op(mesh.vertices_, nv);
+    op(mesh.halfedges_, 2 * ne);
+    op(mesh.edges_, ne);
+    op(mesh.face_halfedge_, nf);
+    op(mesh.faces_, nf);
   }
 
   PodArray<HH> out_;                // per vertex: an outgoing halfedge (a boundary one on the boundary)

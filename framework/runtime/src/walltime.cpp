@@ -24,7 +24,7 @@ std::optional<double> seconds_in(const char* name) {
 }
 
 double margin_for(double walltime) {
-  return seconds_in(walltime_margin_variable).value_or(std::clamp(walltime * 0.05, 60.0, 600.0));
+  return seconds_in(walltime_margin_variable).value_or(walltime_margin(walltime));
 }
 
 double used_seconds() {
@@ -39,6 +39,10 @@ std::string seconds_text(double s) {
 }
 
 } // namespace
+
+double walltime_margin(double walltime) {
+  return std::min(std::clamp(walltime * 0.05, 60.0, 600.0), walltime / 4);
+}
 
 bool walltime_nearly_over() {
   const std::optional<double> walltime = seconds_in(walltime_variable);

@@ -11,9 +11,14 @@
 namespace geotandem::runtime::detail {
 
 inline constexpr const char* walltime_variable = "GEOTANDEM_WALLTIME_SECONDS";
-// Seconds before the walltime at which a worker stops taking tasks (default: 5 % of the walltime,
-// at least 60 s and at most 10 minutes). Tests set it.
+// Seconds before the walltime at which a worker stops taking tasks (default: walltime_margin()).
+// Tests set it.
 inline constexpr const char* walltime_margin_variable = "GEOTANDEM_WALLTIME_MARGIN_SECONDS";
+
+// The default margin for a walltime of `walltime` seconds: 5 % of it, at least 60 s and at most
+// 10 minutes, but never more than a quarter of the walltime (a job of a few minutes on a test
+// queue still works three quarters of its time instead of retiring after its first task).
+double walltime_margin(double walltime);
 
 // Empty while the worker may take another task; otherwise why it must stop ("2 s left of its
 // 60 s walltime ..."). Without a walltime in the environment: always empty.

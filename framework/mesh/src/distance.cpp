@@ -8,7 +8,7 @@
 #include "geotandem/mesh/quality.hpp"
 #include "stars.hpp"
 #include "triangle_grid.hpp"
-#include "vec.hpp"
+#include "geotandem/mesh/vec.hpp"
 
 namespace geotandem::mesh {
 

@@ -13,7 +13,7 @@
 #include "geotandem/mesh/caps.hpp"
 #include "geotandem/mesh/quality.hpp"
 #include "stars.hpp"
-#include "vec.hpp"
+#include "geotandem/mesh/vec.hpp"
 
 namespace geotandem::mesh {
 

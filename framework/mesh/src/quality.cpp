@@ -7,7 +7,7 @@
 #include <numbers>
 
 #include "stars.hpp"
-#include "vec.hpp"
+#include "geotandem/mesh/vec.hpp"
 
 namespace geotandem::mesh {
 

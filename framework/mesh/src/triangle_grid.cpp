@@ -4,7 +4,7 @@
 #include <cmath>
 #include <limits>
 
-#include "vec.hpp"
+#include "geotandem/mesh/vec.hpp"
 
 namespace geotandem::mesh::detail {
 

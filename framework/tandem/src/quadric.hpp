@@ -5,31 +5,18 @@
 #include <array>
 #include <cmath>
 
+#include "geotandem/mesh/vec.hpp"
+
 namespace geotandem::tandem::detail {
 
-using Vec3 = std::array<double, 3>;
-
-inline Vec3 operator+(const Vec3& a, const Vec3& b) {
-  return {a[0] + b[0], a[1] + b[1], a[2] + b[2]};
-}
-inline Vec3 operator-(const Vec3& a, const Vec3& b) {
-  return {a[0] - b[0], a[1] - b[1], a[2] - b[2]};
-}
-inline Vec3 operator*(double s, const Vec3& a) {
-  return {s * a[0], s * a[1], s * a[2]};
-}
-inline double dot(const Vec3& a, const Vec3& b) {
-  return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
-}
-inline Vec3 cross(const Vec3& a, const Vec3& b) {
-  return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
-}
-inline double norm2(const Vec3& a) {
-  return dot(a, a);
-}
-inline double norm(const Vec3& a) {
-  return std::sqrt(dot(a, a));
-}
+using Vec3 = mesh::Point;
+using mesh::operator+;
+using mesh::operator-;
+using mesh::operator*;
+using mesh::cross;
+using mesh::dot;
+using mesh::norm;
+using mesh::norm2;
 
 // A symmetric 4x4 matrix as its upper triangle, row by row:
 //   [0 xx, 1 xy, 2 xz, 3 xw,

@@ -1,11 +1,13 @@
 #pragma once
-// The few vector operations the part needs on Point (std::array<double, 3>).
+// The vector operations on Point (std::array<double, 3>) that the measures and the collapse loop
+// share. A caller outside namespace geotandem::mesh brings in the operators with a using-declaration
+// (std::array is found in std only).
 
 #include <cmath>
 
-#include "geotandem/mesh/surface.hpp"
+#include "surface.hpp"
 
-namespace geotandem::mesh::detail {
+namespace geotandem::mesh {
 
 inline Point operator+(const Point& a, const Point& b) {
   return {a[0] + b[0], a[1] + b[1], a[2] + b[2]};
@@ -29,4 +31,4 @@ inline double norm(const Point& a) {
   return std::sqrt(dot(a, a));
 }
 
-} // namespace geotandem::mesh::detail
+} // namespace geotandem::mesh

@@ -3,6 +3,7 @@
 #include <ctime>
 
 #include "geotandem/core/error.hpp"
+#include "geotandem/volume/geometry_json.hpp"
 #include "store_impl.hpp"
 
 namespace geotandem::store::detail {
@@ -25,16 +26,9 @@ nlohmann::json parse_json_argument(const std::string& text, const std::string& w
 }
 
 nlohmann::json geometry_to_json(const volume::Geometry& g) {
-  const auto& a = g.affine;
-  return {{"shape", {g.shape[0], g.shape[1], g.shape[2]}},
-          {"inline0", g.inline0},
-          {"inline_step", g.inline_step},
-          {"crossline0", g.crossline0},
-          {"crossline_step", g.crossline_step},
-          {"z0", g.z0},
-          {"dz", g.dz},
-          {"z_unit", volume::to_string(g.z_unit)},
-          {"affine", {{"x0", a.x0}, {"xi", a.xi}, {"xj", a.xj}, {"y0", a.y0}, {"yi", a.yi}, {"yj", a.yj}}}};
+  nlohmann::json j = volume::geometry_fields_json(g);
+  j["shape"] = {g.shape[0], g.shape[1], g.shape[2]};
+  return j;
 }
 
 volume::Geometry geometry_from_json(const nlohmann::json& j, const std::string& file) {

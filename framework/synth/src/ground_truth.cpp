@@ -6,6 +6,7 @@
 #include <string>
 
 #include "geotandem/core/error.hpp"
+#include "geotandem/volume/geometry_json.hpp"
 
 namespace geotandem::synth {
 namespace {
@@ -16,18 +17,11 @@ nlohmann::json finite_or_null(double value) {
 }
 
 nlohmann::json geometry_json(const volume::Geometry& g) {
-  const auto& a = g.affine;
-  return {{"shape", {g.shape[0], g.shape[1], g.shape[2]}},
-          {"axes", {"inline", "crossline", "sample"}},
-          {"inline0", g.inline0},
-          {"inline_step", g.inline_step},
-          {"crossline0", g.crossline0},
-          {"crossline_step", g.crossline_step},
-          {"z0", g.z0},
-          {"dz", g.dz},
-          {"z_unit", volume::to_string(g.z_unit)},
-          {"affine", {{"x0", a.x0}, {"xi", a.xi}, {"xj", a.xj}, {"y0", a.y0}, {"yi", a.yi}, {"yj", a.yj}}},
-          {"bin_size_m", {a.step_i(), a.step_j()}}};
+  nlohmann::json j = volume::geometry_fields_json(g);
+  j["shape"] = {g.shape[0], g.shape[1], g.shape[2]};
+  j["axes"] = {"inline", "crossline", "sample"};
+  j["bin_size_m"] = {g.affine.step_i(), g.affine.step_j()};
+  return j;
 }
 
 nlohmann::json body_json(const Body& b) {

@@ -3,8 +3,23 @@
 #include <cmath>
 
 #include "geotandem/core/error.hpp"
+#include "geotandem/volume/geometry_json.hpp"
 
 namespace geotandem::volume {
+
+nlohmann::ordered_json geometry_fields_json(const Geometry& g) {
+  const SurveyAffine& a = g.affine;
+  nlohmann::ordered_json j;
+  j["inline0"] = g.inline0;
+  j["inline_step"] = g.inline_step;
+  j["crossline0"] = g.crossline0;
+  j["crossline_step"] = g.crossline_step;
+  j["z0"] = g.z0;
+  j["dz"] = g.dz;
+  j["z_unit"] = to_string(g.z_unit);
+  j["affine"] = {{"x0", a.x0}, {"xi", a.xi}, {"xj", a.xj}, {"y0", a.y0}, {"yi", a.yi}, {"yj", a.yj}};
+  return j;
+}
 
 const char* to_string(SampleUnit unit) {
   return unit == SampleUnit::milliseconds ? "ms" : "m";

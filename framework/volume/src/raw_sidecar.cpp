@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "geotandem/core/error.hpp"
+#include "geotandem/volume/geometry_json.hpp"
 
 namespace fs = std::filesystem;
 
@@ -179,23 +180,7 @@ std::string raw_sidecar_text(const Geometry& g) {
   doc["order"] = "C";
   doc["axes"] = {"inline", "crossline", "sample"};
   doc["shape"] = {g.shape[0], g.shape[1], g.shape[2]};
-  ordered geo;
-  geo["inline0"] = g.inline0;
-  geo["inline_step"] = g.inline_step;
-  geo["crossline0"] = g.crossline0;
-  geo["crossline_step"] = g.crossline_step;
-  geo["z0"] = g.z0;
-  geo["dz"] = g.dz;
-  geo["z_unit"] = to_string(g.z_unit);
-  ordered affine;
-  affine["x0"] = g.affine.x0;
-  affine["xi"] = g.affine.xi;
-  affine["xj"] = g.affine.xj;
-  affine["y0"] = g.affine.y0;
-  affine["yi"] = g.affine.yi;
-  affine["yj"] = g.affine.yj;
-  geo["affine"] = affine;
-  doc["geometry"] = geo;
+  doc["geometry"] = geometry_fields_json(g);
   return doc.dump(2) + "\n";
 }
 

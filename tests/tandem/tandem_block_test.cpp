@@ -207,6 +207,29 @@ TEST(TandemBlock, ASurfaceAfterAnotherOnTheSameThreadGivesWhatItsOwnThreadGives)
   EXPECT_EQ(detail::spare_surface_storage_bytes(), 0u);
 }
 
+// A merge adds every counter of the other side to the surface's (a merge once dropped the other
+// side's distance-bound refusals); the merge's own simplification of the seam only adds more.
+TEST(TandemBlock, AMergeAddsEveryCounterOfTheOtherSide) {
+  const auto noisy = noisy_balls(5);
+  const volume::Box rest{{30, 0, 0}, {47, 23, 23}}; // kBlock's brother
+  TandemOptions options;
+  options.axis = 0;
+  fixtures::CollectingSink sink;
+  std::unique_ptr<WorkingSurface> surface, brother;
+  extract_block(*noisy, kBlock, options, &sink, &surface);
+  extract_block(*noisy, rest, options, &sink, &brother);
+  const SimplifyCounters mine = surface->counters(), theirs = brother->counters();
+  ASSERT_GT(theirs.rejected_distance, 0u);
+  ASSERT_GT(theirs.collapses, 0u);
+  surface->merge(std::move(*brother));
+  const SimplifyCounters merged = surface->counters();
+  EXPECT_EQ(merged.input_triangles, mine.input_triangles + theirs.input_triangles);
+  for (std::size_t i = 0; i < SimplifyCounters::all.size(); ++i) {
+    const auto field = SimplifyCounters::all[i];
+    EXPECT_GE(merged.*field, mine.*field + theirs.*field) << "counter " << i << " of SimplifyCounters::all";
+  }
+}
+
 TEST(TandemBlock, InvalidRequestsAreRefused) {
   const auto volume = two_balls();
   fixtures::CollectingSink sink;

@@ -166,11 +166,7 @@ BlocksStats extract_blocks(const volume::Volume& volume, const volume::Box& cell
   f.rank = total.layers.empty() ? 0 : total.layers.back().rank + 1;
   root->finish(options.cancel);
   const SimplifyCounters& after = root->counters();
-  f.collapses = after.collapses - before.collapses;
-  f.rejected_shape = after.rejected_shape - before.rejected_shape;
-  f.rejected_link = after.rejected_link - before.rejected_link;
-  f.rejected_flip = after.rejected_flip - before.rejected_flip;
-  f.components_dumped = after.components_dumped - before.components_dumped;
+  f.count(before, after);
   f.triangles_in_memory = root->triangle_count();
   f.vertices_in_memory = root->vertex_count();
   f.seconds_simplify = seconds_since(t);

@@ -162,21 +162,7 @@ void WorkingSurface::Engine::absorb_state(detail::SurfaceState&& t) {
     restore_edge(vertex[t.edges[i].v0], vertex[t.edges[i].v1], t.edges[i], i);
   std::vector<detail::StateEdge>().swap(t.edges);
 
-  SimplifyCounters& c = counters_;
-  const SimplifyCounters& o = t.counters;
-  c.input_triangles += o.input_triangles;
-  c.collapses += o.collapses;
-  c.evaluations += o.evaluations;
-  c.rejected_shape += o.rejected_shape;
-  c.rejected_link += o.rejected_link;
-  c.rejected_flip += o.rejected_flip;
-  c.rejected_border += o.rejected_border;
-  c.retried += o.retried;
-  c.distrusted += o.distrusted;
-  c.blocked_by_faces += o.blocked_by_faces;
-  c.components_dumped += o.components_dumped;
-  c.triangles_dumped += o.triangles_dumped;
-  c.garbage_collections += o.garbage_collections;
+  counters_ += t.counters;
   last_rank_ = std::max(last_rank_, t.last_rank);
   region_ = region;
   // Any component of the other side may be finished now (its waiting edges were re-counted).

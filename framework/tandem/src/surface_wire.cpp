@@ -57,17 +57,13 @@ volume::Box get_box(Reader& r) {
 }
 
 void put_counters(Writer& w, const SimplifyCounters& c) {
-  for (std::uint64_t v : {c.input_triangles, c.collapses, c.evaluations, c.rejected_shape, c.rejected_link,
-                          c.rejected_flip, c.rejected_border, c.rejected_distance, c.retried, c.distrusted,
-                          c.blocked_by_faces, c.components_dumped, c.triangles_dumped, c.garbage_collections})
-    w.put(v);
+  for (auto field : SimplifyCounters::all)
+    w.put(c.*field);
 }
 SimplifyCounters get_counters(Reader& r) {
   SimplifyCounters c;
-  for (std::uint64_t* v : {&c.input_triangles, &c.collapses, &c.evaluations, &c.rejected_shape, &c.rejected_link,
-                           &c.rejected_flip, &c.rejected_border, &c.rejected_distance, &c.retried, &c.distrusted,
-                           &c.blocked_by_faces, &c.components_dumped, &c.triangles_dumped, &c.garbage_collections})
-    *v = r.get<std::uint64_t>();
+  for (auto field : SimplifyCounters::all)
+    c.*field = r.get<std::uint64_t>();
   return c;
 }
 

@@ -9,19 +9,20 @@
 #include "geotandem/tandem/tandem.hpp"
 
 namespace geotandem::tandem {
+
+void LayerStats::count(const SimplifyCounters& before, const SimplifyCounters& after) {
+  collapses = after.collapses - before.collapses;
+  rejected_shape = after.rejected_shape - before.rejected_shape;
+  rejected_link = after.rejected_link - before.rejected_link;
+  rejected_flip = after.rejected_flip - before.rejected_flip;
+  components_dumped = after.components_dumped - before.components_dumped;
+}
+
 namespace {
 
 using Clock = std::chrono::steady_clock;
 double seconds_since(Clock::time_point t) {
   return std::chrono::duration<double>(Clock::now() - t).count();
-}
-
-void record_counters(LayerStats& s, const SimplifyCounters& before, const SimplifyCounters& after) {
-  s.collapses = after.collapses - before.collapses;
-  s.rejected_shape = after.rejected_shape - before.rejected_shape;
-  s.rejected_link = after.rejected_link - before.rejected_link;
-  s.rejected_flip = after.rejected_flip - before.rejected_flip;
-  s.components_dumped = after.components_dumped - before.components_dumped;
 }
 
 TandemStats run_loop(LayerSource& source, WorkingSurface& surface, const TandemOptions& options, bool brute) {
@@ -54,7 +55,7 @@ TandemStats run_loop(LayerSource& source, WorkingSurface& surface, const TandemO
         s.seconds_dump = seconds_since(t);
       }
     }
-    record_counters(s, before, surface.counters());
+    s.count(before, surface.counters());
     s.triangles_in_memory = surface.triangle_count();
     s.vertices_in_memory = surface.vertex_count();
     stats.peak_triangles = std::max<std::uint64_t>(stats.peak_triangles, s.triangles_in_memory);
@@ -73,7 +74,7 @@ TandemStats run_loop(LayerSource& source, WorkingSurface& surface, const TandemO
   t = Clock::now();
   surface.dump();
   f.seconds_dump = seconds_since(t);
-  record_counters(f, before, surface.counters());
+  f.count(before, surface.counters());
   f.triangles_in_memory = surface.triangle_count();
   f.vertices_in_memory = surface.vertex_count();
 

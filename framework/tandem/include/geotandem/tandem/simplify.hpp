@@ -98,7 +98,24 @@ struct SimplifyCounters {
   std::uint64_t components_dumped = 0;
   std::uint64_t triangles_dumped = 0;
   std::uint64_t garbage_collections = 0;
+
+  // Every counter, in the order above: what sums, differences and the wire form go through, so
+  // that none is forgotten (a merge once dropped the other side's rejected_distance).
+  static constexpr std::array<std::uint64_t SimplifyCounters::*, 14> all = {
+      &SimplifyCounters::input_triangles,  &SimplifyCounters::collapses,          &SimplifyCounters::evaluations,
+      &SimplifyCounters::rejected_shape,   &SimplifyCounters::rejected_link,      &SimplifyCounters::rejected_flip,
+      &SimplifyCounters::rejected_border,  &SimplifyCounters::rejected_distance,  &SimplifyCounters::retried,
+      &SimplifyCounters::distrusted,       &SimplifyCounters::blocked_by_faces,   &SimplifyCounters::components_dumped,
+      &SimplifyCounters::triangles_dumped, &SimplifyCounters::garbage_collections};
+
+  SimplifyCounters& operator+=(const SimplifyCounters& other) {
+    for (auto field : all)
+      this->*field += other.*field;
+    return *this;
+  }
 };
+static_assert(sizeof(SimplifyCounters) == SimplifyCounters::all.size() * sizeof(std::uint64_t),
+              "a counter is missing from SimplifyCounters::all");
 
 class WorkingSurface {
 public:

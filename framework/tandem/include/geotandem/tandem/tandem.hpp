@@ -55,6 +55,9 @@ struct LayerStats {
   double seconds_insert = 0.0;   // extract into the mesh + delay
   double seconds_simplify = 0.0; // activate + simplify
   double seconds_dump = 0.0;
+
+  // Sets the collapses, refusals and dumps from two readings of the surface's counters.
+  void count(const SimplifyCounters& before, const SimplifyCounters& after);
 };
 
 struct TandemStats {

@@ -18,7 +18,6 @@ constexpr std::int64_t lattice = 8;  // bubble lattice cell (samples)
 constexpr double bubble_r_min = 0.6; // body-frame units
 constexpr double bubble_r_max = 1.2;
 constexpr double tube_reach = 3.0 * transition_width + 1.0;
-constexpr std::int64_t layout_rounds = 16;
 
 struct Candidate {
   Item item;
@@ -203,28 +202,18 @@ AnalyticLayout layout_analytic(const AnalyticOptions& options, const Frame& fram
                                              {make_ellipsoid, Role::centre},
                                              {make_tube, Role::quarter_plane},
                                              {make_ellipsoid, Role::border}};
-  // Every special body must find room. When one cannot, start the layout again from another
-  // deterministic stream; small cubes may need a few rounds.
   const std::uint64_t layout_key = hash3(key(options.seed, Stream::layout), shape[0], shape[1], shape[2]);
-  LayoutRng rng(layout_key);
-  Packer packer(shape, gap, gap);
-  std::vector<Candidate> placed;
-  for (std::int64_t round = 0; round < layout_rounds; ++round) {
-    LayoutRng round_rng(hash1(layout_key, round));
-    Packer round_packer(shape, gap, gap);
-    std::vector<Candidate> round_placed;
-    for (auto [maker, role] : specials)
-      if (auto c = place(round_rng, maker, role, scale, 400, true, frame, round_packer))
-        round_placed.push_back(std::move(*c));
-    if (round == 0 || round_placed.size() > placed.size()) {
-      rng = round_rng;
-      packer = std::move(round_packer);
-      placed = std::move(round_placed);
-    }
-    if (placed.size() == std::size(specials)) break;
-  }
+  auto special =
+      place_special_bodies<Candidate>(layout_key, std::size(specials), Packer(shape, gap, gap),
+                                      [&](LayoutRng& rng, Packer& packer, std::vector<Candidate>& placed) {
+                                        for (auto [maker, role] : specials)
+                                          if (auto c = place(rng, maker, role, scale, 400, true, frame, packer))
+                                            placed.push_back(std::move(*c));
+                                      });
+  LayoutRng& rng = special.rng;
+  Packer& packer = special.packer;
   int number = 0;
-  for (auto& c : placed)
+  for (auto& c : special.placed)
     add_body(layout, frame, std::move(c), ++number);
 
   const auto voxels = static_cast<double>(shape[0]) * static_cast<double>(shape[1]) * static_cast<double>(shape[2]);

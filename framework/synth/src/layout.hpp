@@ -60,4 +60,30 @@ Body describe_body(const Frame& frame, std::string name, BodyType type, const Ve
 // Sets the geometry fields of a ground truth from the frame.
 void describe_frame(GroundTruth& truth, const Frame& frame);
 
+// The special bodies of a layout, with the generator and the packer as their round left them (the
+// filler bodies are drawn from them next).
+template <class Candidate> struct SpecialBodies {
+  std::vector<Candidate> placed;
+  LayoutRng rng;
+  Packer packer;
+};
+
+// Every special body must find room. `place_round(rng, packer, placed)` draws all `wanted` of them
+// from its generator into its packer (empty at the start) and appends those that found room. When
+// one cannot, the layout starts again from another deterministic stream of `layout_key` (small
+// cubes may need a few rounds); after 16 rounds the first round that placed the most is kept.
+template <class Candidate, class PlaceRound>
+SpecialBodies<Candidate> place_special_bodies(std::uint64_t layout_key, std::size_t wanted, const Packer& empty,
+                                              PlaceRound&& place_round) {
+  constexpr std::int64_t rounds = 16;
+  SpecialBodies<Candidate> best{{}, LayoutRng(layout_key), empty};
+  for (std::int64_t round = 0; round < rounds; ++round) {
+    SpecialBodies<Candidate> next{{}, LayoutRng(hash1(layout_key, round)), empty};
+    place_round(next.rng, next.packer, next.placed);
+    if (round == 0 || next.placed.size() > best.placed.size()) best = std::move(next);
+    if (best.placed.size() == wanted) break;
+  }
+  return best;
+}
+
 } // namespace geotandem::synth::detail

@@ -14,7 +14,6 @@ namespace geotandem::synth::detail {
 namespace {
 
 constexpr double gap_horizontal = 4.0; // traces between the boxes of two bodies
-constexpr std::int64_t layout_rounds = 16;
 
 struct Sizes {
   double horizontal, vertical; // scale factors for small cubes
@@ -136,26 +135,16 @@ SeismicLayout layout_seismic(const SeismicOptions& options, const Frame& frame, 
   const double gap_vertical = std::numbers::pi / std::sqrt(wavelet.a) + 2.0;
   const std::pair<Kind, Role> specials[] = {
       {Kind::channel, Role::centre}, {Kind::lobe, Role::free}, {Kind::spot, Role::free}, {Kind::lobe, Role::border}};
-  // Every special body must find room. When one cannot, start the layout again from another
-  // deterministic stream; small cubes may need a few rounds.
   const std::uint64_t layout_key = hash3(key(options.seed, Stream::layout), shape[0], shape[1], shape[2]);
-  LayoutRng rng(layout_key);
-  Packer packer(shape, gap_horizontal, gap_vertical);
-  std::vector<Candidate> placed;
-  for (std::int64_t round = 0; round < layout_rounds; ++round) {
-    LayoutRng round_rng(hash1(layout_key, round));
-    Packer round_packer(shape, gap_horizontal, gap_vertical);
-    std::vector<Candidate> round_placed;
-    for (auto [kind, role] : specials)
-      if (auto c = place(round_rng, kind, role, sizes, 400, true, frame, wavelet, spot_amplitude, round_packer))
-        round_placed.push_back(std::move(*c));
-    if (round == 0 || round_placed.size() > placed.size()) {
-      rng = round_rng;
-      packer = std::move(round_packer);
-      placed = std::move(round_placed);
-    }
-    if (placed.size() == std::size(specials)) break;
-  }
+  auto special = place_special_bodies<Candidate>(
+      layout_key, std::size(specials), Packer(shape, gap_horizontal, gap_vertical),
+      [&](LayoutRng& rng, Packer& packer, std::vector<Candidate>& placed) {
+        for (auto [kind, role] : specials)
+          if (auto c = place(rng, kind, role, sizes, 400, true, frame, wavelet, spot_amplitude, packer))
+            placed.push_back(std::move(*c));
+      });
+  LayoutRng& rng = special.rng;
+  Packer& packer = special.packer;
 
   int number = 0;
   double smallest = HUGE_VAL;
@@ -199,7 +188,7 @@ SeismicLayout layout_seismic(const SeismicOptions& options, const Frame& frame, 
     layout.truth.bodies.push_back(std::move(body));
   };
 
-  for (auto& c : placed)
+  for (auto& c : special.placed)
     accept(std::move(c));
 
   const auto voxels = static_cast<double>(shape[0]) * static_cast<double>(shape[1]) * static_cast<double>(shape[2]);

@@ -8,6 +8,7 @@
 #include <cstdlib>
 #include <cstring>
 
+#include "../../framework/store/src/export_writers.hpp"
 #include "base64_decode.hpp"
 #include "export_fixture.hpp"
 
@@ -100,14 +101,15 @@ TEST_F(ExportTest, VtpHasConsistentCountsAndPerBodyData) {
 
   auto connectivity_array = vtp_array(xml, "Polys", "connectivity");
   auto offsets_array = vtp_array(xml, "Polys", "offsets");
-  EXPECT_EQ(connectivity_array.attribute("type"), "Int64");
-  EXPECT_EQ(offsets_array.attribute("type"), "Int64");
-  auto connectivity = connectivity_array.values<std::int64_t>();
-  auto offsets = offsets_array.values<std::int64_t>();
+  // Int32 while the indices fit (vtp_index_bits), as here.
+  EXPECT_EQ(connectivity_array.attribute("type"), "Int32");
+  EXPECT_EQ(offsets_array.attribute("type"), "Int32");
+  auto connectivity = connectivity_array.values<std::int32_t>();
+  auto offsets = offsets_array.values<std::int32_t>();
   ASSERT_EQ(connectivity.size(), 3 * n_polys);
   ASSERT_EQ(offsets.size(), n_polys);
   for (std::size_t t = 0; t < n_polys; ++t)
-    ASSERT_EQ(offsets[t], static_cast<std::int64_t>(3 * (t + 1))) << "offset " << t;
+    ASSERT_EQ(offsets[t], static_cast<std::int32_t>(3 * (t + 1))) << "offset " << t;
   for (auto c : connectivity)
     ASSERT_TRUE(c >= 0 && static_cast<std::uint64_t>(c) < n_points) << c;
 
@@ -157,7 +159,7 @@ keys = [int(k) for k in sys.argv[2].split(",")]
 assert root.tag == "VTKFile" and root.get("type") == "PolyData", root.tag
 assert root.get("byte_order") == "LittleEndian" and root.get("header_type") == "UInt64"
 assert root.get("compressor") is None
-codes = {"Float64": "d", "Int64": "q", "UInt64": "Q", "UInt32": "I"}
+codes = {"Float64": "d", "Int64": "q", "UInt64": "Q", "UInt32": "I", "Int32": "i"}
 def values(path, name):
     for a in root.findall(path):
         if a.get("Name") == name:
@@ -215,11 +217,22 @@ TEST_F(ExportTest, VtpEveryHeaderCountsTheBytesThatFollowIt) {
       ASSERT_TRUE(a.decoded) << "not one unbroken base64 text";
       ASSERT_GE(a.decoded->size(), 8u);
       EXPECT_EQ(a.byte_count, a.payload.size());
-      const std::size_t value_size = a.attribute("type") == "UInt32" ? 4 : 8;
+      const std::string type = a.attribute("type");
+      const std::size_t value_size = type == "UInt32" || type == "Int32" ? 4 : 8;
       EXPECT_EQ(a.payload.size() % value_size, 0u);
       EXPECT_GT(a.payload.size(), 0u);
     }
   }
+}
+
+// Connectivity and offsets are Int32 up to the largest point index and offset an Int32 holds, and
+// Int64 beyond (a store of more than 2^31 points or 715,827,882 triangles, too large to write here).
+TEST(VtpIndexBits, Int32WhileEveryIndexAndOffsetFits) {
+  constexpr std::uint64_t int32_max = 2147483647;
+  EXPECT_EQ(detail::vtp_index_bits(0, 0), 32);
+  EXPECT_EQ(detail::vtp_index_bits(int32_max, int32_max / 3), 32);
+  EXPECT_EQ(detail::vtp_index_bits(int32_max + 1, 1), 64);
+  EXPECT_EQ(detail::vtp_index_bits(1000, int32_max / 3 + 1), 64); // the last offset, 3 x polys, would not fit
 }
 
 } // namespace

@@ -32,8 +32,10 @@ template <class Value> constexpr const char* vtk_type_name() {
   if constexpr (std::is_same_v<Value, std::uint64_t>) return "UInt64";
   if constexpr (std::is_same_v<Value, std::int64_t>) return "Int64";
   if constexpr (std::is_same_v<Value, std::uint32_t>) return "UInt32";
+  if constexpr (std::is_same_v<Value, std::int32_t>) return "Int32";
   static_assert(std::is_same_v<Value, double> || std::is_same_v<Value, std::uint64_t> ||
-                    std::is_same_v<Value, std::int64_t> || std::is_same_v<Value, std::uint32_t>,
+                    std::is_same_v<Value, std::int64_t> || std::is_same_v<Value, std::uint32_t> ||
+                    std::is_same_v<Value, std::int32_t>,
                 "a value type without a VTK name");
 }
 
@@ -120,38 +122,43 @@ void points_array(std::ostream& out, SurfaceSource& source, std::uint64_t points
 }
 
 // Three indices per triangle, into the points of every component before it and its own.
-void connectivity_array(std::ostream& out, SurfaceSource& source, std::uint64_t polys) {
-  BinaryArray<std::int64_t> array(out, "        ", "connectivity", 3 * polys);
-  std::array<std::int64_t, 3 * 1024> chunk;
-  std::int64_t base = 0;
+template <class Index> void connectivity_array(std::ostream& out, SurfaceSource& source, std::uint64_t polys) {
+  BinaryArray<Index> array(out, "        ", "connectivity", 3 * polys);
+  std::array<Index, 3 * 1024> chunk;
+  std::uint64_t base = 0;
   for (std::size_t i = 0; i < source.size(); ++i) {
     const auto& surface = source.surface(i);
     std::size_t used = 0;
     for (const auto& t : surface.triangles) {
       for (auto v : t)
-        chunk[used++] = base + v;
+        chunk[used++] = static_cast<Index>(base + v);
       if (used == chunk.size()) {
         array.put(chunk.data(), used);
         used = 0;
       }
     }
     array.put(chunk.data(), used);
-    base += static_cast<std::int64_t>(surface.points.size());
+    base += surface.points.size();
   }
   array.close();
 }
 
 // Where each triangle's indices end in the connectivity: 3, 6, 9...
-void offsets_array(std::ostream& out, std::uint64_t polys) {
-  BinaryArray<std::int64_t> array(out, "        ", "offsets", polys);
-  std::array<std::int64_t, 1024> chunk;
+template <class Index> void offsets_array(std::ostream& out, std::uint64_t polys) {
+  BinaryArray<Index> array(out, "        ", "offsets", polys);
+  std::array<Index, 1024> chunk;
   for (std::uint64_t first = 0; first < polys; first += chunk.size()) {
     const std::uint64_t n = std::min<std::uint64_t>(chunk.size(), polys - first);
     for (std::uint64_t c = 0; c < n; ++c)
-      chunk[c] = static_cast<std::int64_t>(3 * (first + c + 1));
+      chunk[c] = static_cast<Index>(3 * (first + c + 1));
     array.put(chunk.data(), n);
   }
   array.close();
+}
+
+template <class Index> void polys_arrays(std::ostream& out, SurfaceSource& source, std::uint64_t polys) {
+  connectivity_array<Index>(out, source, polys);
+  offsets_array<Index>(out, polys);
 }
 
 std::uint64_t key_of(const ComponentRow& row) {
@@ -165,6 +172,11 @@ double azimuth_of(const ComponentRow& row) {
 }
 
 } // namespace
+
+int vtp_index_bits(std::uint64_t points, std::uint64_t polys) {
+  constexpr std::uint64_t int32_max = 2147483647;
+  return points <= int32_max && 3 * polys <= int32_max ? 32 : 64;
+}
 
 void write_vtp(SurfaceSource& source, std::ostream& out, const ExportOptions&) {
   std::uint64_t points = 0, polys = 0;
@@ -189,8 +201,10 @@ void write_vtp(SurfaceSource& source, std::ostream& out, const ExportOptions&) {
   out << "      </CellData>\n      <Points>\n";
   points_array(out, source, points);
   out << "      </Points>\n      <Polys>\n";
-  connectivity_array(out, source, polys);
-  offsets_array(out, polys);
+  if (vtp_index_bits(points, polys) == 32)
+    polys_arrays<std::int32_t>(out, source, polys);
+  else
+    polys_arrays<std::int64_t>(out, source, polys);
   out << "      </Polys>\n    </Piece>\n  </PolyData>\n</VTKFile>\n";
 }
 

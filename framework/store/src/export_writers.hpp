@@ -43,6 +43,9 @@ private:
 void write_ply(SurfaceSource& source, std::ostream& out, const ExportOptions& options);
 void write_obj(SurfaceSource& source, std::ostream& out, const ExportOptions& options);
 void write_vtp(SurfaceSource& source, std::ostream& out, const ExportOptions& options);
+// The width of the VTP's connectivity and offsets: Int32 while every point index and offset fits
+// (half the bytes of Int64; VTK readers take either), else Int64.
+int vtp_index_bits(std::uint64_t points, std::uint64_t polys);
 void write_tsurf(SurfaceSource& source, std::ostream& out, const ExportOptions& options);
 
 // Shortest text that reads back to the same double (std::to_chars), for the text formats.

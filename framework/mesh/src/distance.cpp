@@ -6,9 +6,9 @@
 
 #include "geotandem/core/error.hpp"
 #include "geotandem/mesh/quality.hpp"
+#include "geotandem/mesh/vec.hpp"
 #include "stars.hpp"
 #include "triangle_grid.hpp"
-#include "geotandem/mesh/vec.hpp"
 
 namespace geotandem::mesh {
 

@@ -12,8 +12,8 @@
 #include "geotandem/core/error.hpp"
 #include "geotandem/mesh/caps.hpp"
 #include "geotandem/mesh/quality.hpp"
-#include "stars.hpp"
 #include "geotandem/mesh/vec.hpp"
+#include "stars.hpp"
 
 namespace geotandem::mesh {
 

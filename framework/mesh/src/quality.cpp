@@ -6,8 +6,8 @@
 #include <cmath>
 #include <numbers>
 
-#include "stars.hpp"
 #include "geotandem/mesh/vec.hpp"
+#include "stars.hpp"
 
 namespace geotandem::mesh {
 

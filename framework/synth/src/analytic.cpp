@@ -41,6 +41,31 @@ struct Background {
   }
 };
 
+// An item's influence box in 32-bit indices (check_shape keeps every axis within 2^20 samples, and
+// an influence reaches little beyond the cube): half the room of a volume::Box, for the 190,000
+// or so items of a 1024^3 cube.
+class InfluenceBox {
+public:
+  InfluenceBox() = default;
+  explicit InfluenceBox(const volume::Box& box) {
+    for (int a = 0; a < 3; ++a) {
+      lo_[static_cast<std::size_t>(a)] = static_cast<std::int32_t>(box.lo[a]);
+      hi_[static_cast<std::size_t>(a)] = static_cast<std::int32_t>(box.hi[a]);
+    }
+  }
+  volume::Box box() const {
+    volume::Box box;
+    for (int a = 0; a < 3; ++a) {
+      box.lo[a] = lo_[static_cast<std::size_t>(a)];
+      box.hi[a] = hi_[static_cast<std::size_t>(a)];
+    }
+    return box;
+  }
+
+private:
+  std::array<std::int32_t, 3> lo_{}, hi_{};
+};
+
 class AnalyticCube final : public SyntheticCube {
 public:
   AnalyticCube(const AnalyticOptions& options, const Frame& frame, AnalyticLayout layout)
@@ -60,16 +85,17 @@ public:
         bubbles_.push_back(*sphere);
       else
         bodies_.push_back(item);
-      influence_[id] = layout.influence[n];
-      grid_.add(static_cast<std::uint32_t>(id), influence_[id]);
+      influence_[id] = InfluenceBox(layout.influence[n]);
+      grid_.add(static_cast<std::uint32_t>(id), layout.influence[n]);
     }
+    grid_.seal();
   }
 
 protected:
   void read_box(const volume::Box& box, std::span<float> out) const override {
     fill_background(box, out);
     for (std::uint32_t id : grid_.query(box)) {
-      const volume::Box region = influence_[id].intersection(box);
+      const volume::Box region = influence_[id].box().intersection(box);
       if (region.empty()) continue;
       if (id < bodies_.size())
         std::visit([&](const auto& item) { apply(item, region, box, out); }, bodies_[id]);
@@ -114,7 +140,7 @@ private:
   // Item ids run over the bodies, then the bubbles; influence_ is indexed by id.
   std::vector<Item> bodies_;
   std::vector<Sphere> bubbles_;
-  std::vector<volume::Box> influence_;
+  std::vector<InfluenceBox> influence_;
   ItemGrid grid_;
   Background background_;
 };

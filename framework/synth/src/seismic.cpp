@@ -250,6 +250,8 @@ std::unique_ptr<SyntheticCube> make_seismic(const SeismicOptions& options) {
         model.chaotic[n]);
   for (std::size_t n = 0; n < model.spots.size(); ++n)
     model.spot_grid.add(static_cast<std::uint32_t>(n), footprint(model.spots[n].bounds(frame, 0.0)));
+  model.chaotic_grid.seal();
+  model.spot_grid.seal();
 
   const auto rms = detail::measure_rms(model, layout.truth);
   SeismicTruth s;

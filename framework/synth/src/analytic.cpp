@@ -41,9 +41,9 @@ struct Background {
   }
 };
 
-// An item's influence box in 32-bit indices (check_shape keeps every axis within 2^20 samples, and
-// an influence reaches little beyond the cube): half the room of a volume::Box, for the 190,000
-// or so items of a 1024^3 cube.
+// An item's influence box in 32-bit indices (it is clipped to the cube, whose axes check_shape
+// keeps within 2^20 samples): half the room of a volume::Box, for the 190,000 or so items of a
+// 1024^3 cube.
 class InfluenceBox {
 public:
   InfluenceBox() = default;

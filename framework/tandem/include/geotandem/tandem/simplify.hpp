@@ -99,8 +99,8 @@ struct SimplifyCounters {
   std::uint64_t triangles_dumped = 0;
   std::uint64_t garbage_collections = 0;
 
-  // Every counter, in the order above: what sums, differences and the wire form go through, so
-  // that none is forgotten (a merge once dropped the other side's rejected_distance).
+  // Every counter, in the order above: what the sums and the wire form go through, so that none is
+  // forgotten (a merge once dropped the other side's rejected_distance).
   static constexpr std::array<std::uint64_t SimplifyCounters::*, 14> all = {
       &SimplifyCounters::input_triangles,  &SimplifyCounters::collapses,          &SimplifyCounters::evaluations,
       &SimplifyCounters::rejected_shape,   &SimplifyCounters::rejected_link,      &SimplifyCounters::rejected_flip,

@@ -26,7 +26,7 @@ std::size_t ItemGrid::cell_index(std::int64_t ci, std::int64_t cj, std::int64_t 
 }
 
 void ItemGrid::add(std::uint32_t item, const volume::Box& influence) {
-  if (sealed_) throw std::logic_error("ItemGrid::add after seal()");
+  if (!first_.empty()) throw std::logic_error("ItemGrid::add after seal()");
   const volume::Box cells = cells_of(influence);
   for (auto ci = cells.lo[0]; ci < cells.hi[0]; ++ci)
     for (auto cj = cells.lo[1]; cj < cells.hi[1]; ++cj)
@@ -46,11 +46,10 @@ void ItemGrid::seal() {
   for (const auto& [cell, item] : added_)
     items_[next[cell]++] = item;
   std::vector<std::pair<std::size_t, std::uint32_t>>().swap(added_);
-  sealed_ = true;
 }
 
 std::vector<std::uint32_t> ItemGrid::query(const volume::Box& box) const {
-  if (!sealed_) throw std::logic_error("ItemGrid::query before seal()");
+  if (first_.empty()) throw std::logic_error("ItemGrid::query before seal()");
   std::vector<std::uint32_t> items;
   const volume::Box cells = cells_of(box);
   for (auto ci = cells.lo[0]; ci < cells.hi[0]; ++ci)

@@ -30,9 +30,8 @@ private:
   std::int64_t cell_;
   volume::Index3 count_{};
   std::vector<std::pair<std::size_t, std::uint32_t>> added_; // (cell, item), until seal()
-  std::vector<std::size_t> first_;                           // cell c's items: items_[first_[c], first_[c + 1])
+  std::vector<std::size_t> first_; // cell c's items: items_[first_[c], first_[c + 1]); empty until seal()
   std::vector<std::uint32_t> items_;
-  bool sealed_ = false;
 };
 
 } // namespace geotandem::synth::detail

@@ -8,6 +8,7 @@
 #include <cmath>
 #include <numbers>
 
+#include "array3.hpp"
 #include "filters.hpp"
 #include "fixtures.hpp"
 #include "mirror.hpp"
@@ -46,6 +47,66 @@ TEST(Mirror, PaddedReadEqualsReflectedCube) {
           ASSERT_EQ(padded.data[n], expected) << "at " << i << ", " << j << ", " << k << " of " << box.to_string();
         }
   }
+}
+
+// Large arrays reuse the storage that earlier ones of the thread freed (array3.hpp): a padded read
+// into reused storage must still write every sample, at the cube's faces too.
+TEST(Mirror, PaddedReadsIntoReusedStorageHoldNothingOfTheLastRead) {
+  const Index3 shape{60, 100, 100};
+  const Box box{{0, 30, 50}, {60, 100, 100}}; // on five faces: the mirrored path
+  const Index3 halo{4, 6, 8};
+  const auto expected_at = [](double seed, std::int64_t i, std::int64_t j, std::int64_t k) {
+    return seed + 100.0 * reflect(static_cast<int>(i), 60) + 10.0 * reflect(static_cast<int>(j), 100) +
+           0.5 * reflect(static_cast<int>(k), 100);
+  };
+  detail::release_spare_arrays();
+  const float* first_storage = nullptr;
+  for (double seed : {1000.0, -5000.0}) {
+    auto u = cube(shape, [&](int i, int j, int k) { return expected_at(seed, i, j, k); });
+    const detail::Array3 padded = detail::read_mirrored(*u, box, halo);
+    ASSERT_GE(padded.count(), detail::kReusedFloats);
+    if (first_storage) {
+      EXPECT_EQ(padded.data.get(), first_storage) << "the second read should reuse the first's";
+    }
+    first_storage = padded.data.get();
+    const Box grown = box.grown(halo);
+    std::size_t n = 0;
+    for (auto i = grown.lo[0]; i < grown.hi[0]; ++i)
+      for (auto j = grown.lo[1]; j < grown.hi[1]; ++j)
+        for (auto k = grown.lo[2]; k < grown.hi[2]; ++k, ++n)
+          ASSERT_EQ(padded.data[n], static_cast<float>(expected_at(seed, i, j, k))) << "at " << i << ", " << j << ", " << k;
+  }
+}
+
+TEST(ArrayStorage, KeepsAFewLargeSparesAndNeverTheSmallOnes) {
+  detail::release_spare_arrays();
+  EXPECT_EQ(detail::spare_array_bytes(), 0u);
+  { const detail::Array3 small({10, 10, 10}); }
+  EXPECT_EQ(detail::spare_array_bytes(), 0u) << "a small array went to the spares";
+
+  const float* kept = nullptr;
+  {
+    const detail::Array3 large({64, 64, 80});
+    kept = large.data.get();
+  }
+  EXPECT_EQ(detail::spare_array_bytes(), 64 * 64 * 80 * sizeof(float));
+  { // at most twice the size asked: a spare far larger is not handed out for a small request
+    const detail::Array3 half({64, 64, 39});
+    EXPECT_NE(half.data.get(), kept);
+  }
+  {
+    const detail::Array3 same({80, 64, 64});
+    EXPECT_EQ(same.data.get(), kept);
+  }
+  // However many are freed, a thread keeps a bounded number, the largest ones.
+  detail::release_spare_arrays();
+  {
+    std::vector<detail::Array3> many;
+    for (std::int64_t n = 64; n < 64 + 12; ++n)
+      many.emplace_back(Index3{n, 64, 64});
+  }
+  const std::size_t largest_three = (73 + 74 + 75) * 64 * 64 * sizeof(float);
+  EXPECT_EQ(detail::spare_array_bytes(), largest_three);
 }
 
 // Reconstructs the full tap array w(-r..r) from a kernel's half.

@@ -20,7 +20,8 @@ Array3 read_mirrored(const volume::Volume& input, const volume::Box& box, const 
   // only occurs when that part starts at 0 and its image is at most halo-1-lo < hi+halo, or it
   // reaches the cube's end (and symmetrically at the far face). The check below guards it.
   const volume::Box inside = grown.intersection(bounds);
-  const std::vector<float> source = input.read(inside);
+  Array3 source(inside.shape());
+  input.read(inside, source.span());
   std::vector<std::int64_t> map[3];
   for (int a = 0; a < 3; ++a) {
     map[a].reserve(static_cast<std::size_t>(grown.size(a)));
@@ -39,7 +40,7 @@ Array3 read_mirrored(const volume::Volume& input, const volume::Box& box, const 
   float* dst = out.data.get();
   for (std::int64_t mi : map[0])
     for (std::int64_t mj : map[1]) {
-      const float* row = source.data() + (mi * in_nj + mj) * in_nk;
+      const float* row = source.data.get() + (mi * in_nj + mj) * in_nk;
       if (k_inside) {
         std::memcpy(dst, row + map[2].front(), nk * sizeof(float));
       } else {

@@ -1,5 +1,7 @@
 #include "geotandem/attributes/product.hpp"
 
+#include "array3.hpp"
+
 namespace geotandem::attributes {
 
 const AttributeSpec& ProductOptions::spec() {
@@ -17,9 +19,11 @@ Product::Product(VolumePtr first, VolumePtr second)
 
 void Product::compute(const Box& box, std::span<float> out) const {
   inputs()[0]->read(box, out);
-  const std::vector<float> second = inputs()[1]->read(box);
+  detail::Array3 second(box.shape()); // box-sized: reused storage (array3.hpp)
+  inputs()[1]->read(box, second.span());
+  const float* factor = second.data.get();
   for (std::size_t n = 0; n < out.size(); ++n)
-    out[n] *= second[n];
+    out[n] *= factor[n];
 }
 
 } // namespace geotandem::attributes

@@ -74,7 +74,8 @@ TEST(Mirror, PaddedReadsIntoReusedStorageHoldNothingOfTheLastRead) {
     for (auto i = grown.lo[0]; i < grown.hi[0]; ++i)
       for (auto j = grown.lo[1]; j < grown.hi[1]; ++j)
         for (auto k = grown.lo[2]; k < grown.hi[2]; ++k, ++n)
-          ASSERT_EQ(padded.data[n], static_cast<float>(expected_at(seed, i, j, k))) << "at " << i << ", " << j << ", " << k;
+          ASSERT_EQ(padded.data[n], static_cast<float>(expected_at(seed, i, j, k)))
+              << "at " << i << ", " << j << ", " << k;
   }
 }
 

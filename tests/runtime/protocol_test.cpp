@@ -230,6 +230,33 @@ TEST(SurfaceChunks, AssembleInOrderAndRefuseEverythingElse) {
     EXPECT_TRUE(in.broken());
     EXPECT_TRUE(in.add(0, chunks[0]));
   }
+  { // a SEND's size hint: room for the record at once; a wrong hint changes no outcome
+    SurfaceAssembler in(1 << 20, std::nullopt, 4096);
+    in.reserve_hint(record.size());
+    EXPECT_GE(in.capacity(), record.size());
+    std::uint64_t at = 0;
+    for (auto c : chunks) {
+      EXPECT_FALSE(in.add(at, c));
+      at += c.size();
+    }
+    // One allocation of the record's size (libstdc++ reserves exactly; grown chunk by chunk it
+    // would hold 16384 bytes).
+    EXPECT_EQ(in.capacity(), record.size()) << "the hint's room was not the room used";
+    EXPECT_FALSE(in.finish(record.size(), sum));
+    EXPECT_EQ(in.take(), record);
+  }
+  for (std::uint64_t hint : {std::uint64_t{100}, std::uint64_t{50000}, std::uint64_t{1} << 40}) {
+    SurfaceAssembler in(1 << 20, std::nullopt, 4096);
+    in.reserve_hint(hint);
+    EXPECT_LE(in.capacity(), std::uint64_t{1} << 20) << "a hint over the cap reserved room";
+    std::uint64_t at = 0;
+    for (auto c : chunks) {
+      EXPECT_FALSE(in.add(at, c)) << "hint " << hint;
+      at += c.size();
+    }
+    EXPECT_FALSE(in.finish(record.size(), sum)) << "hint " << hint;
+    EXPECT_EQ(in.take(), record);
+  }
   {
     SurfaceAssembler in(1 << 20, std::nullopt, 4096); // random chunks never crash
     for (int i = 0; i < 200; ++i) {

@@ -189,7 +189,8 @@ void Manager::Impl::handle(const std::string& token, std::span<const std::byte> 
   case MessageKind::commit: commits.commit(std::move(m.entries)); return;
   case MessageKind::surface_chunk: {
     if (p.task->kind != TaskKind::send) return drop("a surface chunk from worker " + token + " outside a SEND");
-    if (const std::optional<std::string> why = relay.chunk_in(token, m.number, m.bytes)) {
+    const auto size_hint = static_cast<std::uint64_t>(std::max<std::int64_t>(0, m.box[0]));
+    if (const std::optional<std::string> why = relay.chunk_in(token, m.number, m.bytes, size_hint)) {
       drop("from worker " + token + ": " + *why); // its surface cannot arrive whole: its leaves are redone
       return kill_peer(token, "sent a damaged partial surface");
     }

@@ -4,6 +4,7 @@
 #include <xxhash.h>
 
 #include <algorithm>
+#include <exception>
 
 namespace geotandem::runtime {
 
@@ -25,6 +26,15 @@ SurfaceAssembler::SurfaceAssembler(std::uint64_t max_total, std::optional<std::u
   // Room for the whole record at once when its size is announced: grown chunk by chunk, it would
   // be copied at every doubling, into pages faulted in anew each time.
   if (announced_ && !broken_) bytes_.reserve(*announced_);
+}
+
+void SurfaceAssembler::reserve_hint(std::uint64_t bytes) {
+  if (broken_ || bytes == 0 || bytes > max_total_ || bytes <= bytes_.capacity()) return;
+  try {
+    bytes_.reserve(static_cast<std::size_t>(bytes));
+  } catch (const std::exception&) {
+    // No room at once: the record grows chunk by chunk, as without the hint.
+  }
 }
 
 std::optional<std::string> SurfaceAssembler::add(std::uint64_t offset, std::span<const std::byte> piece) {

@@ -10,9 +10,10 @@ void SurfaceRelay::begin_inbound(const std::string& token) {
 }
 
 std::optional<std::string> SurfaceRelay::chunk_in(const std::string& token, std::uint64_t offset,
-                                                  std::span<const std::byte> bytes) {
+                                                  std::span<const std::byte> bytes, std::uint64_t size_hint) {
   auto it = inbound_.find(token);
   if (it == inbound_.end()) return "a chunk outside a SEND";
+  if (offset == 0) it->second.reserve_hint(size_hint);
   return it->second.add(offset, bytes);
 }
 

@@ -24,8 +24,11 @@ public:
 
   // A worker starts its SEND.
   void begin_inbound(const std::string& token);
-  // A chunk of it: nullopt when taken (acknowledge it with a credit), the reason otherwise.
-  std::optional<std::string> chunk_in(const std::string& token, std::uint64_t offset, std::span<const std::byte> bytes);
+  // A chunk of it: nullopt when taken (acknowledge it with a credit), the reason otherwise. The
+  // first chunk's `size_hint` (the record's size as its sender states it, 0 for none) reserves
+  // the room for the whole record at once.
+  std::optional<std::string> chunk_in(const std::string& token, std::uint64_t offset, std::span<const std::byte> bytes,
+                                      std::uint64_t size_hint = 0);
   // Its end: the reason it is refused, or nullopt when the surface is whole; `bytes` receives its
   // size. A whole surface is then kept for its transfer (keep) or dropped (its target died).
   std::optional<std::string> end_inbound(const std::string& token, std::uint64_t total, std::uint64_t checksum,

@@ -251,6 +251,7 @@ private:
       c.kind = MessageKind::surface_chunk;
       c.lease = m.lease;
       c.number = offset;
+      if (offset == 0) c.box[0] = static_cast<std::int64_t>(record.size()); // the manager's room for it
       c.bytes.assign(piece.begin(), piece.end());
       link_.send(c);
       offset += piece.size();

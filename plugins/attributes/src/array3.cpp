@@ -47,8 +47,8 @@ void ArrayStorageRelease::operator()(float* data) const noexcept {
     }
   }
   // Full: it replaces the smallest spare when it is larger.
-  auto smallest =
-      std::min_element(kept.begin(), kept.end(), [](const Spare& a, const Spare& b) { return a.capacity < b.capacity; });
+  auto smallest = std::min_element(kept.begin(), kept.end(),
+                                   [](const Spare& a, const Spare& b) { return a.capacity < b.capacity; });
   if (smallest->capacity < capacity) {
     delete[] smallest->data;
     *smallest = {data, capacity};

@@ -28,6 +28,10 @@ public:
                             std::optional<std::uint64_t> announced = std::nullopt,
                             std::size_t chunk_bytes = kChunkBytes);
 
+  // Room for `bytes` (at most the cap) before the chunks arrive: the size a SEND's sender states on
+  // its first chunk. Only a hint: add() and finish() check as without it, and without room to
+  // spare the record grows as it arrives.
+  void reserve_hint(std::uint64_t bytes);
   // Appends the piece at `offset`; the reason it is refused otherwise (then broken() holds).
   std::optional<std::string> add(std::uint64_t offset, std::span<const std::byte> piece);
   // True once the announced total has arrived.
@@ -38,6 +42,7 @@ public:
 
   bool broken() const { return broken_; }
   std::uint64_t size() const { return bytes_.size(); }
+  std::uint64_t capacity() const { return bytes_.capacity(); } // the room held
 
 private:
   std::uint64_t max_total_;

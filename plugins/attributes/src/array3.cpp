@@ -10,7 +10,8 @@ namespace geotandem::attributes::detail {
 namespace {
 
 // The quickstart's chain (chaos x normalised envelope) holds at most three large arrays at once:
-// the product's second input, the envelope's mirrored input box and its filtered copy.
+// the product's second input, the envelope's mirrored input box, and its filtered copy or (at the
+// cube's faces, while the box is mirrored) the part of the box inside the cube.
 constexpr std::size_t kSpares = 3;
 
 struct Spare {

@@ -55,3 +55,52 @@ TEST(Progress, UpdatesNeverGoBackwards) {
   progress.end();
   EXPECT_NE(out.str().find("(5/10 u)"), std::string::npos) << out.str();
 }
+
+TEST(Progress, StopSaysWhereItStoppedAndNotDone) {
+  // An interrupted extraction must not end on "done".
+  std::ostringstream out;
+  StreamProgress progress(out, false, std::chrono::hours(1));
+  progress.begin("extraction", 10, "blocks");
+  progress.update(4);
+  progress.stop();
+  const std::string text = out.str();
+  const std::string last = text.substr(text.rfind('\n', text.size() - 2) + 1);
+  EXPECT_NE(last.find("40% (4/10 blocks)"), std::string::npos) << text;
+  EXPECT_NE(last.find("stopped"), std::string::npos) << text;
+  EXPECT_EQ(text.find("done"), std::string::npos) << text;
+}
+
+TEST(Progress, TimeLeftFollowsTheRateSoFar) {
+  // 10 s for a quarter: 30 s more.
+  ASSERT_TRUE(seconds_left(10.0, 25, 100));
+  EXPECT_DOUBLE_EQ(*seconds_left(10.0, 25, 100), 30.0);
+  EXPECT_DOUBLE_EQ(*seconds_left(600.0, 1, 10), 5400.0);
+  // Nothing while the rate says little, or when there is nothing left.
+  EXPECT_FALSE(seconds_left(4.9, 50, 100)) << "before 5 s";
+  EXPECT_FALSE(seconds_left(100.0, 1, 100)) << "before 2 % of the units";
+  EXPECT_FALSE(seconds_left(100.0, 100, 100));
+  EXPECT_FALSE(seconds_left(100.0, 0, 100));
+  EXPECT_FALSE(seconds_left(100.0, 5, 0)) << "unknown total";
+}
+
+TEST(Progress, DurationsReadAsPeopleSayThem) {
+  EXPECT_EQ(duration_text(0.4), "0 s");
+  EXPECT_EQ(duration_text(42.4), "42 s");
+  EXPECT_EQ(duration_text(59.6), "1 min");
+  EXPECT_EQ(duration_text(89.0), "1 min");
+  EXPECT_EQ(duration_text(91.0), "2 min");
+  EXPECT_EQ(duration_text(3569.0), "59 min");
+  EXPECT_EQ(duration_text(3600.0), "1 h 00 min");
+  EXPECT_EQ(duration_text(5400.0 + 300.0), "1 h 35 min");
+  EXPECT_EQ(duration_text(-3.0), "0 s");
+}
+
+TEST(Progress, NoTimeLeftBeforeTheRateCanTellIt) {
+  // A line at every update; a test this fast is far from the 5 s an estimate waits for.
+  std::ostringstream out;
+  StreamProgress progress(out, false, std::chrono::milliseconds(0));
+  progress.begin("x", 100, "u");
+  progress.update(50);
+  progress.end();
+  EXPECT_EQ(out.str().find("left"), std::string::npos) << out.str();
+}

@@ -2,6 +2,8 @@
 
 #include <unistd.h>
 
+#include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <iomanip>
@@ -12,6 +14,23 @@ namespace geotandem {
 
 void Progress::advance(std::uint64_t n) {
   update(done_ + n);
+}
+
+std::optional<double> seconds_left(double elapsed, std::uint64_t done, std::uint64_t total) {
+  if (total == 0 || done == 0 || done >= total || !(elapsed >= 5.0)) return std::nullopt;
+  const double fraction = static_cast<double>(done) / static_cast<double>(total);
+  if (fraction < 0.02) return std::nullopt;
+  return elapsed * (1.0 - fraction) / fraction;
+}
+
+std::string duration_text(double seconds) {
+  const auto s = static_cast<long long>(std::llround(std::max(0.0, seconds)));
+  if (s < 60) return std::to_string(s) + " s";
+  const long long minutes = (s + 30) / 60;
+  if (minutes < 60) return std::to_string(minutes) + " min";
+  std::ostringstream text;
+  text << minutes / 60 << " h " << std::setw(2) << std::setfill('0') << minutes % 60 << " min";
+  return text.str();
 }
 
 StreamProgress::StreamProgress(std::ostream& out, bool interactive, std::chrono::milliseconds min_interval)
@@ -40,7 +59,7 @@ void StreamProgress::update(std::uint64_t done) {
   if (interactive_) {
     if (now - last_draw_ >= std::chrono::milliseconds(100) || (total_ > 0 && done_ >= total_)) {
       last_draw_ = now;
-      draw(false);
+      draw(Line::running);
     }
     return;
   }
@@ -50,16 +69,22 @@ void StreamProgress::update(std::uint64_t done) {
   if (step || now - last_draw_ >= min_interval_) {
     if (decile > last_decile_) last_decile_ = decile;
     last_draw_ = now;
-    draw(false);
+    draw(Line::running);
   }
 }
 
 void StreamProgress::end() {
   std::lock_guard lock(mutex_);
-  draw(true);
+  draw(Line::done);
 }
 
-void StreamProgress::draw(bool final_line) {
+void StreamProgress::stop() {
+  std::lock_guard lock(mutex_);
+  draw(Line::stopped);
+}
+
+void StreamProgress::draw(Line kind) {
+  const bool final_line = kind != Line::running;
   double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
   std::ostringstream line;
   line << label_ << ": ";
@@ -76,7 +101,11 @@ void StreamProgress::draw(bool final_line) {
     line << done_ << ' ' << unit_;
   }
   line << std::fixed << std::setprecision(1) << ", " << seconds << " s";
-  if (final_line) line << ", done";
+  if (kind == Line::done) line << ", done";
+  if (kind == Line::stopped) line << ", stopped";
+  if (kind == Line::running)
+    if (const std::optional<double> left = seconds_left(seconds, done_, total_))
+      line << ", about " << duration_text(*left) << " left";
   if (interactive_) {
     *out_ << '\r' << line.str() << "\x1b[K";
     if (final_line) *out_ << '\n';

@@ -148,7 +148,7 @@ ManagerReport Manager::Impl::run() {
     }
   } catch (...) {
     stop_workers();
-    progress.end();
+    progress.stop();
     const bool failed_before = commits.failed(); // then that failure is what goes up
     try {
       commits.drain(); // what the workers committed stays committed

@@ -37,6 +37,7 @@ public:
     done_ = done;
   }
   void end() override {}
+  void stop() override {}
 
 private:
   Progress* to_;

@@ -1,16 +1,24 @@
 #pragma once
 // Progress reporting for long work. A task calls begin(), then advance()/update() as it goes, then
-// end(). The CLI picks the reporter: a bar that redraws itself on a terminal, plain lines (every
-// 10 % or every 10 s) in CI and log files, or nothing.
+// end(), or stop() when an error or an interruption ends it early. The CLI picks the reporter: a
+// bar that redraws itself on a terminal, plain lines (every 10 % or every 10 s) in CI and log files,
+// or nothing. Both say how long the rest should take once the rate so far can tell.
 
 #include <chrono>
 #include <cstdint>
 #include <iosfwd>
 #include <memory>
 #include <mutex>
+#include <optional>
 #include <string>
 
 namespace geotandem {
+
+// The time the rest of a task should take at the rate so far: `elapsed` seconds for `done` of
+// `total` units. None while that says little: before 5 s and 2 % of the units, or when done.
+std::optional<double> seconds_left(double elapsed, std::uint64_t done, std::uint64_t total);
+// A duration for people: "40 s", "12 min", "1 h 05 min".
+std::string duration_text(double seconds);
 
 class Progress {
 public:
@@ -21,6 +29,8 @@ public:
   virtual void update(std::uint64_t done) = 0;
   // Ends the task; prints the elapsed time.
   virtual void end() = 0;
+  // Ends the task before it finished (an error, an interruption): says where it stopped.
+  virtual void stop() {}
   void advance(std::uint64_t n = 1);
 
 protected:
@@ -44,9 +54,11 @@ public:
   void begin(const std::string& label, std::uint64_t total, const std::string& unit) override;
   void update(std::uint64_t done) override;
   void end() override;
+  void stop() override;
 
 private:
-  void draw(bool final_line);
+  enum class Line { running, done, stopped };
+  void draw(Line kind);
 
   std::ostream* out_;
   bool interactive_;

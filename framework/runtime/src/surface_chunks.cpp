@@ -29,7 +29,7 @@ SurfaceAssembler::SurfaceAssembler(std::uint64_t max_total, std::optional<std::u
 }
 
 void SurfaceAssembler::reserve_hint(std::uint64_t bytes) {
-  if (broken_ || bytes == 0 || bytes > max_total_ || bytes <= bytes_.capacity()) return;
+  if (broken_ || bytes == 0 || bytes > max_total_) return;
   try {
     bytes_.reserve(static_cast<std::size_t>(bytes));
   } catch (const std::exception&) {

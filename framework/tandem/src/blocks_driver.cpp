@@ -37,7 +37,6 @@ public:
     done_ = done;
   }
   void end() override {}
-  void stop() override {}
 
 private:
   Progress* to_;

@@ -21,10 +21,12 @@ struct Spare {
 
 struct Spares {
   std::vector<Spare> kept;
-  ~Spares() {
+  void clear() {
     for (const Spare& s : kept)
       delete[] s.data;
+    kept.clear();
   }
+  ~Spares() { clear(); }
 };
 
 thread_local Spares spares;
@@ -75,9 +77,7 @@ ArrayStorage take_array_storage(std::size_t count) {
 }
 
 void release_spare_arrays() {
-  for (const Spare& s : spares.kept)
-    delete[] s.data;
-  spares.kept.clear();
+  spares.clear();
 }
 
 std::size_t spare_array_bytes() {

@@ -154,15 +154,16 @@ SeismicLayout layout_seismic(const SeismicOptions& options, const Frame& frame, 
     if (auto* ch = std::get_if<Channel>(&c.shape)) {
       Vec3 mid = ch->line.point(0.0);
       mid.z = ch->top + 0.5 * ch->depth;
+      const double arc_length = ch->line.arc_length(); // 4097 slopes: once
       body = describe_body(frame, "channel-" + std::to_string(number), BodyType::channel, mid, ch->line.azimuth,
-                           ch->volume(), c.bounds);
+                           ch->volume(arc_length), c.bounds);
       body.dimensions = {{"half_width", ch->half_width},
                          {"depth", ch->depth},
                          {"half_length", ch->line.half_length},
                          {"amplitude", ch->line.amplitude},
                          {"wavelength", 2.0 * std::numbers::pi / ch->line.wavenumber},
                          {"phase", ch->line.phase},
-                         {"arc_length", ch->line.arc_length()}};
+                         {"arc_length", arc_length}};
       layout.chaotic.push_back(*ch);
     } else if (auto* lobe = std::get_if<Lobe>(&c.shape)) {
       Vec3 mid = lobe->centre;

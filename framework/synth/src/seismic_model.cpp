@@ -85,8 +85,8 @@ void Fold::at(const Vec3& p, double& stretch, double& shift) const {
   shift = offset + dip_x * p.x + dip_y * p.y;
 }
 
-double Channel::volume() const {
-  return line.arc_length() * 4.0 / 3.0 * half_width * depth;
+double Channel::volume(double arc_length) const {
+  return arc_length * 4.0 / 3.0 * half_width * depth;
 }
 
 Aabb Channel::bounds(const Frame& frame) const {
@@ -189,6 +189,11 @@ const TraceInfo& SeismicModel::trace_info(std::int64_t i, std::int64_t j) const 
 }
 
 void SeismicModel::trace(std::int64_t i, std::int64_t j, std::int64_t k0, std::int64_t k1, double* out) const {
+  trace(i, j, trace_info(i, j), k0, k1, out);
+}
+
+void SeismicModel::trace(std::int64_t i, std::int64_t j, const TraceInfo& info, std::int64_t k0, std::int64_t k1,
+                         double* out) const {
   const auto count = static_cast<std::size_t>(k1 - k0);
   std::fill(out, out + count, 0.0);
   const double h = wavelet.half;
@@ -210,7 +215,6 @@ void SeismicModel::trace(std::int64_t i, std::int64_t j, std::int64_t k0, std::i
     spikes.amplitude.push_back(amplitude);
     spikes.first.push_back(first);
   };
-  const TraceInfo& info = trace_info(i, j);
   const std::vector<Interval>& inside = info.inside;
   auto in_chaotic = [&](double position) {
     for (const auto& iv : inside)

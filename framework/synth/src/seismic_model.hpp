@@ -46,7 +46,8 @@ struct Fold {
 struct Channel {
   SinuousLine line;
   double half_width = 1.0, depth = 1.0, top = 0.0;
-  double volume() const; // arc_length * 4/3 * half_width * depth (exact, see docs)
+  double volume() const { return volume(line.arc_length()); }
+  double volume(double arc_length) const; // arc_length * 4/3 * half_width * depth (exact, see docs)
   Aabb bounds(const Frame& frame) const;
 };
 
@@ -103,6 +104,10 @@ struct SeismicModel {
   void intervals(std::int64_t i, std::int64_t j, std::vector<Interval>& out) const;
   // Noiseless samples [k0, k1) of trace (i, j), written to out[0 .. k1 - k0).
   void trace(std::int64_t i, std::int64_t j, std::int64_t k0, std::int64_t k1, double* out) const;
+  // The same with the trace's describe(i, j) at hand (what a caller reading several ranges of one
+  // trace before the model is complete passes, instead of describing it again for every range).
+  void trace(std::int64_t i, std::int64_t j, const TraceInfo& info, std::int64_t k0, std::int64_t k1,
+             double* out) const;
   // The per-trace part of trace(), for trace (i, j).
   void describe(std::int64_t i, std::int64_t j, TraceInfo& out) const;
 

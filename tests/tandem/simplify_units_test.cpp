@@ -1,5 +1,5 @@
-// Unit tests of the simplifier's pieces: the Attali cost, the indexed heap, the id map, the
-// component table (regions and open faces: region_test.cpp).
+// Unit tests of the simplifier's pieces: the Attali cost, the indexed heap, the id map, the parked
+// edges, the component table (regions and open faces: region_test.cpp).
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -14,6 +14,7 @@
 #include "geotandem/tandem/region.hpp"
 #include "id_map.hpp"
 #include "indexed_heap.hpp"
+#include "parked_edges.hpp"
 
 namespace geotandem::tandem {
 namespace {
@@ -262,6 +263,61 @@ TEST(IdMap, FindsInsertsAndSwapsLikeAMap) {
   EXPECT_EQ(other.find(reference.begin()->first), reference.begin()->second);
   other.clear();
   EXPECT_EQ(other.find(reference.begin()->first), -1);
+}
+
+TEST(ParkedEdges, KeepsItsSlotsAndFindsTheBallsThatReachABox) {
+  // Against a reference list with the same swap-with-last removals, and a distance to the box
+  // computed apart.
+  std::vector<std::int32_t> slots(400, -1);
+  detail::ParkedEdges parked(&slots);
+  std::vector<std::pair<std::int32_t, detail::ParkedEdges::Spot>> reference;
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<float> coordinate(-5.0f, 45.0f), radius(0.5f, 6.0f);
+  const auto spot = [&] {
+    return detail::ParkedEdges::Spot{coordinate(rng), coordinate(rng), coordinate(rng), radius(rng)};
+  };
+  for (std::int32_t item = 0; item < 400; ++item) {
+    const auto s = spot();
+    parked.add(item, s);
+    reference.push_back({item, s});
+  }
+  for (int n = 0; n < 150; ++n) { // remove a third, move a third
+    const auto k = static_cast<std::size_t>(rng() % reference.size());
+    if (n % 2 == 0) {
+      parked.erase(reference[k].first);
+      reference[k] = reference.back();
+      reference.pop_back();
+    } else {
+      reference[k].second = spot();
+      parked.update(reference[k].first, reference[k].second);
+    }
+  }
+  ASSERT_EQ(parked.size(), reference.size());
+  for (std::size_t k = 0; k < reference.size(); ++k) {
+    ASSERT_EQ(parked.items()[k], reference[k].first);
+    ASSERT_EQ(slots[static_cast<std::size_t>(reference[k].first)], static_cast<std::int32_t>(k));
+  }
+  const Box box{{10, 12, 0}, {20, 30, 8}}; // cells: coordinates [10, 20] x [12, 30] x [0, 8]
+  for (const double margin : {0.0, 1.0}) {
+    std::vector<std::int32_t> expected;
+    for (const auto& [item, s] : reference) {
+      const double p[3] = {s.x, s.y, s.z};
+      double d2 = 0.0;
+      for (int a = 0; a < 3; ++a) {
+        const double below = static_cast<double>(box.lo[a]) - p[a], above = p[a] - static_cast<double>(box.hi[a]);
+        if (below > 0.0) d2 += below * below;
+        if (above > 0.0) d2 += above * above;
+      }
+      if (std::sqrt(d2) <= s.radius + margin) expected.push_back(item);
+    }
+    std::vector<std::int32_t> near;
+    parked.near(box, margin, near);
+    EXPECT_EQ(near, expected) << "margin " << margin;
+    EXPECT_GT(expected.size(), 10u);
+    EXPECT_LT(expected.size(), reference.size() / 2);
+  }
+  parked.clear();
+  EXPECT_EQ(parked.size(), 0u);
 }
 
 // ------------------------------------------------------------------------------------- components

@@ -243,6 +243,37 @@ TEST(TandemBlocks, CompactingASurfaceSetAsideChangesNothingButItsStorage) {
   blocks_test::expect_same_components(q.one.sink.components, q.sink.components);
 }
 
+TEST(TandemBlocks, AMergePlacesEveryParkedEdgeTheNewBlocksFree) {
+  // A merge places again only the parked edges whose ball reaches the other side's blocks (the
+  // faces it closes lie there). Placing every parked edge again afterwards must then change
+  // nothing: no edge left parked may collapse. Checked after merges of brothers, of an L into a
+  // surface compacted before (its parked edges listed again) and of the last quarter.
+  const auto expect_nothing_more_to_free = [](WorkingSurface& s, const char* what) {
+    const auto before = triangle_set(s.snapshot());
+    const std::size_t waiting = s.waiting_edge_count(), components = s.component_count();
+    const std::uint64_t collapses = s.counters().collapses;
+    s.set_region(s.region());
+    s.finish();
+    EXPECT_EQ(s.counters().collapses, collapses) << what;
+    EXPECT_EQ(triangle_set(s.snapshot()), before) << what;
+    EXPECT_EQ(s.waiting_edge_count(), waiting) << what;
+    EXPECT_EQ(s.component_count(), components) << what;
+  };
+  Quarters q;
+  auto a = q(0, 0), b = q(1, 0), c = q(0, 1), d = q(1, 1);
+  const std::uint64_t before_merge = a->counters().collapses + b->counters().collapses;
+  a->merge(std::move(*b));
+  EXPECT_GT(a->counters().collapses, before_merge) << "the seam's edges were freed and collapsed";
+  expect_nothing_more_to_free(*a, "brothers");
+  a->compact(); // the larger side takes the other in: its parked edges as listed again here
+  a->merge(std::move(*c));
+  expect_nothing_more_to_free(*a, "an L after a compaction");
+  a->merge(std::move(*d));
+  expect_nothing_more_to_free(*a, "the last quarter");
+  EXPECT_EQ(a->triangle_count(), 0u);
+  blocks_test::expect_same_components(q.one.sink.components, q.sink.components);
+}
+
 TEST(TandemBlocks, MergesThatDoNotFitAreRefused) {
   const auto volume = blocks_test::sample(blocks_test::bodies(), kShape);
   CollectingSink sink;

@@ -156,22 +156,18 @@ void WorkingSurface::Engine::collect_garbage(bool give_back) {
 
   // Queues: rebuilt from the edges' states (the records moved with the edges).
   std::vector<detail::IndexedHeap::Entry> q;
-  std::vector<std::int32_t> parked;
+  parked_.clear();
   for (std::size_t i = 0; i < mesh_->n_edges(); ++i) {
     const detail::EdgeRecord& r = erec_[i];
     const auto item = static_cast<std::int32_t>(i);
     switch (r.state) {
     case EdgeState::candidate: q.push_back({r.key, item}); break;
     case EdgeState::delayed: delayed_.push(item, r.key); break;
-    case EdgeState::parked:
-      slots_[i] = static_cast<std::int32_t>(parked.size());
-      parked.push_back(item);
-      break;
+    case EdgeState::parked: parked_.add(item, spot_of(EH(item))); break;
     case EdgeState::idle: break;
     }
   }
   candidates_.assign(std::move(q));
-  parked_.swap(parked);
   ++counters_.garbage_collections;
 }
 

@@ -29,7 +29,7 @@ WorkingSurface::Engine::Engine(const volume::Geometry& cube, Region region, int 
     : cube_(cube), region_(std::move(region)), axis_(axis), options_(options), sink_(sink), observer_(observer),
       cost_(options.max_error, options.isotropy), front_rule_(detail::make_front_rule(options.time_lag, axis)),
       face_rule_(detail::make_face_rule(options.extended_time_lag)), mesh_(detail::take_spare_mesh()),
-      candidates_(&slots_), delayed_(&slots_) {
+      candidates_(&slots_), delayed_(&slots_), parked_(&slots_) {
   options_.validate();
   cube_.validate();
   if (axis < 0 || axis > 2)
@@ -84,6 +84,7 @@ void WorkingSurface::Engine::set_state(EH e, EdgeState state, double key) {
       delayed_.erase(item, r.key);
       delayed_.push(item, key);
     }
+    if (state == EdgeState::parked) parked_.update(item, spot_of(e));
     r.key = key;
     return;
   }
@@ -93,15 +94,7 @@ void WorkingSurface::Engine::set_state(EH e, EdgeState state, double key) {
     pending_.release(r.pending);
     break;
   case EdgeState::delayed: delayed_.erase(item, r.key); break;
-  case EdgeState::parked: {
-    const std::int32_t slot = slots_[static_cast<std::size_t>(item)];
-    const std::int32_t last = parked_.back();
-    parked_[static_cast<std::size_t>(slot)] = last;
-    slots_[static_cast<std::size_t>(last)] = slot;
-    parked_.pop_back();
-    slots_[static_cast<std::size_t>(item)] = -1;
-    break;
-  }
+  case EdgeState::parked: parked_.erase(item); break;
   case EdgeState::idle: break;
   }
   r.state = state;
@@ -112,10 +105,7 @@ void WorkingSurface::Engine::set_state(EH e, EdgeState state, double key) {
     r.pending = pending_.acquire();
     break;
   case EdgeState::delayed: delayed_.push(item, key); break;
-  case EdgeState::parked:
-    slots_[static_cast<std::size_t>(item)] = static_cast<std::int32_t>(parked_.size());
-    parked_.push_back(item);
-    break;
+  case EdgeState::parked: parked_.add(item, spot_of(e)); break;
   case EdgeState::idle: break;
   }
   const bool was_waiting = detail::waiting(old), is_waiting = detail::waiting(state);
@@ -123,6 +113,12 @@ void WorkingSurface::Engine::set_state(EH e, EdgeState state, double key) {
     const VH a = mesh_->to_vertex_handle(mesh_->halfedge_handle(e, 0));
     components_.add_waiting(vrec(a).component, is_waiting ? 1 : -1);
   }
+}
+
+detail::ParkedEdges::Spot WorkingSurface::Engine::spot_of(EH e) const {
+  const EdgeGeometry g = geometry_of(mesh_->halfedge_handle(e, 0));
+  const Vec3 m = g.midpoint();
+  return {static_cast<float>(m[0]), static_cast<float>(m[1]), static_cast<float>(m[2]), static_cast<float>(g.rad())};
 }
 
 void WorkingSurface::Engine::enqueue(EH e, double cost, const detail::Vec3& target, bool retried) {
@@ -192,7 +188,7 @@ void WorkingSurface::Engine::set_region(Region region) {
     throw InvalidArgument("working surface: the new region " + region.to_string() + " is not in the same cube as " +
                           region_.to_string());
   region_ = std::move(region);
-  const std::vector<std::int32_t> parked = parked_;
+  const std::vector<std::int32_t> parked = parked_.items();
   for (std::int32_t e : parked)
     place(EH(e));
 }

@@ -23,6 +23,7 @@
 #include "geotandem/tandem/simplify.hpp"
 #include "id_map.hpp"
 #include "indexed_heap.hpp"
+#include "parked_edges.hpp"
 #include "surface_state.hpp"
 #include "working_mesh.hpp"
 
@@ -108,6 +109,10 @@ private:
   void place(EH e);
   std::uint32_t stamp_of(EH e) const;
   void set_state(EH e, detail::EdgeState state, double key);
+  detail::ParkedEdges::Spot spot_of(EH e) const; // where a parked edge's ball is
+  // After a merge added `blocks` to the region: places again the parked edges whose ball reaches
+  // them, the only ones the faces the merge closed may free (surface_merge.cpp).
+  void place_parked_near(const std::vector<volume::Box>& blocks);
   // Puts e in Q at `cost` with its candidate position (evaluated now: the stamp is today's).
   void enqueue(EH e, double cost, const detail::Vec3& target, bool retried);
   detail::Pending& pending(EH e) { return pending_[erec(e).pending]; }
@@ -172,8 +177,8 @@ private:
   // The Pending of each edge in Q, at the index its record keeps: emptied with Q, its room given
   // back at a compaction with Q empty (collect_garbage()).
   detail::PendingPool pending_;
-  detail::BucketQueue delayed_;      // W, by lag key (unit buckets)
-  std::vector<std::int32_t> parked_; // W, edges waiting for the region to grow
+  detail::BucketQueue delayed_; // W, by lag key (unit buckets)
+  detail::ParkedEdges parked_;  // W, edges waiting for the region to grow
   detail::ComponentTable components_;
   detail::IdMap previous_ids_; // ids of the last layer: the next one may repeat them
   detail::IdMap current_ids_;

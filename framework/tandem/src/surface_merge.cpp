@@ -59,10 +59,29 @@ Region WorkingSurface::Engine::merge_region_of(const Region& region, int axis, c
 }
 
 std::size_t WorkingSurface::Engine::merge_state(detail::SurfaceState&& other, const CancelToken* cancel) {
+  const std::vector<volume::Box> added = other.region.blocks();
   absorb_state(std::move(other)); // gives the state's parts back before the simplification
-  set_region(region_);            // the region grew: edges parked by faces now inside it are placed again
+  place_parked_near(added);       // the region grew: edges parked by faces now inside it are placed again
   simplify(cancel);
   return dump();
+}
+
+void WorkingSurface::Engine::place_parked_near(const std::vector<volume::Box>& blocks) {
+  // A parked edge's ball reaches an open face. The faces the merge closed lie on the added blocks,
+  // so an edge whose ball stays clear of them still reaches an open face and would only be parked
+  // again with the same key: it is skipped. The others are placed in list order, as placing every
+  // parked edge would (the same queues, to the bit). The margin covers the spots' float rounding.
+  if (blocks.empty()) return;
+  volume::Box bounds = blocks.front();
+  for (const volume::Box& b : blocks)
+    for (int a = 0; a < 3; ++a) {
+      bounds.lo[a] = std::min(bounds.lo[a], b.lo[a]);
+      bounds.hi[a] = std::max(bounds.hi[a], b.hi[a]);
+    }
+  std::vector<std::int32_t> near;
+  parked_.near(bounds, 1.0, near);
+  for (std::int32_t e : near)
+    place(EH(e));
 }
 
 void WorkingSurface::Engine::absorb_state(detail::SurfaceState&& t) {
@@ -70,12 +89,27 @@ void WorkingSurface::Engine::absorb_state(detail::SurfaceState&& t) {
   const std::string where_ = where(region_, t.region);
   const std::size_t nb = t.points.size(), nt = t.triangles.size();
 
-  // Lattice id -> live original vertex of this surface (those on open faces are the ones the other
-  // side can share).
+  // Lattice id -> live original vertex of this surface. A lattice edge both sides share lies in
+  // the other side's blocks (closed), and so does the vertex on it: the positions are read first,
+  // and only the few vertices there are looked at (this side may hold a large part of the cube).
   detail::IdMap ids;
-  for (std::size_t i = 0; i < mesh_->n_vertices(); ++i)
-    if (vrec_[i].alive && vrec_[i].lattice_id != detail::kNoLatticeId)
-      ids.insert(vrec_[i].lattice_id, static_cast<std::int32_t>(i));
+  {
+    std::array<double, 3> lo{}, hi{};
+    for (int a = 0; a < 3; ++a) {
+      lo[a] = HUGE_VAL;
+      hi[a] = -HUGE_VAL;
+      for (const volume::Box& b : t.region.blocks()) {
+        lo[a] = std::min(lo[a], static_cast<double>(b.lo[a]) - 0.5);
+        hi[a] = std::max(hi[a], static_cast<double>(b.hi[a]) + 0.5);
+      }
+    }
+    for (std::size_t i = 0; i < mesh_->n_vertices(); ++i) {
+      const auto& p = points_[i];
+      if (p[0] < lo[0] || p[0] > hi[0] || p[1] < lo[1] || p[1] > hi[1] || p[2] < lo[2] || p[2] > hi[2]) continue;
+      if (vrec_[i].alive && vrec_[i].lattice_id != detail::kNoLatticeId)
+        ids.insert(vrec_[i].lattice_id, static_cast<std::int32_t>(i));
+    }
+  }
 
   // The other side's components join the table; those the seam touches are united below.
   std::vector<std::int32_t> component(t.component_keys.size());

@@ -1,8 +1,6 @@
 // libFuzzer target: the SEG-Y reader's headers (textual, binary, trace headers, line geometry). The
 // input is written as a .segy file and opened; when it opens, a small box is read.
 
-#include <unistd.h>
-
 #include <algorithm>
 #include <cstddef>
 #include <cstdint>
@@ -12,11 +10,13 @@
 
 #include "geotandem/core/error.hpp"
 #include "geotandem/volume/io.hpp"
+#include "scratch_path.hpp"
 
 using namespace geotandem;
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
-  static const std::string path = "/tmp/geotandem-fuzz-" + std::to_string(::getpid()) + ".segy";
+  static const ScratchPath scratch(".segy");
+  const std::string& path = scratch.str();
   std::ofstream(path, std::ios::binary | std::ios::trunc)
       .write(reinterpret_cast<const char*>(data), static_cast<std::streamsize>(size));
   try {

@@ -46,8 +46,8 @@ struct Fold {
 struct Channel {
   SinuousLine line;
   double half_width = 1.0, depth = 1.0, top = 0.0;
-  double volume() const { return volume(line.arc_length()); }
-  double volume(double arc_length) const; // arc_length * 4/3 * half_width * depth (exact, see docs)
+  // arc_length * 4/3 * half_width * depth (exact, see docs), with the line's arc length at hand.
+  double volume(double arc_length) const;
   Aabb bounds(const Frame& frame) const;
 };
 

@@ -177,6 +177,17 @@ bool Region::contains(const std::array<double, 3>& p) const {
   return false;
 }
 
+volume::Box Region::bounds() const {
+  if (blocks_.empty()) return {};
+  volume::Box box = blocks_.front();
+  for (const volume::Box& b : blocks_)
+    for (int a = 0; a < 3; ++a) {
+      box.lo[a] = std::min(box.lo[a], b.lo[a]);
+      box.hi[a] = std::max(box.hi[a], b.hi[a]);
+    }
+  return box;
+}
+
 Region Region::merged_with(const Region& other) const {
   if (empty()) return other;
   if (other.empty()) return *this;
@@ -189,19 +200,11 @@ Region Region::merged_with(const Region& other) const {
   // A union that fills its bounding box (two brothers) is that box: one block, whose open faces
   // are whole rectangles, instead of one rectangle per face of every merged leaf (the distance to
   // the open faces is computed for every placed edge).
-  volume::Box bounds = merged.blocks_.front();
+  const volume::Box bounds = merged.bounds();
   std::size_t cells = 0;
-  for (const volume::Box& b : merged.blocks_) {
-    for (int a = 0; a < 3; ++a) {
-      bounds.lo[a] = std::min(bounds.lo[a], b.lo[a]);
-      bounds.hi[a] = std::max(bounds.hi[a], b.hi[a]);
-    }
-    cells +=
-        static_cast<std::size_t>(b.size(0)) * static_cast<std::size_t>(b.size(1)) * static_cast<std::size_t>(b.size(2));
-  }
-  const std::size_t box_cells = static_cast<std::size_t>(bounds.size(0)) * static_cast<std::size_t>(bounds.size(1)) *
-                                static_cast<std::size_t>(bounds.size(2));
-  if (cells == box_cells) return Region(cube_, {bounds});
+  for (const volume::Box& b : merged.blocks_)
+    cells += b.count();
+  if (cells == bounds.count()) return Region(cube_, {bounds});
   return merged;
 }
 

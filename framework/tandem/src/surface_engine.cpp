@@ -74,8 +74,9 @@ detail::EdgeGeometry WorkingSurface::Engine::geometry_of(HH h) const {
   return g;
 }
 
-void WorkingSurface::Engine::set_state(EH e, EdgeState state, double key) {
+void WorkingSurface::Engine::set_state(EH e, EdgeState state, double key, const EdgeGeometry* g) {
   detail::EdgeRecord& r = erec(e);
+  const auto spot = [&] { return spot_of(g ? *g : geometry_of(mesh_->halfedge_handle(e, 0))); };
   const EdgeState old = r.state;
   const auto item = static_cast<std::int32_t>(e.idx());
   if (old == state) { // stays in the same queue: move it in place
@@ -84,7 +85,7 @@ void WorkingSurface::Engine::set_state(EH e, EdgeState state, double key) {
       delayed_.erase(item, r.key);
       delayed_.push(item, key);
     }
-    if (state == EdgeState::parked) parked_.update(item, spot_of(e));
+    if (state == EdgeState::parked) parked_.update(item, spot());
     r.key = key;
     return;
   }
@@ -105,7 +106,7 @@ void WorkingSurface::Engine::set_state(EH e, EdgeState state, double key) {
     r.pending = pending_.acquire();
     break;
   case EdgeState::delayed: delayed_.push(item, key); break;
-  case EdgeState::parked: parked_.add(item, spot_of(e)); break;
+  case EdgeState::parked: parked_.add(item, spot()); break;
   case EdgeState::idle: break;
   }
   const bool was_waiting = detail::waiting(old), is_waiting = detail::waiting(state);
@@ -115,8 +116,7 @@ void WorkingSurface::Engine::set_state(EH e, EdgeState state, double key) {
   }
 }
 
-detail::ParkedEdges::Spot WorkingSurface::Engine::spot_of(EH e) const {
-  const EdgeGeometry g = geometry_of(mesh_->halfedge_handle(e, 0));
+detail::ParkedEdges::Spot WorkingSurface::Engine::spot_of(const EdgeGeometry& g) const {
   const Vec3 m = g.midpoint();
   return {static_cast<float>(m[0]), static_cast<float>(m[1]), static_cast<float>(m[2]), static_cast<float>(g.rad())};
 }
@@ -145,7 +145,7 @@ void WorkingSurface::Engine::place(EH e) {
   }
   if (!face_rule_->allows(g, region_)) {
     ++counters_.blocked_by_faces;
-    set_state(e, EdgeState::parked, lag);
+    set_state(e, EdgeState::parked, lag, &g);
     return;
   }
   // Lazy evaluation: a candidate keeps its old key, now stale, and is evaluated again when it

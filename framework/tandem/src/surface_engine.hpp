@@ -108,11 +108,13 @@ private:
   detail::EdgeGeometry geometry_of(HH h) const;
   void place(EH e);
   std::uint32_t stamp_of(EH e) const;
-  void set_state(EH e, detail::EdgeState state, double key);
-  detail::ParkedEdges::Spot spot_of(EH e) const; // where a parked edge's ball is
-  // After a merge added `blocks` to the region: places again the parked edges whose ball reaches
-  // them, the only ones the faces the merge closed may free (surface_merge.cpp).
-  void place_parked_near(const std::vector<volume::Box>& blocks);
+  // `g`: the edge's geometry when the caller has it (a parked edge keeps where its ball is).
+  void set_state(EH e, detail::EdgeState state, double key, const detail::EdgeGeometry* g = nullptr);
+  detail::ParkedEdges::Spot spot_of(const detail::EdgeGeometry& g) const; // where a parked edge's ball is
+  // After a merge added blocks within `added` (their bounds) to the region: places again the parked
+  // edges whose ball reaches it, the only ones the faces the merge closed may free
+  // (surface_merge.cpp).
+  void place_parked_near(const volume::Box& added);
   // Puts e in Q at `cost` with its candidate position (evaluated now: the stamp is today's).
   void enqueue(EH e, double cost, const detail::Vec3& target, bool retried);
   detail::Pending& pending(EH e) { return pending_[erec(e).pending]; }

@@ -59,27 +59,21 @@ Region WorkingSurface::Engine::merge_region_of(const Region& region, int axis, c
 }
 
 std::size_t WorkingSurface::Engine::merge_state(detail::SurfaceState&& other, const CancelToken* cancel) {
-  const std::vector<volume::Box> added = other.region.blocks();
+  const volume::Box added = other.region.bounds();
   absorb_state(std::move(other)); // gives the state's parts back before the simplification
   place_parked_near(added);       // the region grew: edges parked by faces now inside it are placed again
   simplify(cancel);
   return dump();
 }
 
-void WorkingSurface::Engine::place_parked_near(const std::vector<volume::Box>& blocks) {
+void WorkingSurface::Engine::place_parked_near(const volume::Box& added) {
   // A parked edge's ball reaches an open face. The faces the merge closed lie on the added blocks,
   // so an edge whose ball stays clear of them still reaches an open face and would only be parked
   // again with the same key: it is skipped. The others are placed in list order, as placing every
   // parked edge would (the same queues, to the bit). The margin covers the spots' float rounding.
-  if (blocks.empty()) return;
-  volume::Box bounds = blocks.front();
-  for (const volume::Box& b : blocks)
-    for (int a = 0; a < 3; ++a) {
-      bounds.lo[a] = std::min(bounds.lo[a], b.lo[a]);
-      bounds.hi[a] = std::max(bounds.hi[a], b.hi[a]);
-    }
+  if (added.empty()) return;
   std::vector<std::int32_t> near;
-  parked_.near(bounds, 1.0, near);
+  parked_.near(added, 1.0, near);
   for (std::int32_t e : near)
     place(EH(e));
 }
@@ -94,14 +88,11 @@ void WorkingSurface::Engine::absorb_state(detail::SurfaceState&& t) {
   // and only the few vertices there are looked at (this side may hold a large part of the cube).
   detail::IdMap ids;
   {
+    const volume::Box there = t.region.bounds();
     std::array<double, 3> lo{}, hi{};
     for (int a = 0; a < 3; ++a) {
-      lo[a] = HUGE_VAL;
-      hi[a] = -HUGE_VAL;
-      for (const volume::Box& b : t.region.blocks()) {
-        lo[a] = std::min(lo[a], static_cast<double>(b.lo[a]) - 0.5);
-        hi[a] = std::max(hi[a], static_cast<double>(b.hi[a]) + 0.5);
-      }
+      lo[a] = static_cast<double>(there.lo[a]) - 0.5;
+      hi[a] = static_cast<double>(there.hi[a]) + 0.5;
     }
     for (std::size_t i = 0; i < mesh_->n_vertices(); ++i) {
       const auto& p = points_[i];

@@ -60,6 +60,8 @@ public:
   }
   // Whether p lies in the region (closed boxes).
   bool contains(const std::array<double, 3>& p) const;
+  // The smallest box of cells holding every block (an empty box for an empty region).
+  volume::Box bounds() const;
 
   // The union with a region of the same cube; when the union fills its bounding box (brothers),
   // it is that box as a single block. Throws InvalidArgument when the cubes differ or the blocks

@@ -224,6 +224,38 @@ TEST(Manager, SurfacesInSmallChunksUnderCreditsGiveTheSameComponents) {
   }
 }
 
+// A relay budget of 0 bytes: every partial surface waits for its merge in a file beside the store,
+// and the run ends with the in-process components and no file left.
+TEST(Manager, SurfacesWaitingOnDiskPastTheRelayBudgetGiveTheSameComponents) {
+  ManagerRun run("48 44 40");
+  auto ref = testing::run_geotandem("-q extract '" + run.cube + "' --iso 0.5 --block-size 8 --workers 0 --out '" +
+                                    run.dir.file("ref") + "'");
+  ASSERT_EQ(ref.exit_code, 0) << ref.err;
+  run.options.workers = 2;
+  run.options.relay_memory = 0;
+  LocalLauncher launcher;
+  std::ostringstream text;
+  Logger log(text, LogLevel::info);
+  Manager manager(run.options, *run.store, &launcher, log, run.progress, run.cancel);
+  ManagerReport report;
+  ASSERT_NO_THROW(report = manager.run()) << text.str();
+  EXPECT_GT(report.merge, 0u);
+  EXPECT_EQ(report.relay_spilled, report.merge) << "a surface was merged without waiting on disk";
+  EXPECT_EQ(report.relay_peak_held, 0u);
+  EXPECT_GT(report.relay_spilled_bytes, 0u);
+  EXPECT_NE(text.str().find("waited for their merge in " + run.dir.file("store.relay")), std::string::npos)
+      << text.str();
+  EXPECT_FALSE(std::filesystem::exists(run.dir.file("store.relay"))) << "the relay's files outlived the run";
+  EXPECT_EQ(report.deaths, 0u) << text.str();
+  const auto expected = testing::components_of(run.dir.file("ref"), false);
+  const auto got = testing::components_of(run.dir.file("store"), true);
+  ASSERT_EQ(got.size(), expected.size());
+  for (const auto& [key, c] : expected) {
+    ASSERT_TRUE(got.count(key)) << key;
+    EXPECT_NEAR(got.at(key).volume, c.volume, 0.005 * std::abs(c.volume) + 1e-9);
+  }
+}
+
 // A size cap below the surfaces: each oversized SEND is logged and dropped, its worker is taken
 // for faulty and replaced; the run ends (the last worker standing may finish alone, or no worker
 // is left: a clear error) instead of crashing or hanging.

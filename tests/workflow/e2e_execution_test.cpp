@@ -72,3 +72,20 @@ TEST(WorkflowExecution, ReportStatesTheWorkersTheDefaultGave) {
                                           : std::string("local, in this process");
   EXPECT_NE(report.find(expected), std::string::npos) << "expected '" << expected << "'";
 }
+
+// execution.relay_memory reaches the manager: with 0 every partial surface waits for its merge in
+// a file beside the store, the run's statistics count them, and no file is left.
+TEST(WorkflowExecution, RelayMemoryFromTheRecipeSendsWaitingSurfacesToDisk) {
+  ScratchDir dir;
+  fs::path out = dir.path() / "out";
+  auto run = run_workflow(workflow_recipe("quickstart.yaml"), out,
+                          {"input.synthetic.shape=[64, 64, 48]", "steps.extract.block_size=16", "execution.workers=2",
+                           "execution.relay_memory=0"});
+  ASSERT_EQ(run.command.exit_code, 0) << run.command.err;
+  auto store = store::ComponentStore::open(out / "store");
+  const auto statistics = nlohmann::json::parse(store.runs().front().statistics);
+  ASSERT_TRUE(statistics.contains("relay")) << statistics.dump();
+  EXPECT_GT(statistics["relay"]["spilled"].get<std::uint64_t>(), 0u) << statistics.dump();
+  EXPECT_EQ(statistics["relay"]["spilled"], statistics["tasks"]["merge"]) << statistics.dump();
+  EXPECT_FALSE(fs::exists(out / "store.relay"));
+}

@@ -119,6 +119,20 @@ TEST_F(Recipes, WrongTypesAndRanges) {
   EXPECT_NE(l.find("recipe.yaml:3:"), std::string::npos) << l;
   std::string m = error_of(replaced("memory: 4G", "memory: lots"));
   EXPECT_NE(m.find("memory 'lots'"), std::string::npos) << m;
+  std::string z = error_of(replaced("memory: 4G", "memory: 0"));
+  EXPECT_NE(z.find("memory '0' is not a size like 2048M or 4G"), std::string::npos) << z;
+}
+
+TEST_F(Recipes, RelayMemoryIsASizeAndMayBeZero) {
+  EXPECT_EQ(parse_recipe(good, "dir/recipe.yaml", registry).execution.relay_memory_mb, -1); // the runtime's
+  EXPECT_EQ(parse_recipe(replaced("  workers: 4", "  workers: 4\n  relay_memory: 2G"), "dir/recipe.yaml", registry)
+                .execution.relay_memory_mb,
+            2048);
+  EXPECT_EQ(parse_recipe(good, "dir/recipe.yaml", registry, {"execution.relay_memory=0"}).execution.relay_memory_mb, 0);
+  std::string e = error_of(replaced("  workers: 4", "  workers: 4\n  relay_memory: -5M"));
+  EXPECT_NE(e.find("recipe.yaml:22:17: memory '-5M' is not a size like 2048M or 4G (or 0)"), std::string::npos) << e;
+  std::string g = error_of(replaced("  workers: 4", "  workers: 4\n  relay_memory: G"));
+  EXPECT_NE(g.find("memory 'G'"), std::string::npos) << g;
 }
 
 TEST_F(Recipes, MissingParameterNamesItsHelp) {

@@ -147,6 +147,7 @@ ManagerReport Manager::Impl::run() {
                                    : "check that workers can start and reach this address (firewall, --bind)");
     }
   } catch (...) {
+    relay.close(); // a rerun redoes unmerged surfaces from the volume
     stop_workers();
     progress.stop();
     const bool failed_before = commits.failed(); // then that failure is what goes up
@@ -172,6 +173,15 @@ ManagerReport Manager::Impl::run() {
   report.bytes_in = socket.bytes_in();
   report.bytes_out = socket.bytes_out();
   report.manager_peak_rss_kb = peak_rss_kb(); // of the whole process, so far
+  relay.close();
+  report.relay_peak_held = relay.usage().peak_held;
+  report.relay_spilled = relay.usage().spilled;
+  report.relay_spilled_bytes = relay.usage().spilled_bytes;
+  if (report.relay_spilled > 0)
+    log.info(std::to_string(report.relay_spilled) + " partial surface(s), " +
+             std::to_string(report.relay_spilled_bytes >> 20) + " MiB, waited for their merge in " +
+             relay.spill_dir().string() + " (past the relay's " + std::to_string(options.relay_memory >> 20) +
+             " MiB in memory)");
 
   return report;
 }

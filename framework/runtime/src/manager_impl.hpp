@@ -26,6 +26,13 @@ using detail::peak_rss_kb;
 using detail::random_hex;
 using detail::since;
 
+// A path next to `dir` (a store): its name with `suffix` appended, a trailing slash or not.
+inline std::filesystem::path beside(std::filesystem::path dir, const std::string& suffix) {
+  if (!dir.has_filename()) dir = dir.parent_path();
+  dir += suffix;
+  return dir;
+}
+
 struct Manager::Impl {
   struct Peer {
     WorkerId id = 0;
@@ -56,7 +63,8 @@ struct Manager::Impl {
   Schedule schedule{tree};
   detail::FinishedBlocks finished{store.directory(), tree};
   detail::CommitQueue commits{committer}; // after what its thread uses
-  detail::SurfaceRelay relay{options.max_surface, static_cast<std::size_t>(options.settings.chunk_bytes)};
+  detail::SurfaceRelay relay{options.max_surface, static_cast<std::size_t>(options.settings.chunk_bytes),
+                             options.relay_memory, beside(store.directory(), ".relay")};
   std::map<tandem::NodeId, std::uint32_t> attempts;
   std::uint64_t next_task = 1;
   WorkerId next_worker = 1;

@@ -19,6 +19,8 @@ std::string ManagerReport::to_json() const {
        {{"total", seconds}, {"extract", seconds_extract}, {"merge", seconds_merge}, {"finish", seconds_finish}}},
       {"bytes",
        {{"surfaces", surface_bytes}, {"largest_surface", largest_surface}, {"in", bytes_in}, {"out", bytes_out}}},
+      {"relay",
+       {{"peak_held_bytes", relay_peak_held}, {"spilled", relay_spilled}, {"spilled_bytes", relay_spilled_bytes}}},
       {"dropped_messages", dropped_messages},
       {"components", components},
       {"duplicates", duplicates},

@@ -218,7 +218,8 @@ void Manager::Impl::handle(const std::string& token, std::span<const std::byte> 
     ++report.send;
     ++p.tasks;
     p.task.reset();
-    if (schedule.arrived(p.id, t)) relay.keep(token, t);
+    if (schedule.arrived(p.id, t))
+      if (const std::optional<std::string> warning = relay.keep(token, t)) log.warning(*warning);
     relay.forget(token);
     return;
   }

@@ -4,7 +4,13 @@
 // its end (total and checksum), and kept until the target worker's MERGE; the MERGE goes out in
 // chunks, at most kChunkWindow ahead of that worker's credits. No sockets here: the manager sends
 // what this object returns. Internal to the runtime.
+//
+// The surfaces waiting for their MERGE are held in memory up to a budget; past it they wait in
+// files of a spill directory (one file each, read back and removed when their MERGE starts), so
+// a worker that merges more slowly than the others send cannot make the manager's memory grow
+// without bound. A file that cannot be written leaves its surface in memory, with a warning.
 #include <cstdint>
+#include <filesystem>
 #include <functional>
 #include <map>
 #include <optional>
@@ -19,8 +25,14 @@ namespace geotandem::runtime::detail {
 
 class SurfaceRelay {
 public:
-  SurfaceRelay(std::uint64_t max_surface, std::size_t chunk_bytes)
-      : max_surface_(max_surface), chunk_bytes_(chunk_bytes) {}
+  // `memory`: the bytes of waiting surfaces held in memory at most; `spill_dir` (empty: never
+  // spill) is created when first needed; the files a relay leaves behind (a manager killed) are
+  // removed when the next relay on that directory starts.
+  SurfaceRelay(std::uint64_t max_surface, std::size_t chunk_bytes, std::uint64_t memory = UINT64_MAX,
+               std::filesystem::path spill_dir = {});
+  ~SurfaceRelay();
+  SurfaceRelay(const SurfaceRelay&) = delete;
+  SurfaceRelay& operator=(const SurfaceRelay&) = delete;
 
   // A worker starts its SEND.
   void begin_inbound(const std::string& token);
@@ -33,13 +45,15 @@ public:
   // size. A whole surface is then kept for its transfer (keep) or dropped (its target died).
   std::optional<std::string> end_inbound(const std::string& token, std::uint64_t total, std::uint64_t checksum,
                                          std::uint64_t& bytes);
-  void keep(const std::string& token, TransferId transfer);
+  // Returns a warning when the surface should have gone to disk and could not (it stays in memory).
+  std::optional<std::string> keep(const std::string& token, TransferId transfer);
 
   struct Header {
     std::uint64_t total = 0;
     std::uint64_t checksum = 0;
   };
-  // The MERGE of `transfer` to `token` starts: its header; the chunks follow through pump().
+  // The MERGE of `transfer` to `token` starts: its header; the chunks follow through pump(). A
+  // surface whose file is missing or damaged is an IoError naming the file.
   Header begin_outbound(const std::string& token, TransferId transfer);
   // `credits` chunks were consumed by the worker (0 at the start): calls `send(offset, piece)` for
   // each chunk it may send now.
@@ -50,12 +64,26 @@ public:
   void forget(const std::string& token);
   // Drops the kept surfaces for which `gone(transfer)` holds.
   void drop_kept(const std::function<bool(TransferId)>& gone);
+  // The run is over: every surface is dropped and the spill directory removed (also on destruction).
+  void close() noexcept;
+
+  struct Usage {
+    std::uint64_t held = 0, peak_held = 0;        // bytes of waiting surfaces in memory, now and at most
+    std::uint64_t spilled = 0, spilled_bytes = 0; // surfaces that waited on disk
+  };
+  const Usage& usage() const { return usage_; }
+  const std::filesystem::path& spill_dir() const { return spill_dir_; }
 
 private:
   struct Parcel {
     std::vector<std::byte> bytes;
     std::uint64_t checksum = 0;
+    std::uint64_t size = 0;     // of the surface, in memory or on disk
+    std::filesystem::path file; // non-empty: the surface waits there
   };
+  std::optional<std::string> spill(TransferId transfer, Parcel& parcel);
+  void load(Parcel& parcel) const;
+  void release(Parcel& parcel);
   struct Outbound {
     Parcel parcel;
     std::uint64_t offset = 0;
@@ -67,6 +95,10 @@ private:
   std::map<std::string, Outbound> outbound_;
   std::map<std::string, Parcel> whole_; // ended, not yet kept
   std::map<TransferId, Parcel> kept_;
+  std::uint64_t memory_;
+  std::filesystem::path spill_dir_;
+  bool spill_failed_ = false; // warned once; later surfaces stay in memory
+  Usage usage_;
 };
 
 } // namespace geotandem::runtime::detail

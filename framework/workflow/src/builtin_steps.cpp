@@ -56,6 +56,7 @@ public:
       settings.scheduler = description.value("scheduler", "local");
       settings.resources = description.value("resources", nlohmann::json::object());
       settings.bind = description.value("bind", "");
+      settings.relay_memory_mb = description.value("relay_memory_mb", std::int64_t{-1});
       settings.parameters.erase("resources");
     }
     return extract_to_store(input, store, settings, context.log, context.progress, context.cancel);

@@ -96,6 +96,7 @@ ExtractResult extract_with_workers(const volume::Volume& volume, store::Componen
   options.workers = settings.workers;
   options.bind = runtime::manager_bind_endpoint(settings.bind);
   options.worker_command = settings.worker_command;
+  if (settings.relay_memory_mb >= 0) options.relay_memory = static_cast<std::uint64_t>(settings.relay_memory_mb) << 20;
 
   ExtractSettings effective = settings;
   effective.block_size = r.block_size;

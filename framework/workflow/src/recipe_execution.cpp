@@ -22,12 +22,16 @@ std::int64_t parse_walltime(const std::string& file, const YAML::Node& node, con
   throw error_at(file, node, "walltime '" + text + "' is not hh:mm:ss, hh:mm or minutes");
 }
 
-std::int64_t parse_memory(const std::string& file, const YAML::Node& node, const std::string& text) {
+// A size in MiB: "2048M", "4G", a plain number of MiB; 0 only when `zero_allowed`.
+std::int64_t parse_memory(const std::string& file, const YAML::Node& node, const std::string& text,
+                          bool zero_allowed = false) {
   char* end = nullptr;
   double v = std::strtod(text.c_str(), &end);
   std::string unit = end ? end : "";
   double mb = unit == "" || unit == "M" || unit == "MB" ? v : unit == "G" || unit == "GB" ? v * 1024 : -1;
-  if (!(v > 0) || mb < 0) throw error_at(file, node, "memory '" + text + "' is not a size like 2048M or 4G");
+  if (!(v > 0 || (zero_allowed && v == 0)) || mb < 0 || end == text.c_str())
+    throw error_at(file, node,
+                   "memory '" + text + "' is not a size like 2048M or 4G" + (zero_allowed ? " (or 0)" : ""));
   return static_cast<std::int64_t>(mb);
 }
 
@@ -56,13 +60,17 @@ void parse_execution(MapReader& m, ExecutionSpec& ex) {
     ex.resources.extra_args = r.text_list("extra_args");
     r.finish({"cpus_per_worker", "memory", "walltime", "queue", "account", "extra_args"});
   }
+  if (m.has("relay_memory")) {
+    YAML::Node n = m.node("relay_memory");
+    ex.relay_memory_mb = parse_memory(m.file(), n, detail::scalar_of(m.file(), n, "relay_memory"), true);
+  }
   ex.bind = m.text("bind", "");
   try {
     (void)runtime::manager_bind_endpoint(ex.bind); // an unknown interface is an error at validation
   } catch (const InvalidArgument& e) {
     throw error_at(m.file(), m.node("bind"), e.message(), e.hint());
   }
-  m.finish({"scheduler", "workers", "resources", "bind"});
+  m.finish({"scheduler", "workers", "resources", "bind", "relay_memory"});
 }
 
 } // namespace geotandem::workflow::detail

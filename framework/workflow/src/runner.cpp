@@ -177,6 +177,7 @@ private:
         description["worker_command"] = settings_.worker_command;
         description["scheduler"] = ex.scheduler;
         description["bind"] = ex.bind;
+        if (ex.relay_memory_mb >= 0) description["relay_memory_mb"] = ex.relay_memory_mb;
         description["resources"] = {{"cpus_per_worker", ex.resources.cpus_per_worker},
                                     {"memory_mb", ex.resources.memory_mb},
                                     {"walltime_s", ex.resources.walltime_s},

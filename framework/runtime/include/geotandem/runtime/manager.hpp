@@ -36,6 +36,9 @@ struct ManagerOptions {
   std::size_t max_restarts = 16; // replacement workers launched after deaths, at most
   std::size_t max_message = kDefaultMaxMessage;
   std::uint64_t max_surface = kDefaultMaxSurface; // a partial surface above this is refused
+  // The partial surfaces waiting for their MERGE are held in memory up to this many bytes; past it
+  // they wait on disk, in the directory beside the store named like it with ".relay" appended.
+  std::uint64_t relay_memory = std::uint64_t{1} << 30;
 };
 
 struct ManagerReport {
@@ -49,8 +52,10 @@ struct ManagerReport {
   double seconds_extract = 0, seconds_merge = 0, seconds_finish = 0; // summed over workers
   std::uint64_t surface_bytes = 0;                                   // partial surfaces relayed
   std::uint64_t largest_surface = 0;
-  std::uint64_t bytes_in = 0, bytes_out = 0; // every frame
-  std::uint64_t dropped_messages = 0;        // damaged, unknown sender, stale lease
+  std::uint64_t relay_peak_held = 0;                        // bytes of waiting surfaces in memory, at most
+  std::uint64_t relay_spilled = 0, relay_spilled_bytes = 0; // surfaces that waited on disk
+  std::uint64_t bytes_in = 0, bytes_out = 0;                // every frame
+  std::uint64_t dropped_messages = 0;                       // damaged, unknown sender, stale lease
   std::uint64_t components = 0, duplicates = 0;
   std::uint64_t repaired = 0; // damaged records of an earlier run written again
   std::size_t leaves = 0;

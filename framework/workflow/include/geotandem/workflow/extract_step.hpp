@@ -54,6 +54,9 @@ struct ExtractSettings {
   std::string scheduler = "local";
   nlohmann::json resources;
   std::string bind; // where the manager listens (runtime::manager_bind_endpoint); "": loopback
+  // MiB of partial surfaces the manager holds for their merges before they wait on disk (-1: the
+  // runtime's default, runtime::ManagerOptions::relay_memory).
+  std::int64_t relay_memory_mb = -1;
 };
 
 struct ExtractResult {

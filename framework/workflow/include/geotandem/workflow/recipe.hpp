@@ -79,6 +79,9 @@ struct ExecutionSpec {
   bool workers_given = false;
   ResourceSpec resources;
   std::string bind; // where the manager listens: "" (loopback), an interface or an address
+  // The partial surfaces waiting in the manager for their merge: MiB held in memory before they
+  // wait on disk (-1: the runtime's default).
+  std::int64_t relay_memory_mb = -1;
 };
 
 struct Recipe {

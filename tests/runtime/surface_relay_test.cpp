@@ -4,6 +4,8 @@
 // surfaces in memory with a warning instead of losing them.
 #include <gtest/gtest.h>
 
+#include <cerrno>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <random>
@@ -149,6 +151,24 @@ TEST(SurfaceRelay, ADirectoryThatCannotBeWrittenKeepsTheSurfacesInMemoryWithOneW
   EXPECT_EQ(relay.usage().held, 1400u);
   EXPECT_EQ(depart(relay, "w2", 1), a);
   EXPECT_EQ(depart(relay, "w2", 2), b);
+}
+
+// A full disk: the surface's file is /dev/full (through a link), whose writes fail with ENOSPC
+// when they are flushed. The surface stays in memory, the warning says why, and no file is left.
+TEST(SurfaceRelay, AFullDiskKeepsTheSurfaceInMemory) {
+  if (!std::filesystem::exists("/dev/full")) GTEST_SKIP() << "no /dev/full here";
+  ScratchDir dir;
+  const std::filesystem::path spill = dir.file("store.relay");
+  SurfaceRelay relay(1 << 20, 256, 0, spill);
+  std::filesystem::create_directories(spill);
+  std::filesystem::create_symlink("/dev/full", spill / "transfer-3.surface");
+  const auto a = random_bytes(5000, 7);
+  const std::optional<std::string> warning = arrive(relay, "w1", 3, a);
+  ASSERT_TRUE(warning.has_value());
+  EXPECT_NE(warning->find(std::strerror(ENOSPC)), std::string::npos) << *warning;
+  EXPECT_EQ(relay.usage().spilled, 0u);
+  EXPECT_FALSE(std::filesystem::exists(std::filesystem::symlink_status(spill / "transfer-3.surface")));
+  EXPECT_EQ(depart(relay, "w2", 3), a);
 }
 
 } // namespace

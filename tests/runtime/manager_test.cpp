@@ -41,6 +41,42 @@ struct ManagerRun {
     options.settings.run = store->begin_run("{}");
     options.worker_command = {test_paths::binary(), "-q", "worker"};
   }
+
+  // A manager with local workers over this run's options: its report (none when it threw: a
+  // failure), its log in `log_text`.
+  std::optional<ManagerReport> run_manager(LogLevel level, std::string& log_text) {
+    LocalLauncher launcher;
+    std::ostringstream text;
+    Logger log(text, level);
+    Manager manager(options, *store, &launcher, log, progress, cancel);
+    std::optional<ManagerReport> report;
+    try {
+      report = manager.run();
+    } catch (const std::exception& e) {
+      ADD_FAILURE() << e.what();
+    }
+    log_text = text.str();
+    return report;
+  }
+
+  // The same cube extracted in one process (`ref`), what a run with workers must give.
+  bool extract_reference() {
+    auto r = testing::run_geotandem("-q extract '" + cube + "' --iso 0.5 --block-size 8 --workers 0 --out '" +
+                                    dir.file("ref") + "'");
+    EXPECT_EQ(r.exit_code, 0) << r.err;
+    return r.exit_code == 0;
+  }
+  // The store holds the reference's components (keys), volumes within 0.5 %; `check_records`
+  // reads every record back as well.
+  void expect_reference_components(bool check_records) {
+    const auto expected = testing::components_of(dir.file("ref"), false);
+    const auto got = testing::components_of(dir.file("store"), check_records);
+    ASSERT_EQ(got.size(), expected.size());
+    for (const auto& [key, c] : expected) {
+      ASSERT_TRUE(got.count(key)) << key;
+      EXPECT_NEAR(got.at(key).volume, c.volume, 0.005 * std::abs(c.volume) + 1e-9);
+    }
+  }
 };
 
 std::string message_of(const std::function<void()>& f) {
@@ -87,9 +123,7 @@ TEST(Manager, AWorkerJoiningLateTakesPart) {
   // Large enough that the run is still going when the late worker has started, on a loaded
   // machine too (a worker saying HELLO after the end is told FINISHED without joining).
   ManagerRun run("64 60 56");
-  auto ref = testing::run_geotandem("-q extract '" + run.cube + "' --iso 0.5 --block-size 8 --workers 0 --out '" +
-                                    run.dir.file("ref") + "'");
-  ASSERT_EQ(ref.exit_code, 0) << ref.err;
+  ASSERT_TRUE(run.extract_reference());
   run.options.workers = 1;
   LocalLauncher launcher;
   Logger log(std::cerr, LogLevel::info);
@@ -108,13 +142,7 @@ TEST(Manager, AWorkerJoiningLateTakesPart) {
   const int code = testing::wait_exit(late, 60);
   EXPECT_EQ(code, 0) << testing::read_text(run.dir.file("late.log"));
   EXPECT_EQ(report.workers, 2u) << "the late worker did not join";
-  const auto expected = testing::components_of(run.dir.file("ref"), false);
-  const auto got = testing::components_of(run.dir.file("store"), false);
-  ASSERT_EQ(got.size(), expected.size());
-  for (const auto& [key, c] : expected) {
-    ASSERT_TRUE(got.count(key)) << key;
-    EXPECT_NEAR(got.at(key).volume, c.volume, 0.005 * std::abs(c.volume) + 1e-9);
-  }
+  run.expect_reference_components(false);
 }
 
 // Random bytes, truncated and damaged messages, oversized claims, replayed task results and HELLOs
@@ -173,9 +201,7 @@ void send_garbage(const std::string& endpoint, std::atomic<bool>& stop, std::ato
 
 TEST(Manager, GarbageOnItsSocketIsDroppedAndTheRunCompletes) {
   ManagerRun run("48 44 40");
-  auto ref = testing::run_geotandem("-q extract '" + run.cube + "' --iso 0.5 --block-size 8 --workers 0 --out '" +
-                                    run.dir.file("ref") + "'");
-  ASSERT_EQ(ref.exit_code, 0) << ref.err;
+  ASSERT_TRUE(run.extract_reference());
   run.options.workers = 2;
   LocalLauncher launcher;
   Manager manager(run.options, *run.store, &launcher, Logger::null(), run.progress, run.cancel);
@@ -188,72 +214,43 @@ TEST(Manager, GarbageOnItsSocketIsDroppedAndTheRunCompletes) {
   garbage.join();
   EXPECT_GT(sent.load(), 50);
   EXPECT_GT(report.dropped_messages, 0u);
-  const auto expected = testing::components_of(run.dir.file("ref"), false);
-  const auto got = testing::components_of(run.dir.file("store"), false);
-  ASSERT_EQ(got.size(), expected.size());
-  for (const auto& [key, c] : expected) {
-    ASSERT_TRUE(got.count(key)) << key;
-    EXPECT_NEAR(got.at(key).volume, c.volume, 0.005 * std::abs(c.volume) + 1e-9);
-  }
+  run.expect_reference_components(false);
 }
 
 // Partial surfaces of a few KiB cut into chunks of 256 bytes: every SEND and MERGE runs many
 // windows of credits through the manager, and the result is the in-process one.
 TEST(Manager, SurfacesInSmallChunksUnderCreditsGiveTheSameComponents) {
   ManagerRun run("48 44 40");
-  auto ref = testing::run_geotandem("-q extract '" + run.cube + "' --iso 0.5 --block-size 8 --workers 0 --out '" +
-                                    run.dir.file("ref") + "'");
-  ASSERT_EQ(ref.exit_code, 0) << ref.err;
+  ASSERT_TRUE(run.extract_reference());
   run.options.workers = 2;
   run.options.settings.chunk_bytes = 256;
-  LocalLauncher launcher;
-  std::ostringstream text;
-  Logger log(text, LogLevel::debug);
-  Manager manager(run.options, *run.store, &launcher, log, run.progress, run.cancel);
-  ManagerReport report;
-  ASSERT_NO_THROW(report = manager.run()) << text.str();
-  EXPECT_GT(report.largest_surface, 256u * kChunkWindow) << "no surface needed more than one window of credits";
-  EXPECT_EQ(report.dropped_messages, 0u) << text.str();
-  EXPECT_EQ(report.deaths, 0u) << text.str();
-  const auto expected = testing::components_of(run.dir.file("ref"), false);
-  const auto got = testing::components_of(run.dir.file("store"), true);
-  ASSERT_EQ(got.size(), expected.size());
-  for (const auto& [key, c] : expected) {
-    ASSERT_TRUE(got.count(key)) << key;
-    EXPECT_NEAR(got.at(key).volume, c.volume, 0.005 * std::abs(c.volume) + 1e-9);
-  }
+  std::string text;
+  const std::optional<ManagerReport> report = run.run_manager(LogLevel::debug, text);
+  ASSERT_TRUE(report) << text;
+  EXPECT_GT(report->largest_surface, 256u * kChunkWindow) << "no surface needed more than one window of credits";
+  EXPECT_EQ(report->dropped_messages, 0u) << text;
+  EXPECT_EQ(report->deaths, 0u) << text;
+  run.expect_reference_components(true);
 }
 
 // A relay budget of 0 bytes: every partial surface waits for its merge in a file beside the store,
 // and the run ends with the in-process components and no file left.
 TEST(Manager, SurfacesWaitingOnDiskPastTheRelayBudgetGiveTheSameComponents) {
   ManagerRun run("48 44 40");
-  auto ref = testing::run_geotandem("-q extract '" + run.cube + "' --iso 0.5 --block-size 8 --workers 0 --out '" +
-                                    run.dir.file("ref") + "'");
-  ASSERT_EQ(ref.exit_code, 0) << ref.err;
+  ASSERT_TRUE(run.extract_reference());
   run.options.workers = 2;
   run.options.relay_memory = 0;
-  LocalLauncher launcher;
-  std::ostringstream text;
-  Logger log(text, LogLevel::info);
-  Manager manager(run.options, *run.store, &launcher, log, run.progress, run.cancel);
-  ManagerReport report;
-  ASSERT_NO_THROW(report = manager.run()) << text.str();
-  EXPECT_GT(report.merge, 0u);
-  EXPECT_EQ(report.relay_spilled, report.merge) << "a surface was merged without waiting on disk";
-  EXPECT_EQ(report.relay_peak_held, 0u);
-  EXPECT_GT(report.relay_spilled_bytes, 0u);
-  EXPECT_NE(text.str().find("waited for their merge in " + run.dir.file("store.relay")), std::string::npos)
-      << text.str();
+  std::string text;
+  const std::optional<ManagerReport> report = run.run_manager(LogLevel::info, text);
+  ASSERT_TRUE(report) << text;
+  EXPECT_GT(report->merge, 0u);
+  EXPECT_EQ(report->relay_spilled, report->merge) << "a surface was merged without waiting on disk";
+  EXPECT_EQ(report->relay_peak_held, 0u);
+  EXPECT_GT(report->relay_spilled_bytes, 0u);
+  EXPECT_NE(text.find("waited for their merge in " + run.dir.file("store.relay")), std::string::npos) << text;
   EXPECT_FALSE(std::filesystem::exists(run.dir.file("store.relay"))) << "the relay's files outlived the run";
-  EXPECT_EQ(report.deaths, 0u) << text.str();
-  const auto expected = testing::components_of(run.dir.file("ref"), false);
-  const auto got = testing::components_of(run.dir.file("store"), true);
-  ASSERT_EQ(got.size(), expected.size());
-  for (const auto& [key, c] : expected) {
-    ASSERT_TRUE(got.count(key)) << key;
-    EXPECT_NEAR(got.at(key).volume, c.volume, 0.005 * std::abs(c.volume) + 1e-9);
-  }
+  EXPECT_EQ(report->deaths, 0u) << text;
+  run.expect_reference_components(true);
 }
 
 // A size cap below the surfaces: each oversized SEND is logged and dropped, its worker is taken

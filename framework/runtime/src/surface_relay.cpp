@@ -162,7 +162,7 @@ SurfaceRelay::Header SurfaceRelay::begin_outbound(const std::string& token, Tran
   out.parcel = std::move(kept->second);
   kept_.erase(kept);
   if (out.parcel.file.empty()) {
-    usage_.held -= std::min(usage_.held, out.parcel.size);
+    release(out.parcel); // leaves the bytes: only what is held is counted down
   } else {
     load(out.parcel);
   }

@@ -83,6 +83,7 @@ private:
   };
   std::optional<std::string> spill(TransferId transfer, Parcel& parcel);
   void load(Parcel& parcel) const;
+  // A kept surface leaves the relay's account: its memory is no longer counted, its file goes.
   void release(Parcel& parcel);
   struct Outbound {
     Parcel parcel;

@@ -89,3 +89,19 @@ TEST(WorkflowExecution, RelayMemoryFromTheRecipeSendsWaitingSurfacesToDisk) {
   EXPECT_EQ(statistics["relay"]["spilled"], statistics["tasks"]["merge"]) << statistics.dump();
   EXPECT_FALSE(fs::exists(out / "store.relay"));
 }
+
+// Without workers nothing is relayed: a recipe's relay_memory is said to be ignored, not dropped
+// silently, and the run goes on.
+TEST(WorkflowExecution, RelayMemoryWithoutWorkersIsSaidToBeIgnored) {
+  ScratchDir dir;
+  fs::path out = dir.path() / "out";
+  auto run = run_workflow(workflow_recipe("quickstart.yaml"), out,
+                          {"input.synthetic.shape=[64, 64, 48]", "execution.workers=1", "execution.relay_memory=64M"});
+  ASSERT_EQ(run.command.exit_code, 0) << run.command.err;
+  EXPECT_NE(run.command.err.find("execution.relay_memory is ignored"), std::string::npos) << run.command.err;
+  EXPECT_GT(store::ComponentStore::open(out / "store").size(), 0u);
+  auto quiet = run_workflow(workflow_recipe("quickstart.yaml"), dir.path() / "quiet",
+                            {"input.synthetic.shape=[64, 64, 48]", "execution.workers=1"});
+  ASSERT_EQ(quiet.command.exit_code, 0) << quiet.command.err;
+  EXPECT_EQ(quiet.command.err.find("relay_memory"), std::string::npos) << quiet.command.err;
+}

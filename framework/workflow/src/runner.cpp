@@ -172,6 +172,10 @@ private:
               : default_worker_count(volumes_.result->geometry(), step.params.at("block_size").integer);
       const bool with_workers = (cluster || workers >= 2) && !settings_.worker_command.empty();
       report_.extract_workers = with_workers ? static_cast<long long>(workers) : 0;
+      if (!with_workers && ex.relay_memory_mb >= 0)
+        log_.warning("execution.relay_memory is ignored: the extraction runs in this process, so no surface is "
+                     "relayed between workers (it applies with execution.workers of 2 or more, or a cluster "
+                     "scheduler)");
       if (with_workers) {
         description["workers"] = workers; // the extract step hands the chain to that many workers
         description["worker_command"] = settings_.worker_command;

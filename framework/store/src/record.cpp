@@ -92,6 +92,16 @@ std::uint64_t record_checksum(const char* record, std::uint64_t length) {
   return XXH64(record, static_cast<std::size_t>(length - record_trailer_size), 0);
 }
 
+std::uint64_t record_checksum(const char* header, const mesh::SurfaceMesh& surface) {
+  std::unique_ptr<XXH64_state_t, XXH_errorcode (*)(XXH64_state_t*)> state(XXH64_createState(), XXH64_freeState);
+  if (!state) throw std::bad_alloc();
+  XXH64_reset(state.get(), 0);
+  XXH64_update(state.get(), header, record_header_size);
+  XXH64_update(state.get(), surface.points.data(), surface.points.size() * sizeof(mesh::Point));
+  XXH64_update(state.get(), surface.triangles.data(), surface.triangles.size() * sizeof(mesh::Triangle));
+  return XXH64_digest(state.get());
+}
+
 std::optional<std::uint64_t> verify_record_at(int fd, std::uint64_t offset, std::uint64_t size,
                                               const std::filesystem::path& path) {
   if (size < offset || size - offset < record_header_size + record_trailer_size) return std::nullopt;

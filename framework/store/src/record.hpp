@@ -50,6 +50,8 @@ std::optional<RecordHeader> parse_header(const char* bytes);
 
 // xxh64 of bytes [0, length - 8) of an encoded record held in memory.
 std::uint64_t record_checksum(const char* record, std::uint64_t length);
+// The same checksum for a record held as its header and the surface it decodes to.
+std::uint64_t record_checksum(const char* header, const mesh::SurfaceMesh& surface);
 
 // Checks the record starting at `offset` of an open shard of `size` bytes: complete, header valid,
 // checksum right. Returns its length, or nullopt when it is torn or damaged. Reads in chunks.

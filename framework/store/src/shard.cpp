@@ -136,25 +136,28 @@ mesh::SurfaceMesh detail::read_record_from(int fd, const std::filesystem::path& 
   };
   auto expected = record_length(location.vertex_count, location.triangle_count);
   if (!expected || *expected != location.length) throw fail("the index's length and counts disagree");
-  std::vector<char> record(location.length);
-  if (!read_at(fd, record.data(), record.size(), location.offset, shard_file))
-    throw fail("the shard ends before the record does (truncated)");
-  auto header = parse_header(record.data());
+  // Read straight into the surface's arrays (the record's payload is their memory layout): no
+  // copy of the whole record is held, faulted in and copied again.
+  const auto truncated = [&] { return fail("the shard ends before the record does (truncated)"); };
+  char header_bytes[record_header_size];
+  if (!read_at(fd, header_bytes, sizeof header_bytes, location.offset, shard_file)) throw truncated();
+  auto header = parse_header(header_bytes);
   if (!header) throw fail("bad record header (magic, version or size)");
   if (header->key != key) throw fail("the record holds key " + std::to_string(header->key));
   if (header->vertex_count != location.vertex_count || header->triangle_count != location.triangle_count)
     throw fail("the record's counts disagree with the index");
-  std::uint64_t stored = 0;
-  std::memcpy(&stored, record.data() + record.size() - record_trailer_size, sizeof stored);
-  const std::uint64_t computed = record_checksum(record.data(), record.size());
-  if (stored != computed || stored != location.checksum) throw fail("checksum mismatch");
+  static_assert(sizeof(mesh::Point) == 24 && sizeof(mesh::Triangle) == 12, "the records' payload layout");
   mesh::SurfaceMesh surface;
   surface.points.resize(header->vertex_count);
   surface.triangles.resize(header->triangle_count);
-  const char* in = record.data() + record_header_size;
-  std::memcpy(surface.points.data(), in, surface.points.size() * sizeof(mesh::Point));
-  in += surface.points.size() * sizeof(mesh::Point);
-  std::memcpy(surface.triangles.data(), in, surface.triangles.size() * sizeof(mesh::Triangle));
+  const std::uint64_t points_bytes = surface.points.size() * sizeof(mesh::Point),
+                      triangles_bytes = surface.triangles.size() * sizeof(mesh::Triangle);
+  std::uint64_t at = location.offset + record_header_size, stored = 0;
+  if (!read_at(fd, surface.points.data(), points_bytes, at, shard_file) ||
+      !read_at(fd, surface.triangles.data(), triangles_bytes, at + points_bytes, shard_file) ||
+      !read_at(fd, &stored, sizeof stored, at + points_bytes + triangles_bytes, shard_file))
+    throw truncated();
+  if (stored != record_checksum(header_bytes, surface) || stored != location.checksum) throw fail("checksum mismatch");
   for (const auto& triangle : surface.triangles)
     for (auto v : triangle)
       if (v >= surface.points.size()) throw fail("a triangle names a missing vertex");

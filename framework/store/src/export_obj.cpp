@@ -6,36 +6,26 @@
 namespace geotandem::store::detail {
 
 void write_obj(SurfaceSource& source, std::ostream& out, const ExportOptions& options) {
-  out << "# geotandem component store export, world coordinates: " << source.size() << " components\n";
+  TextLines lines(out);
+  lines << "# geotandem component store export, world coordinates: " << std::uint64_t{source.size()} << " components\n";
   std::uint64_t base = 1;
   for (std::size_t i = 0; i < source.size(); ++i) {
     const auto& row = source.row(i);
     const auto& surface = source.surface(i);
-    out << "o " << options.name_prefix << row.key << "\n# key " << row.key << " volume ";
-    put_number(out, row.stats.volume);
-    out << " azimuth ";
-    put_number(out, row.stats.azimuth);
-    out << "\n";
+    lines << "o " << options.name_prefix << std::uint64_t{row.key} << "\n# key " << std::uint64_t{row.key} << " volume "
+          << row.stats.volume << " azimuth " << row.stats.azimuth;
+    lines.end_line();
     for (const auto& p : surface.points) {
-      out << "v ";
-      put_number(out, p[0]);
-      out << ' ';
-      put_number(out, p[1]);
-      out << ' ';
-      put_number(out, p[2]);
-      out << '\n';
+      lines << "v " << p[0] << ' ' << p[1] << ' ' << p[2];
+      lines.end_line();
     }
     for (const auto& t : surface.triangles) {
-      out << "f ";
-      put_number(out, std::uint64_t{base + t[0]});
-      out << ' ';
-      put_number(out, std::uint64_t{base + t[1]});
-      out << ' ';
-      put_number(out, std::uint64_t{base + t[2]});
-      out << '\n';
+      lines << "f " << base + t[0] << ' ' << base + t[1] << ' ' << base + t[2];
+      lines.end_line();
     }
     base += surface.points.size();
   }
+  lines.flush();
 }
 
 } // namespace geotandem::store::detail

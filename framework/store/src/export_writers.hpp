@@ -6,6 +6,7 @@
 #include <functional>
 #include <ostream>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "geotandem/store/export.hpp"
@@ -60,5 +61,44 @@ inline void put_number(std::ostream& out, std::uint64_t value) {
   auto result = std::to_chars(text, text + sizeof text, value);
   out.write(text, result.ptr - text);
 }
+
+// The text formats' lines, built in memory and handed to the stream in pieces of about 64 KiB:
+// one stream call per piece instead of one per token. flush() hands over what is left.
+class TextLines {
+public:
+  explicit TextLines(std::ostream& out) : out_(out) { buffer_.reserve(kPiece + 256); }
+  TextLines& operator<<(std::string_view text) {
+    buffer_.append(text);
+    return *this;
+  }
+  TextLines& operator<<(char c) {
+    buffer_.push_back(c);
+    return *this;
+  }
+  // As put_number: the shortest text that reads back to the same value.
+  TextLines& operator<<(double value) { return number(value); }
+  TextLines& operator<<(std::uint64_t value) { return number(value); }
+  // Ends a line, and hands the buffer to the stream once it is a piece long.
+  void end_line() {
+    buffer_.push_back('\n');
+    if (buffer_.size() >= kPiece) flush();
+  }
+  void flush() {
+    out_.write(buffer_.data(), static_cast<std::streamsize>(buffer_.size()));
+    buffer_.clear();
+  }
+
+private:
+  static constexpr std::size_t kPiece = std::size_t{1} << 16;
+  template <class Value> TextLines& number(Value value) {
+    char text[32];
+    auto result = std::to_chars(text, text + sizeof text, value);
+    buffer_.append(text, result.ptr);
+    return *this;
+  }
+
+  std::ostream& out_;
+  std::string buffer_;
+};
 
 } // namespace geotandem::store::detail

@@ -27,6 +27,11 @@ public:
   const std::vector<std::int32_t>& items() const { return items_; }
 
   void add(std::int32_t item, const Spot& spot) {
+    if (items_.size() == items_.capacity()) { // a quarter more, not twice: the list can be long
+      const std::size_t room = items_.size() + items_.size() / 4 + 64;
+      items_.reserve(room);
+      spots_.reserve(room);
+    }
     (*slots_)[static_cast<std::size_t>(item)] = static_cast<std::int32_t>(items_.size());
     items_.push_back(item);
     spots_.push_back(spot);
@@ -47,6 +52,11 @@ public:
   void clear() {
     items_.clear();
     spots_.clear();
+  }
+  // Keeps exactly the room the list needs (a compaction that gives storage back).
+  void shrink_to_fit() {
+    items_.shrink_to_fit();
+    spots_.shrink_to_fit();
   }
 
   // The items, in list order, whose ball grown by `margin` meets the closed box of cells `cells`

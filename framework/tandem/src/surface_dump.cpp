@@ -167,6 +167,7 @@ void WorkingSurface::Engine::collect_garbage(bool give_back) {
     case EdgeState::idle: break;
     }
   }
+  if (give_back) parked_.shrink_to_fit();
   candidates_.assign(std::move(q));
   ++counters_.garbage_collections;
 }

@@ -56,12 +56,6 @@ inline void put_number(std::ostream& out, double value) {
   out.write(text, result.ptr - text);
 }
 
-inline void put_number(std::ostream& out, std::uint64_t value) {
-  char text[24];
-  auto result = std::to_chars(text, text + sizeof text, value);
-  out.write(text, result.ptr - text);
-}
-
 // The text formats' lines, built in memory and handed to the stream in pieces of about 64 KiB:
 // one stream call per piece instead of one per token. flush() hands over what is left.
 class TextLines {

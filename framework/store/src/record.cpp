@@ -6,6 +6,7 @@
 #include <cstring>
 #include <limits>
 #include <memory>
+#include <new>
 
 #include "file_io.hpp"
 #include "geotandem/core/error.hpp"

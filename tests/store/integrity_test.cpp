@@ -1,5 +1,6 @@
 // Store integrity: the run identity that refuses mixed resumes, check_store, reruns that write
-// damaged records again (also after a shard was cut short), and the writer lock that guards removal.
+// damaged records again (also after a shard was cut short), the checks of a record as it is read,
+// and the writer lock that guards removal.
 
 #include <gtest/gtest.h>
 
@@ -8,6 +9,7 @@
 
 #include "fixtures.hpp"
 #include "geotandem/core/error.hpp"
+#include "geotandem/mesh/measure.hpp"
 #include "geotandem/store/check.hpp"
 #include "geotandem/store/local_sink.hpp"
 #include "scratch.hpp"
@@ -100,6 +102,50 @@ TEST(StoreIntegrity, ARerunRepairsAShardCutShortUnderTheIndex) {
   EXPECT_EQ(report.damaged[0].key, 10u);
   fill(store, 1, 10); // before: "the shard was truncated or replaced", and no way forward
   EXPECT_TRUE(check_store(store, quiet, CancelToken{}).damaged.empty());
+}
+
+// A record is read in pieces (header, points, triangles, checksum) straight into the surface: a
+// damaged byte in any piece, and a shard cut inside any piece, is still found and named.
+TEST(StoreIntegrity, EveryPieceOfARecordIsCheckedWhenRead) {
+  ScratchDir dir;
+  {
+    auto store = ComponentStore::create(dir.path() / "s", testing::test_geometry());
+    fill(store, 1, 6);
+  }
+  const auto shard = dir.path() / "s/shards/local.gts";
+  const auto read_error = [&](std::uint64_t key) -> std::string {
+    try {
+      ComponentStore::open(dir.path() / "s").read(key);
+    } catch (const FormatError& e) {
+      return e.what();
+    }
+    ADD_FAILURE() << "reading component " << key << " did not fail";
+    return {};
+  };
+  const auto last = *ComponentStore::open(dir.path() / "s").find(6); // the shard's last record
+  const std::uint64_t points_at = last.location.offset + 40, triangles_at = points_at + 24 * last.location.vertex_count,
+                      trailer_at = last.location.offset + last.location.length - 8;
+  const std::vector<std::pair<std::uint64_t, std::string>> flips{{last.location.offset + 1, "bad record header"},
+                                                                 {last.location.offset + 9, "holds key"},
+                                                                 {points_at + 5, "checksum"},
+                                                                 {triangles_at + 1, "checksum"},
+                                                                 {trailer_at + 2, "checksum"}};
+  for (const auto& [offset, problem] : flips) {
+    flip_byte(shard, offset);
+    const std::string message = read_error(6);
+    EXPECT_NE(message.find(problem), std::string::npos) << "byte " << offset << ": " << message;
+    EXPECT_NE(message.find("component 6"), std::string::npos) << message;
+    flip_byte(shard, offset); // back as it was
+  }
+  EXPECT_TRUE(testing::same_surface(
+      ComponentStore::open(dir.path() / "s").read(6),
+      mesh::to_world(testing::make_component(6, testing::test_geometry()).surface, testing::test_geometry())));
+  for (const std::uint64_t end : {trailer_at + 3, triangles_at + 5, points_at + 7, last.location.offset + 20}) {
+    std::filesystem::resize_file(shard, end); // shorter each time
+    const std::string message = read_error(6);
+    EXPECT_NE(message.find("truncated"), std::string::npos) << "cut at " << end << ": " << message;
+  }
+  EXPECT_NO_THROW(ComponentStore::open(dir.path() / "s").read(5));
 }
 
 TEST(StoreIntegrity, RemovalWaitsForNoWriterAndKeepsForeignFiles) {

@@ -180,36 +180,6 @@ TEST(Store, FlippedByteIsDetectedAndNamesKeyShardAndOffset) {
     EXPECT_NO_THROW(reopened.read(key)) << key;
 }
 
-// A record is read in pieces (header, points, triangles, checksum) straight into the surface: a
-// damaged byte in any piece, and a shard cut inside any piece, is still found and named.
-TEST(Store, EveryPieceOfARecordIsCheckedWhenRead) {
-  ScratchDir scratch;
-  auto dir = make_store(scratch, 6, 1);
-  const auto shard = shard_path(dir, "local");
-  const auto last = *ComponentStore::open(dir).find(18); // the shard's last record
-  const std::uint64_t points_at = last.location.offset + 40, triangles_at = points_at + 24 * last.location.vertex_count,
-                      trailer_at = last.location.offset + last.location.length - 8;
-  const std::vector<std::pair<std::uint64_t, std::string>> flips{{last.location.offset + 1, "bad record header"},
-                                                                 {last.location.offset + 9, "holds key"},
-                                                                 {points_at + 5, "checksum"},
-                                                                 {triangles_at + 1, "checksum"},
-                                                                 {trailer_at + 2, "checksum"}};
-  for (const auto& [offset, problem] : flips) {
-    flip_byte(shard, offset);
-    auto message = message_of<FormatError>([&] { ComponentStore::open(dir).read(18); });
-    EXPECT_NE(message.find(problem), std::string::npos) << "byte " << offset << ": " << message;
-    flip_byte(shard, offset); // back as it was
-  }
-  EXPECT_TRUE(same_surface(ComponentStore::open(dir).read(18),
-                           mesh::to_world(make_component(18, test_geometry(), 2).surface, test_geometry())));
-  for (const std::uint64_t end : {trailer_at + 3, triangles_at + 5, points_at + 7, last.location.offset + 20}) {
-    std::filesystem::resize_file(shard, end); // shorter each time
-    auto message = message_of<FormatError>([&] { ComponentStore::open(dir).read(18); });
-    EXPECT_NE(message.find("truncated"), std::string::npos) << "cut at " << end << ": " << message;
-  }
-  EXPECT_NO_THROW(ComponentStore::open(dir).read(15));
-}
-
 TEST(Store, ScanningWriterDropsATornTailAndAppendsAfterIt) {
   ScratchDir scratch;
   auto dir = scratch.path() / "store";

@@ -4,7 +4,6 @@ set(TANDEM_SIMPLIFY_SOURCES
   src/collapse_ops.cpp
   src/collapse_distance.cpp
   src/component_table.cpp
-  src/parked_edges.cpp
   src/region.cpp
   src/spare_meshes.cpp
   src/surface_engine.cpp

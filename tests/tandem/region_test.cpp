@@ -116,6 +116,83 @@ TEST(Region, LShapedRegionKeepsOnlyTheUncoveredPartOfAFace) {
   EXPECT_FALSE(l.contains({35, 35, 3}));
 }
 
+TEST(Region, TheNearestOpenFaceIsNamed) {
+  const Box cube{{0, 0, 0}, {40, 40, 20}};
+  const Region l(cube, {Box{{0, 0, 0}, {20, 20, 20}}, Box{{20, 0, 0}, {40, 20, 20}}, Box{{0, 20, 0}, {20, 40, 20}}});
+  std::mt19937 random(5);
+  std::uniform_real_distribution<double> coordinate(-1.0, 41.0);
+  for (int n = 0; n < 500; ++n) {
+    const std::array<double, 3> p{coordinate(random), coordinate(random), coordinate(random) / 2.0};
+    const Region::NearestFace nearest = l.nearest_open_face(p);
+    ASSERT_GE(nearest.index, 0);
+    ASSERT_LT(static_cast<std::size_t>(nearest.index), l.open_faces().size());
+    EXPECT_EQ(nearest.distance, l.open_faces()[static_cast<std::size_t>(nearest.index)].distance(p));
+    EXPECT_EQ(nearest.distance, l.distance_to_open_faces(p));
+  }
+  const Region whole = Region::block(cube, cube);
+  EXPECT_EQ(whole.nearest_open_face({1, 2, 3}).index, -1);
+}
+
+// A merge keeps the parked edges whose face stays open (open_faces_kept_in). Oracle: a face of
+// the earlier region is kept when every unit square of it is still open in the later region (the
+// cell beyond it is not in the later region) and one later face holds all of them; its index must
+// then name such a face, and no other face may be kept.
+TEST(Region, AFaceIsKeptExactlyWhenALaterOpenFaceHoldsAllOfIt) {
+  const Box cube{{0, 0, 0}, {24, 24, 12}};
+  std::size_t kept_count = 0, closed_count = 0;
+  for (unsigned seed = 1; seed <= 12; ++seed) {
+    std::mt19937 random(seed);
+    std::vector<Box> earlier, later;
+    for (std::int64_t i = 0; i < 6; ++i)
+      for (std::int64_t j = 0; j < 6; ++j)
+        for (std::int64_t k = 0; k < 3; ++k) {
+          const Box leaf{{4 * i, 4 * j, 4 * k}, {4 * i + 4, 4 * j + 4, 4 * k + 4}};
+          const unsigned draw = random() % 10;
+          if (draw < 4) earlier.push_back(leaf);
+          if (draw < 6) later.push_back(leaf);
+        }
+    const Region before(cube, earlier), after(cube, later);
+    const std::vector<int> kept = before.open_faces_kept_in(after);
+    ASSERT_EQ(kept.size(), before.open_faces().size());
+    for (std::size_t f = 0; f < kept.size(); ++f) {
+      const OpenFace& face = before.open_faces()[f];
+      const auto axis = static_cast<std::size_t>(face.axis);
+      const std::size_t u = axis == 0 ? 1 : 0, v = axis == 2 ? 1 : 2;
+      std::vector<std::array<double, 3>> centres; // of its unit squares
+      bool still_open = true;
+      for (double a = face.lo[0]; a < face.hi[0]; a += 1.0)
+        for (double c = face.lo[1]; c < face.hi[1]; c += 1.0) {
+          std::array<double, 3> p{};
+          p[axis] = face.plane;
+          p[u] = a + 0.5;
+          p[v] = c + 0.5;
+          centres.push_back(p);
+          std::array<double, 3> below = p, above = p;
+          below[axis] -= 0.5;
+          above[axis] += 0.5;
+          if (after.contains(below) && after.contains(above)) still_open = false;
+        }
+      const auto holds_all = [&](const OpenFace& g) {
+        if (g.axis != face.axis || g.plane != face.plane) return false;
+        for (const auto& p : centres)
+          if (p[u] < g.lo[0] || p[u] > g.hi[0] || p[v] < g.lo[1] || p[v] > g.hi[1]) return false;
+        return true;
+      };
+      const bool oracle = still_open && std::any_of(after.open_faces().begin(), after.open_faces().end(), holds_all);
+      ASSERT_EQ(kept[f] >= 0, oracle) << "seed " << seed << " face " << f;
+      if (kept[f] >= 0) {
+        ASSERT_LT(static_cast<std::size_t>(kept[f]), after.open_faces().size());
+        EXPECT_TRUE(holds_all(after.open_faces()[static_cast<std::size_t>(kept[f])]));
+        ++kept_count;
+      } else if (!still_open) {
+        ++closed_count;
+      }
+    }
+  }
+  EXPECT_GT(kept_count, 50u);
+  EXPECT_GT(closed_count, 50u);
+}
+
 TEST(Region, RejectsBlocksOutsideTheCubeOrOverlapping) {
   const Box cube{{0, 0, 0}, {10, 10, 10}};
   EXPECT_THROW(Region::block(cube, Box{{0, 0, 0}, {11, 5, 5}}), InvalidArgument);

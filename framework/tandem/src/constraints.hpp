@@ -49,19 +49,21 @@ private:
   std::size_t axis_;
 };
 
-// The open faces of the region.
+// The open faces of the region: which one holds an edge back (its index in the region's
+// open_faces()), or -1 when none does and the edge may collapse.
 class FaceRule {
 public:
   virtual ~FaceRule() = default;
-  virtual bool allows(const EdgeGeometry& e, const Region& region) const = 0;
+  virtual int holding_face(const EdgeGeometry& e, const Region& region) const = 0;
 };
 
 // Extended time lag: the ball around the midpoint of ab with radius rad(c) must stay clear of
-// every open face.
+// every open face (the nearest one holds it back otherwise).
 class BallInRegion final : public FaceRule {
 public:
-  bool allows(const EdgeGeometry& e, const Region& region) const override {
-    return region.ball_clear(e.midpoint(), e.rad());
+  int holding_face(const EdgeGeometry& e, const Region& region) const override {
+    const Region::NearestFace nearest = region.nearest_open_face(e.midpoint());
+    return nearest.distance > e.rad() ? -1 : nearest.index;
   }
 };
 
@@ -69,9 +71,16 @@ public:
 // vertices a neighbour will weld to keep their lattice ids), everything else is free.
 class FrozenFaceVertices final : public FaceRule {
 public:
-  bool allows(const EdgeGeometry& e, const Region& region) const override {
-    return !region.on_open_face(e.a) && !region.on_open_face(e.b);
+  int holding_face(const EdgeGeometry& e, const Region& region) const override {
+    for (const auto& p : {e.a, e.b}) {
+      const Region::NearestFace nearest = region.nearest_open_face(p);
+      if (nearest.distance <= kOnFace) return nearest.index;
+    }
+    return -1;
   }
+
+private:
+  static constexpr double kOnFace = 1e-9; // Region::on_open_face's tolerance
 };
 
 inline std::unique_ptr<FrontRule> make_front_rule(bool time_lag, int axis) {

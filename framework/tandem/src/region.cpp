@@ -154,16 +154,49 @@ void Region::coalesce_open_faces() {
   }
 }
 
-double Region::distance_to_open_faces(const std::array<double, 3>& p) const {
+Region::NearestFace Region::nearest_open_face(const std::array<double, 3>& p) const {
   // Squared distances, and a face whose plane alone is farther than the best so far is skipped;
   // the square root of the least is the least of the square roots.
   double best = std::numeric_limits<double>::infinity();
-  for (const OpenFace& f : open_faces_) {
+  int index = -1;
+  for (std::size_t i = 0; i < open_faces_.size(); ++i) {
+    const OpenFace& f = open_faces_[i];
     const double dn = p[static_cast<std::size_t>(f.axis)] - f.plane;
     if (dn * dn >= best) continue;
-    best = std::min(best, f.distance_squared(p));
+    const double d2 = f.distance_squared(p);
+    if (d2 < best) {
+      best = d2;
+      index = static_cast<int>(i);
+    }
   }
-  return std::sqrt(best);
+  return {index, std::sqrt(best)};
+}
+
+std::vector<int> Region::open_faces_kept_in(const Region& later) const {
+  // The later faces by plane (a region of many leaves has many faces, and a merge asks this).
+  const auto plane_of = [](const OpenFace& f) { return std::pair<int, double>(f.axis, f.plane); };
+  std::vector<int> by_plane(later.open_faces_.size());
+  for (std::size_t j = 0; j < by_plane.size(); ++j)
+    by_plane[j] = static_cast<int>(j);
+  std::sort(by_plane.begin(), by_plane.end(), [&](int x, int y) {
+    return plane_of(later.open_faces_[static_cast<std::size_t>(x)]) <
+           plane_of(later.open_faces_[static_cast<std::size_t>(y)]);
+  });
+  std::vector<int> kept(open_faces_.size(), -1);
+  for (std::size_t i = 0; i < open_faces_.size(); ++i) {
+    const OpenFace& f = open_faces_[i];
+    auto j = std::lower_bound(by_plane.begin(), by_plane.end(), plane_of(f), [&](int x, const auto& key) {
+      return plane_of(later.open_faces_[static_cast<std::size_t>(x)]) < key;
+    });
+    for (; j != by_plane.end() && plane_of(later.open_faces_[static_cast<std::size_t>(*j)]) == plane_of(f); ++j) {
+      const OpenFace& g = later.open_faces_[static_cast<std::size_t>(*j)];
+      if (g.lo[0] <= f.lo[0] && g.lo[1] <= f.lo[1] && f.hi[0] <= g.hi[0] && f.hi[1] <= g.hi[1]) {
+        kept[i] = *j;
+        break;
+      }
+    }
+  }
+  return kept;
 }
 
 bool Region::contains(const std::array<double, 3>& p) const {

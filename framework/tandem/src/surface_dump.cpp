@@ -163,7 +163,7 @@ void WorkingSurface::Engine::collect_garbage(bool give_back) {
     switch (r.state) {
     case EdgeState::candidate: q.push_back({r.key, item}); break;
     case EdgeState::delayed: delayed_.push(item, r.key); break;
-    case EdgeState::parked: parked_.add(item, spot_of(geometry_of(mesh_->halfedge_handle(EH(item), 0)))); break;
+    case EdgeState::parked: parked_.add(item); break; // its record keeps its face
     case EdgeState::idle: break;
     }
   }

@@ -74,18 +74,18 @@ detail::EdgeGeometry WorkingSurface::Engine::geometry_of(HH h) const {
   return g;
 }
 
-void WorkingSurface::Engine::set_state(EH e, EdgeState state, double key, const EdgeGeometry* g) {
+void WorkingSurface::Engine::set_state(EH e, EdgeState state, double key, int face) {
   detail::EdgeRecord& r = erec(e);
-  const auto spot = [&] { return spot_of(g ? *g : geometry_of(mesh_->halfedge_handle(e, 0))); };
   const EdgeState old = r.state;
   const auto item = static_cast<std::int32_t>(e.idx());
+  if (state == EdgeState::parked)
+    r.face = face >= 0 && face < detail::kUnknownFace ? static_cast<std::uint16_t>(face) : detail::kUnknownFace;
   if (old == state) { // stays in the same queue: move it in place
     if (state == EdgeState::candidate) candidates_.update(item, key);
     if (state == EdgeState::delayed) {
       delayed_.erase(item, r.key);
       delayed_.push(item, key);
     }
-    if (state == EdgeState::parked) parked_.update(item, spot());
     r.key = key;
     return;
   }
@@ -106,7 +106,7 @@ void WorkingSurface::Engine::set_state(EH e, EdgeState state, double key, const 
     r.pending = pending_.acquire();
     break;
   case EdgeState::delayed: delayed_.push(item, key); break;
-  case EdgeState::parked: parked_.add(item, spot()); break;
+  case EdgeState::parked: parked_.add(item); break;
   case EdgeState::idle: break;
   }
   const bool was_waiting = detail::waiting(old), is_waiting = detail::waiting(state);
@@ -114,11 +114,6 @@ void WorkingSurface::Engine::set_state(EH e, EdgeState state, double key, const 
     const VH a = mesh_->to_vertex_handle(mesh_->halfedge_handle(e, 0));
     components_.add_waiting(vrec(a).component, is_waiting ? 1 : -1);
   }
-}
-
-detail::ParkedEdges::Spot WorkingSurface::Engine::spot_of(const EdgeGeometry& g) const {
-  const Vec3 m = g.midpoint();
-  return {static_cast<float>(m[0]), static_cast<float>(m[1]), static_cast<float>(m[2]), static_cast<float>(g.rad())};
 }
 
 void WorkingSurface::Engine::enqueue(EH e, double cost, const detail::Vec3& target, bool retried) {
@@ -143,9 +138,10 @@ void WorkingSurface::Engine::place(EH e) {
     set_state(e, EdgeState::delayed, lag);
     return;
   }
-  if (!face_rule_->allows(g, region_)) {
+  const int face = face_rule_->holding_face(g, region_);
+  if (face >= 0) {
     ++counters_.blocked_by_faces;
-    set_state(e, EdgeState::parked, lag, &g);
+    set_state(e, EdgeState::parked, lag, face);
     return;
   }
   // Lazy evaluation: a candidate keeps its old key, now stale, and is evaluated again when it

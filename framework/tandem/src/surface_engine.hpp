@@ -108,13 +108,15 @@ private:
   detail::EdgeGeometry geometry_of(HH h) const;
   void place(EH e);
   std::uint32_t stamp_of(EH e) const;
-  // `g`: the edge's geometry when the caller has it (a parked edge keeps where its ball is).
-  void set_state(EH e, detail::EdgeState state, double key, const detail::EdgeGeometry* g = nullptr);
-  detail::ParkedEdges::Spot spot_of(const detail::EdgeGeometry& g) const; // where a parked edge's ball is
-  // After a merge added blocks within `added` (their bounds) to the region: places again the parked
-  // edges whose ball reaches it, the only ones the faces the merge closed may free
+  // `face`: for a parked edge, the open face holding it back (-1: not known; it is placed again
+  // when the region changes).
+  void set_state(EH e, detail::EdgeState state, double key, int face = -1);
+  // After the region grew from `before`: places again the parked edges whose face is no longer
+  // open as a whole, the only ones the merge may free, and renumbers the others' faces
   // (surface_merge.cpp).
-  void place_parked_near(const volume::Box& added);
+  void place_parked_again(const Region& before);
+  // Finds the face holding back each parked edge whose face is not known (after import_state).
+  void find_parked_faces();
   // Puts e in Q at `cost` with its candidate position (evaluated now: the stamp is today's).
   void enqueue(EH e, double cost, const detail::Vec3& target, bool retried);
   detail::Pending& pending(EH e) { return pending_[erec(e).pending]; }

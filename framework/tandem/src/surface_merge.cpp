@@ -59,23 +59,42 @@ Region WorkingSurface::Engine::merge_region_of(const Region& region, int axis, c
 }
 
 std::size_t WorkingSurface::Engine::merge_state(detail::SurfaceState&& other, const CancelToken* cancel) {
-  const volume::Box added = other.region.bounds();
+  const Region before = region_;
   absorb_state(std::move(other)); // gives the state's parts back before the simplification
-  place_parked_near(added);       // the region grew: edges parked by faces now inside it are placed again
+  place_parked_again(before);     // the region grew: edges parked by faces it closed are placed again
   simplify(cancel);
   return dump();
 }
 
-void WorkingSurface::Engine::place_parked_near(const volume::Box& added) {
-  // A parked edge's ball reaches an open face. The faces the merge closed lie on the added blocks,
-  // so an edge whose ball stays clear of them still reaches an open face and would only be parked
-  // again with the same key: it is skipped. The others are placed in list order, as placing every
-  // parked edge would (the same queues, to the bit). The margin covers the spots' float rounding.
-  if (added.empty()) return;
-  std::vector<std::int32_t> near;
-  parked_.near(added, 1.0, near);
-  for (std::int32_t e : near)
+void WorkingSurface::Engine::place_parked_again(const Region& before) {
+  // A parked edge's ball reaches the face its record names. When the grown region still has that
+  // face open as a whole (inside one of its open faces), the ball still reaches an open face and
+  // placing the edge again would only park it again with the same key: it is skipped, and its
+  // face renumbered. The others (and those whose face is not known: the other side's) are placed
+  // again in list order, as placing every parked edge would (the same queues, to the bit).
+  const std::vector<int> kept = before.open_faces_kept_in(region_);
+  std::vector<std::int32_t> again;
+  for (std::int32_t e : parked_.items()) {
+    detail::EdgeRecord& r = erec_[static_cast<std::size_t>(e)];
+    const int face = r.face == detail::kUnknownFace || r.face >= kept.size() ? -1 : kept[r.face];
+    if (face >= 0 && face < detail::kUnknownFace) {
+      r.face = static_cast<std::uint16_t>(face);
+    } else {
+      r.face = detail::kUnknownFace;
+      again.push_back(e);
+    }
+  }
+  for (std::int32_t e : again)
     place(EH(e));
+}
+
+void WorkingSurface::Engine::find_parked_faces() {
+  for (std::int32_t e : parked_.items()) {
+    detail::EdgeRecord& r = erec_[static_cast<std::size_t>(e)];
+    if (r.face != detail::kUnknownFace) continue;
+    const int face = face_rule_->holding_face(geometry_of(mesh_->halfedge_handle(EH(e), 0)), region_);
+    if (face >= 0 && face < detail::kUnknownFace) r.face = static_cast<std::uint16_t>(face);
+  }
 }
 
 void WorkingSurface::Engine::absorb_state(detail::SurfaceState&& t) {

@@ -163,6 +163,7 @@ void WorkingSurface::Engine::import_state(detail::SurfaceState&& s) {
                       std::to_string(nv));
     restore_edge(VH(static_cast<int>(se.v0)), VH(static_cast<int>(se.v1)), se, i);
   }
+  find_parked_faces(); // the state does not carry them: the next merge then places only the edges it may free
 
   previous_ids_.clear();
   current_ids_.clear();

@@ -124,11 +124,16 @@ private:
   std::size_t live_ = 0;
 };
 
+// While parked: the open face that holds the edge back, as its index in the region's list, or
+// kUnknownFace when it is not known (the edge is placed again when the region changes).
+inline constexpr std::uint16_t kUnknownFace = 0xffff;
+
 struct EdgeRecord {
   double key = 0.0;          // its queue key: eps_alpha in Q, the lag key in W
   std::uint32_t pending = 0; // while in Q: its Pending in the engine's pool
   EdgeState state = EdgeState::idle;
   bool alive = false;
+  std::uint16_t face = kUnknownFace; // while parked: the open face holding it back (above)
 };
 static_assert(sizeof(EdgeRecord) == 16, "an edge record's size is counted in docs/algorithm.md (Memory)");
 

@@ -48,8 +48,15 @@ public:
   const std::vector<OpenFace>& open_faces() const { return open_faces_; }
   bool empty() const { return blocks_.empty(); }
 
+  // The open face nearest p: its index in open_faces() (-1 when there is none) and its distance
+  // (+infinity when there is none).
+  struct NearestFace {
+    int index = -1;
+    double distance = 0.0;
+  };
+  NearestFace nearest_open_face(const std::array<double, 3>& p) const;
   // Distance from p to the nearest open face; +infinity when there is none.
-  double distance_to_open_faces(const std::array<double, 3>& p) const;
+  double distance_to_open_faces(const std::array<double, 3>& p) const { return nearest_open_face(p).distance; }
   // Whether the ball (centre, radius) stays clear of every open face: distance > radius.
   bool ball_clear(const std::array<double, 3>& centre, double radius) const {
     return distance_to_open_faces(centre) > radius;
@@ -67,6 +74,12 @@ public:
   // it is that box as a single block. Throws InvalidArgument when the cubes differ or the blocks
   // overlap.
   Region merged_with(const Region& other) const;
+
+  // For each open face of this region, the index of an open face of `later` that holds the whole
+  // of it (same plane, its rectangle inside), or -1 when none does: the face was closed, in part
+  // or whole, or the later region cut it differently. A point of a face that maps to an index is
+  // still on an open face of `later`.
+  std::vector<int> open_faces_kept_in(const Region& later) const;
 
   // "cube [..] blocks {[..], [..]} open faces N", for messages.
   std::string to_string() const;

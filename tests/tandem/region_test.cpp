@@ -128,6 +128,15 @@ TEST(Region, TheNearestOpenFaceIsNamed) {
     ASSERT_LT(static_cast<std::size_t>(nearest.index), l.open_faces().size());
     EXPECT_EQ(nearest.distance, l.open_faces()[static_cast<std::size_t>(nearest.index)].distance(p));
     EXPECT_EQ(nearest.distance, l.distance_to_open_faces(p));
+    // The point it names lies on that face, at that distance from p.
+    const OpenFace& face = l.open_faces()[static_cast<std::size_t>(nearest.index)];
+    const std::size_t axis = static_cast<std::size_t>(face.axis), u = axis == 0 ? 1 : 0, v = axis == 2 ? 1 : 2;
+    std::array<double, 3> q{};
+    q[axis] = face.plane;
+    q[u] = nearest.at[0];
+    q[v] = nearest.at[1];
+    EXPECT_EQ(face.distance(q), 0.0);
+    EXPECT_NEAR(std::hypot(p[0] - q[0], p[1] - q[1], p[2] - q[2]), nearest.distance, 1e-9);
   }
   const Region whole = Region::block(cube, cube);
   EXPECT_EQ(whole.nearest_open_face({1, 2, 3}).index, -1);
@@ -152,6 +161,11 @@ TEST(Region, AFaceIsKeptExactlyWhenALaterOpenFaceHoldsAllOfIt) {
           if (draw < 6) later.push_back(leaf);
         }
     const Region before(cube, earlier), after(cube, later);
+    for (const Region* r : {&before, &after}) // sorted by axis, then plane (open_face_holding searches)
+      ASSERT_TRUE(
+          std::is_sorted(r->open_faces().begin(), r->open_faces().end(), [](const OpenFace& x, const OpenFace& y) {
+            return std::pair(x.axis, x.plane) < std::pair(y.axis, y.plane);
+          }));
     const std::vector<int> kept = before.open_faces_kept_in(after);
     ASSERT_EQ(kept.size(), before.open_faces().size());
     for (std::size_t f = 0; f < kept.size(); ++f) {
@@ -180,6 +194,20 @@ TEST(Region, AFaceIsKeptExactlyWhenALaterOpenFaceHoldsAllOfIt) {
       };
       const bool oracle = still_open && std::any_of(after.open_faces().begin(), after.open_faces().end(), holds_all);
       ASSERT_EQ(kept[f] >= 0, oracle) << "seed " << seed << " face " << f;
+      // Each unit square of the face: held by a later face exactly when it is still open there.
+      for (const auto& p : centres) {
+        OpenFace square = face;
+        square.lo = {p[u] - 0.5, p[v] - 0.5};
+        square.hi = {p[u] + 0.5, p[v] + 0.5};
+        std::array<double, 3> below = p, above = p;
+        below[axis] -= 0.5;
+        above[axis] += 0.5;
+        const int holder = after.open_face_holding(square);
+        ASSERT_EQ(holder >= 0, !(after.contains(below) && after.contains(above)));
+        if (holder >= 0) {
+          EXPECT_TRUE(after.open_faces()[static_cast<std::size_t>(holder)].distance(p) == 0.0);
+        }
+      }
       if (kept[f] >= 0) {
         ASSERT_LT(static_cast<std::size_t>(kept[f]), after.open_faces().size());
         EXPECT_TRUE(holds_all(after.open_faces()[static_cast<std::size_t>(kept[f])]));

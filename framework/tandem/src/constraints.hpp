@@ -49,21 +49,22 @@ private:
   std::size_t axis_;
 };
 
-// The open faces of the region: which one holds an edge back (its index in the region's
-// open_faces()), or -1 when none does and the edge may collapse.
+// The open faces of the region: which one holds an edge back and where (its index in the
+// region's open_faces() and the point of it the edge reaches), or index -1 when none does and the
+// edge may collapse.
 class FaceRule {
 public:
   virtual ~FaceRule() = default;
-  virtual int holding_face(const EdgeGeometry& e, const Region& region) const = 0;
+  virtual Region::NearestFace holding_face(const EdgeGeometry& e, const Region& region) const = 0;
 };
 
 // Extended time lag: the ball around the midpoint of ab with radius rad(c) must stay clear of
-// every open face (the nearest one holds it back otherwise).
+// every open face (the nearest one holds it back otherwise, at its point nearest the midpoint).
 class BallInRegion final : public FaceRule {
 public:
-  int holding_face(const EdgeGeometry& e, const Region& region) const override {
+  Region::NearestFace holding_face(const EdgeGeometry& e, const Region& region) const override {
     const Region::NearestFace nearest = region.nearest_open_face(e.midpoint());
-    return nearest.distance > e.rad() ? -1 : nearest.index;
+    return nearest.distance > e.rad() ? Region::NearestFace{} : nearest;
   }
 };
 
@@ -71,12 +72,12 @@ public:
 // vertices a neighbour will weld to keep their lattice ids), everything else is free.
 class FrozenFaceVertices final : public FaceRule {
 public:
-  int holding_face(const EdgeGeometry& e, const Region& region) const override {
+  Region::NearestFace holding_face(const EdgeGeometry& e, const Region& region) const override {
     for (const auto& p : {e.a, e.b}) {
       const Region::NearestFace nearest = region.nearest_open_face(p);
-      if (nearest.distance <= kOnFace) return nearest.index;
+      if (nearest.distance <= kOnFace) return nearest;
     }
-    return -1;
+    return {};
   }
 
 private:

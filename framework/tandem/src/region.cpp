@@ -169,34 +169,33 @@ Region::NearestFace Region::nearest_open_face(const std::array<double, 3>& p) co
       index = static_cast<int>(i);
     }
   }
-  return {index, std::sqrt(best)};
+  NearestFace nearest{index, std::sqrt(best), {0.0, 0.0}};
+  if (index >= 0) {
+    const OpenFace& f = open_faces_[static_cast<std::size_t>(index)];
+    int u = 0, v = 0;
+    other_axes(f.axis, u, v);
+    nearest.at = {std::clamp(p[static_cast<std::size_t>(u)], f.lo[0], f.hi[0]),
+                  std::clamp(p[static_cast<std::size_t>(v)], f.lo[1], f.hi[1])};
+  }
+  return nearest;
 }
 
 std::vector<int> Region::open_faces_kept_in(const Region& later) const {
-  // The later faces by plane (a region of many leaves has many faces, and a merge asks this).
-  const auto plane_of = [](const OpenFace& f) { return std::pair<int, double>(f.axis, f.plane); };
-  std::vector<int> by_plane(later.open_faces_.size());
-  for (std::size_t j = 0; j < by_plane.size(); ++j)
-    by_plane[j] = static_cast<int>(j);
-  std::sort(by_plane.begin(), by_plane.end(), [&](int x, int y) {
-    return plane_of(later.open_faces_[static_cast<std::size_t>(x)]) <
-           plane_of(later.open_faces_[static_cast<std::size_t>(y)]);
-  });
   std::vector<int> kept(open_faces_.size(), -1);
-  for (std::size_t i = 0; i < open_faces_.size(); ++i) {
-    const OpenFace& f = open_faces_[i];
-    auto j = std::lower_bound(by_plane.begin(), by_plane.end(), plane_of(f), [&](int x, const auto& key) {
-      return plane_of(later.open_faces_[static_cast<std::size_t>(x)]) < key;
-    });
-    for (; j != by_plane.end() && plane_of(later.open_faces_[static_cast<std::size_t>(*j)]) == plane_of(f); ++j) {
-      const OpenFace& g = later.open_faces_[static_cast<std::size_t>(*j)];
-      if (g.lo[0] <= f.lo[0] && g.lo[1] <= f.lo[1] && f.hi[0] <= g.hi[0] && f.hi[1] <= g.hi[1]) {
-        kept[i] = *j;
-        break;
-      }
-    }
-  }
+  for (std::size_t i = 0; i < open_faces_.size(); ++i)
+    kept[i] = later.open_face_holding(open_faces_[i]);
   return kept;
+}
+
+int Region::open_face_holding(const OpenFace& piece) const {
+  // The faces are sorted by axis and plane (coalesce_open_faces() sorts them last by those).
+  const auto plane = [](const OpenFace& f) { return std::pair<int, double>(f.axis, f.plane); };
+  auto f = std::lower_bound(open_faces_.begin(), open_faces_.end(), plane(piece),
+                            [&](const OpenFace& x, const std::pair<int, double>& key) { return plane(x) < key; });
+  for (; f != open_faces_.end() && plane(*f) == plane(piece); ++f)
+    if (f->lo[0] <= piece.lo[0] && f->lo[1] <= piece.lo[1] && piece.hi[0] <= f->hi[0] && piece.hi[1] <= f->hi[1])
+      return static_cast<int>(f - open_faces_.begin());
+  return -1;
 }
 
 bool Region::contains(const std::array<double, 3>& p) const {

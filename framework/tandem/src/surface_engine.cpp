@@ -74,25 +74,24 @@ detail::EdgeGeometry WorkingSurface::Engine::geometry_of(HH h) const {
   return g;
 }
 
-void WorkingSurface::Engine::set_state(EH e, EdgeState state, double key, int face) {
+void WorkingSurface::Engine::set_state(EH e, EdgeState state, double key, const Region::NearestFace* hold) {
   detail::EdgeRecord& r = erec(e);
   const EdgeState old = r.state;
   const auto item = static_cast<std::int32_t>(e.idx());
-  if (state == EdgeState::parked)
-    r.face = face >= 0 && face < detail::kUnknownFace ? static_cast<std::uint16_t>(face) : detail::kUnknownFace;
   if (old == state) { // stays in the same queue: move it in place
     if (state == EdgeState::candidate) candidates_.update(item, key);
     if (state == EdgeState::delayed) {
       delayed_.erase(item, r.key);
       delayed_.push(item, key);
     }
+    if (state == EdgeState::parked) hold_at(r, hold);
     r.key = key;
     return;
   }
   switch (old) {
   case EdgeState::candidate:
     candidates_.erase(item);
-    pending_.release(r.pending);
+    pending_.release(r.pending_or_square);
     break;
   case EdgeState::delayed: delayed_.erase(item, r.key); break;
   case EdgeState::parked: parked_.erase(item); break;
@@ -103,16 +102,29 @@ void WorkingSurface::Engine::set_state(EH e, EdgeState state, double key, int fa
   switch (state) {
   case EdgeState::candidate:
     candidates_.push(item, key);
-    r.pending = pending_.acquire();
+    r.pending_or_square = pending_.acquire();
     break;
   case EdgeState::delayed: delayed_.push(item, key); break;
-  case EdgeState::parked: parked_.add(item); break;
+  case EdgeState::parked:
+    parked_.add(item);
+    hold_at(r, hold);
+    break;
   case EdgeState::idle: break;
   }
   const bool was_waiting = detail::waiting(old), is_waiting = detail::waiting(state);
   if (was_waiting != is_waiting) {
     const VH a = mesh_->to_vertex_handle(mesh_->halfedge_handle(e, 0));
     components_.add_waiting(vrec(a).component, is_waiting ? 1 : -1);
+  }
+}
+
+void WorkingSurface::Engine::hold_at(detail::EdgeRecord& r, const Region::NearestFace* hold) {
+  if (hold && hold->index >= 0 && hold->index < detail::kUnknownFace) {
+    r.face = static_cast<std::uint16_t>(hold->index);
+    r.pending_or_square = detail::square_of(hold->at);
+  } else {
+    r.face = detail::kUnknownFace;
+    r.pending_or_square = detail::kUnknownSquare;
   }
 }
 
@@ -138,10 +150,10 @@ void WorkingSurface::Engine::place(EH e) {
     set_state(e, EdgeState::delayed, lag);
     return;
   }
-  const int face = face_rule_->holding_face(g, region_);
-  if (face >= 0) {
+  const Region::NearestFace hold = face_rule_->holding_face(g, region_);
+  if (hold.index >= 0) {
     ++counters_.blocked_by_faces;
-    set_state(e, EdgeState::parked, lag, face);
+    set_state(e, EdgeState::parked, lag, &hold);
     return;
   }
   // Lazy evaluation: a candidate keeps its old key, now stale, and is evaluated again when it

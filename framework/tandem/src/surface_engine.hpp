@@ -108,18 +108,20 @@ private:
   detail::EdgeGeometry geometry_of(HH h) const;
   void place(EH e);
   std::uint32_t stamp_of(EH e) const;
-  // `face`: for a parked edge, the open face holding it back (-1: not known; it is placed again
-  // when the region changes).
-  void set_state(EH e, detail::EdgeState state, double key, int face = -1);
-  // After the region grew from `before`: places again the parked edges whose face is no longer
-  // open as a whole, the only ones the merge may free, and renumbers the others' faces
-  // (surface_merge.cpp).
+  // `hold`: for a parked edge, where the open faces hold it back (none: not known; it is placed
+  // again when the region changes).
+  void set_state(EH e, detail::EdgeState state, double key, const Region::NearestFace* hold = nullptr);
+  static void hold_at(detail::EdgeRecord& r, const Region::NearestFace* hold);
+  // After the region grew from `before`: places again the parked edges whose square of their face
+  // the grown region no longer has open, the only ones the merge may free, and renumbers the
+  // others' faces (surface_merge.cpp).
   void place_parked_again(const Region& before);
-  // Finds the face holding back each parked edge whose face is not known (after import_state).
+  // Finds where the faces hold back each parked edge for which it is not known (after
+  // import_state).
   void find_parked_faces();
   // Puts e in Q at `cost` with its candidate position (evaluated now: the stamp is today's).
   void enqueue(EH e, double cost, const detail::Vec3& target, bool retried);
-  detail::Pending& pending(EH e) { return pending_[erec(e).pending]; }
+  detail::Pending& pending(EH e) { return pending_[erec(e).pending_or_square]; }
   bool prepare_inputs(HH h, detail::CostInputs& in);
   // A face's corners from its first halfedge on, their positions relative to the origin and its
   // normal (p1 - p0) x (p2 - p0): what every term of the face is computed from (surface_cost.cpp).

@@ -67,16 +67,27 @@ std::size_t WorkingSurface::Engine::merge_state(detail::SurfaceState&& other, co
 }
 
 void WorkingSurface::Engine::place_parked_again(const Region& before) {
-  // A parked edge's ball reaches the face its record names. When the grown region still has that
-  // face open as a whole (inside one of its open faces), the ball still reaches an open face and
-  // placing the edge again would only park it again with the same key: it is skipped, and its
-  // face renumbered. The others (and those whose face is not known: the other side's) are placed
-  // again in list order, as placing every parked edge would (the same queues, to the bit).
+  // A parked edge's ball reaches the face its record names, at a point in the square it names.
+  // When the grown region still has that square open (inside one of its open faces: the whole
+  // face when it is kept, the usual case), the ball still reaches an open face and placing the
+  // edge again would only park it again with the same key: it is skipped, and its face
+  // renumbered. The others (and those not known: the other side's) are placed again in list
+  // order, as placing every parked edge would (the same queues, to the bit).
   const std::vector<int> kept = before.open_faces_kept_in(region_);
   std::vector<std::int32_t> again;
   for (std::int32_t e : parked_.items()) {
     detail::EdgeRecord& r = erec_[static_cast<std::size_t>(e)];
-    const int face = r.face == detail::kUnknownFace || r.face >= kept.size() ? -1 : kept[r.face];
+    int face = -1;
+    if (r.face < kept.size()) {
+      face = kept[r.face];
+      if (face < 0 && r.pending_or_square != detail::kUnknownSquare) {
+        OpenFace square = before.open_faces()[r.face];
+        square.lo = {static_cast<double>(r.pending_or_square >> 16),
+                     static_cast<double>(r.pending_or_square & 0xffffu)};
+        square.hi = {square.lo[0] + 1.0, square.lo[1] + 1.0};
+        face = region_.open_face_holding(square);
+      }
+    }
     if (face >= 0 && face < detail::kUnknownFace) {
       r.face = static_cast<std::uint16_t>(face);
     } else {
@@ -92,8 +103,8 @@ void WorkingSurface::Engine::find_parked_faces() {
   for (std::int32_t e : parked_.items()) {
     detail::EdgeRecord& r = erec_[static_cast<std::size_t>(e)];
     if (r.face != detail::kUnknownFace) continue;
-    const int face = face_rule_->holding_face(geometry_of(mesh_->halfedge_handle(EH(e), 0)), region_);
-    if (face >= 0 && face < detail::kUnknownFace) r.face = static_cast<std::uint16_t>(face);
+    const Region::NearestFace hold = face_rule_->holding_face(geometry_of(mesh_->halfedge_handle(EH(e), 0)), region_);
+    hold_at(r, &hold);
   }
 }
 

@@ -14,6 +14,7 @@
 // and compaction moves the live elements down in place.
 
 #include <algorithm>
+#include <array>
 #include <cstdint>
 #include <cstdlib>
 #include <new>
@@ -124,13 +125,24 @@ private:
   std::size_t live_ = 0;
 };
 
-// While parked: the open face that holds the edge back, as its index in the region's list, or
-// kUnknownFace when it is not known (the edge is placed again when the region changes).
+// Where the open faces hold a parked edge back: the face its ball reaches (its index in the
+// region's list) and the unit square of that face holding the point it reaches (the cells' lower
+// corner, 16 bits each of the face's in-plane coordinates). A merge keeps the edge parked without
+// reading the mesh when the grown region still has that square open (surface_merge.cpp).
+// kUnknownFace / kUnknownSquare: not known, the edge is placed again when the region changes.
 inline constexpr std::uint16_t kUnknownFace = 0xffff;
+inline constexpr std::uint32_t kUnknownSquare = 0xffffffff;
+
+inline std::uint32_t square_of(const std::array<double, 2>& at) {
+  if (!(at[0] >= 0.0 && at[0] < 65535.0 && at[1] >= 0.0 && at[1] < 65535.0)) return kUnknownSquare;
+  return static_cast<std::uint32_t>(at[0]) << 16 | static_cast<std::uint32_t>(at[1]);
+}
 
 struct EdgeRecord {
-  double key = 0.0;          // its queue key: eps_alpha in Q, the lag key in W
-  std::uint32_t pending = 0; // while in Q: its Pending in the engine's pool
+  double key = 0.0; // its queue key: eps_alpha in Q, the lag key in W
+  // While in Q: its Pending in the engine's pool. While parked: the square of its face its ball
+  // reaches (above). One field for both: an edge is never in both.
+  std::uint32_t pending_or_square = 0;
   EdgeState state = EdgeState::idle;
   bool alive = false;
   std::uint16_t face = kUnknownFace; // while parked: the open face holding it back (above)

@@ -45,14 +45,17 @@ public:
 
   const volume::Box& cube() const { return cube_; }
   const std::vector<volume::Box>& blocks() const { return blocks_; }
+  // Sorted by axis, then plane.
   const std::vector<OpenFace>& open_faces() const { return open_faces_; }
   bool empty() const { return blocks_.empty(); }
 
-  // The open face nearest p: its index in open_faces() (-1 when there is none) and its distance
-  // (+infinity when there is none).
+  // The open face nearest p: its index in open_faces() (-1 when there is none), its distance
+  // (+infinity when there is none) and the point of it nearest p (the face's two in-plane
+  // coordinates, in the order of OpenFace::lo).
   struct NearestFace {
     int index = -1;
     double distance = 0.0;
+    std::array<double, 2> at{0.0, 0.0};
   };
   NearestFace nearest_open_face(const std::array<double, 3>& p) const;
   // Distance from p to the nearest open face; +infinity when there is none.
@@ -80,6 +83,9 @@ public:
   // or whole, or the later region cut it differently. A point of a face that maps to an index is
   // still on an open face of `later`.
   std::vector<int> open_faces_kept_in(const Region& later) const;
+  // The index of an open face that holds the whole of `piece` (the same plane, its rectangle
+  // inside), or -1 when none does.
+  int open_face_holding(const OpenFace& piece) const;
 
   // "cube [..] blocks {[..], [..]} open faces N", for messages.
   std::string to_string() const;

@@ -26,6 +26,19 @@ bool same_options(const SimplifyOptions& a, const SimplifyOptions& b) {
          a.guarantee_distance == b.guarantee_distance;
 }
 
+// The open face of `after` that still holds back a parked edge whose record names a face of
+// `before` and a square of it, or -1 when none does or either is not known. `kept`:
+// before.open_faces_kept_in(after).
+int face_after_merge(const detail::EdgeRecord& r, const std::vector<int>& kept, const Region& before,
+                     const Region& after) {
+  if (r.face == detail::kUnknownFace || r.face >= kept.size()) return -1;
+  if (kept[r.face] >= 0 || r.pending_or_square == detail::kUnknownSquare) return kept[r.face];
+  OpenFace square = before.open_faces()[r.face];
+  square.lo = detail::square_corner(r.pending_or_square);
+  square.hi = {square.lo[0] + 1.0, square.lo[1] + 1.0};
+  return after.open_face_holding(square);
+}
+
 std::string where(const Region& a, const Region& b) {
   return "merging {" + a.to_string() + "} with {" + b.to_string() + "}";
 }
@@ -77,17 +90,7 @@ void WorkingSurface::Engine::place_parked_again(const Region& before) {
   std::vector<std::int32_t> again;
   for (std::int32_t e : parked_.items()) {
     detail::EdgeRecord& r = erec_[static_cast<std::size_t>(e)];
-    int face = -1;
-    if (r.face < kept.size()) {
-      face = kept[r.face];
-      if (face < 0 && r.pending_or_square != detail::kUnknownSquare) {
-        OpenFace square = before.open_faces()[r.face];
-        square.lo = {static_cast<double>(r.pending_or_square >> 16),
-                     static_cast<double>(r.pending_or_square & 0xffffu)};
-        square.hi = {square.lo[0] + 1.0, square.lo[1] + 1.0};
-        face = region_.open_face_holding(square);
-      }
-    }
+    const int face = face_after_merge(r, kept, before, region_);
     if (face >= 0 && face < detail::kUnknownFace) {
       r.face = static_cast<std::uint16_t>(face);
     } else {

@@ -137,6 +137,10 @@ inline std::uint32_t square_of(const std::array<double, 2>& at) {
   if (!(at[0] >= 0.0 && at[0] < 65535.0 && at[1] >= 0.0 && at[1] < 65535.0)) return kUnknownSquare;
   return static_cast<std::uint32_t>(at[0]) << 16 | static_cast<std::uint32_t>(at[1]);
 }
+// The lower corner of a known square (the inverse of square_of, to the unit).
+inline std::array<double, 2> square_corner(std::uint32_t square) {
+  return {static_cast<double>(square >> 16), static_cast<double>(square & 0xffffu)};
+}
 
 struct EdgeRecord {
   double key = 0.0; // its queue key: eps_alpha in Q, the lag key in W

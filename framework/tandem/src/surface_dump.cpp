@@ -124,10 +124,8 @@ void WorkingSurface::Engine::make_room(std::size_t nv, std::size_t ne, std::size
 }
 
 void WorkingSurface::Engine::collect_garbage(bool give_back) {
-  delayed_.clear();           // before the slots are renumbered
-  pending_.release_storage(); // exact storage here too, when Q is empty
+  queues_.forget_numbers();
   const std::vector<std::int32_t> moved = mesh_->compact(give_back);
-  std::vector<std::int32_t>(mesh_->n_edges(), -1).swap(slots_); // exact storage, as the mesh's
   std::vector<std::int32_t>().swap(local_index_);
   marks_.clear();
   refresh();
@@ -155,20 +153,7 @@ void WorkingSurface::Engine::collect_garbage(bool give_back) {
   }
 
   // Queues: rebuilt from the edges' states (the records moved with the edges).
-  std::vector<detail::IndexedHeap::Entry> q;
-  parked_.clear();
-  for (std::size_t i = 0; i < mesh_->n_edges(); ++i) {
-    const detail::EdgeRecord& r = erec_[i];
-    const auto item = static_cast<std::int32_t>(i);
-    switch (r.state) {
-    case EdgeState::candidate: q.push_back({r.key, item}); break;
-    case EdgeState::delayed: delayed_.push(item, r.key); break;
-    case EdgeState::parked: parked_.add(item); break; // its record keeps its face
-    case EdgeState::idle: break;
-    }
-  }
-  if (give_back) parked_.shrink_to_fit();
-  candidates_.assign(std::move(q));
+  queues_.rebuild(erec_, mesh_->n_edges(), give_back);
   ++counters_.garbage_collections;
 }
 

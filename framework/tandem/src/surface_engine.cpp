@@ -28,8 +28,7 @@ WorkingSurface::Engine::Engine(const volume::Geometry& cube, Region region, int 
                                mesh::ComponentSink* sink, CollapseObserver* observer)
     : cube_(cube), region_(std::move(region)), axis_(axis), options_(options), sink_(sink), observer_(observer),
       cost_(options.max_error, options.isotropy), front_rule_(detail::make_front_rule(options.time_lag, axis)),
-      face_rule_(detail::make_face_rule(options.extended_time_lag)), mesh_(detail::take_spare_mesh()),
-      candidates_(&slots_), delayed_(&slots_), parked_(&slots_) {
+      face_rule_(detail::make_face_rule(options.extended_time_lag)), mesh_(detail::take_spare_mesh()) {
   options_.validate();
   cube_.validate();
   if (axis < 0 || axis > 2)
@@ -53,7 +52,7 @@ void WorkingSurface::Engine::refresh() {
   erec_ = mesh_->edge_records();
   frec_ = mesh_->face_records();
   points_ = mesh_->points();
-  if (slots_.size() < mesh_->n_edges()) slots_.resize(mesh_->n_edges(), -1);
+  queues_.ensure_slots(mesh_->n_edges());
   marks_.ensure(mesh_->n_vertices());
 }
 
@@ -75,56 +74,9 @@ detail::EdgeGeometry WorkingSurface::Engine::geometry_of(HH h) const {
 }
 
 void WorkingSurface::Engine::set_state(EH e, EdgeState state, double key, const Region::NearestFace* hold) {
-  detail::EdgeRecord& r = erec(e);
-  const EdgeState old = r.state;
-  const auto item = static_cast<std::int32_t>(e.idx());
-  if (old == state) { // stays in the same queue: move it in place
-    if (state == EdgeState::candidate) candidates_.update(item, key);
-    if (state == EdgeState::delayed) {
-      delayed_.erase(item, r.key);
-      delayed_.push(item, key);
-    }
-    if (state == EdgeState::parked) hold_at(r, hold);
-    r.key = key;
-    return;
-  }
-  switch (old) {
-  case EdgeState::candidate:
-    candidates_.erase(item);
-    pending_.release(r.pending_or_square);
-    break;
-  case EdgeState::delayed: delayed_.erase(item, r.key); break;
-  case EdgeState::parked: parked_.erase(item); break;
-  case EdgeState::idle: break;
-  }
-  r.state = state;
-  r.key = key;
-  switch (state) {
-  case EdgeState::candidate:
-    candidates_.push(item, key);
-    r.pending_or_square = pending_.acquire();
-    break;
-  case EdgeState::delayed: delayed_.push(item, key); break;
-  case EdgeState::parked:
-    parked_.add(item);
-    hold_at(r, hold);
-    break;
-  case EdgeState::idle: break;
-  }
-  const bool was_waiting = detail::waiting(old), is_waiting = detail::waiting(state);
-  if (was_waiting != is_waiting) {
+  if (queues_.move(erec(e), static_cast<std::int32_t>(e.idx()), state, key, hold)) {
     const VH a = mesh_->to_vertex_handle(mesh_->halfedge_handle(e, 0));
-    components_.add_waiting(vrec(a).component, is_waiting ? 1 : -1);
-  }
-}
-
-void WorkingSurface::Engine::hold_at(detail::EdgeRecord& r, const Region::NearestFace* hold) {
-  if (hold && hold->index >= 0 && hold->index < detail::kUnknownFace) {
-    r.face = static_cast<std::uint16_t>(hold->index);
-    r.pending_or_square = detail::square_of(hold->at);
-  } else {
-    r.face = detail::kUnknownFace;
-    r.pending_or_square = detail::kUnknownSquare;
+    components_.add_waiting(vrec(a).component, detail::waiting(state) ? 1 : -1);
   }
 }
 
@@ -180,7 +132,7 @@ void WorkingSurface::Engine::activate(double front) {
   front_ = front;
   if (std::isinf(front_)) drop_isolated_vertices(); // no layer will use them now
   std::vector<std::int32_t> bucket;
-  while (delayed_.lowest_below(front_, bucket)) {
+  while (queues_.delayed_below(front_, bucket)) {
     bool moved = false;
     for (std::int32_t e : bucket) {
       if (!(erec_[e].key < front_)) continue;
@@ -196,7 +148,7 @@ void WorkingSurface::Engine::set_region(Region region) {
     throw InvalidArgument("working surface: the new region " + region.to_string() + " is not in the same cube as " +
                           region_.to_string());
   region_ = std::move(region);
-  const std::vector<std::int32_t> parked = parked_.items();
+  const std::vector<std::int32_t> parked = queues_.parked();
   for (std::int32_t e : parked)
     place(EH(e));
 }
@@ -206,10 +158,10 @@ void WorkingSurface::Engine::set_region(Region region) {
 
 void WorkingSurface::Engine::simplify(const CancelToken* cancel) {
   std::uint32_t steps = 0;
-  while (!candidates_.empty()) {
+  while (queues_.has_candidates()) {
     if (cancel && (++steps & 0xFFFu) == 0) cancel->throw_if_cancelled();
-    const EH e(candidates_.top().item);
-    const double key = candidates_.top().key;
+    const EH e(queues_.cheapest().item);
+    const double key = queues_.cheapest().key;
     const detail::Pending p = pending(e); // a copy: leaving Q frees its place
     set_state(e, EdgeState::idle, 0.0);
     if (p.dirty || p.stamp != stamp_of(e)) {

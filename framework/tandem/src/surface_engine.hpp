@@ -15,15 +15,13 @@
 #include <vector>
 
 #include "attali_cost.hpp"
-#include "bucket_queue.hpp"
 #include "collapse_distance.hpp"
 #include "collapse_ops.hpp"
 #include "component_table.hpp"
 #include "constraints.hpp"
+#include "edge_queues.hpp"
 #include "geotandem/tandem/simplify.hpp"
 #include "id_map.hpp"
-#include "indexed_heap.hpp"
-#include "parked_edges.hpp"
 #include "surface_state.hpp"
 #include "working_mesh.hpp"
 
@@ -53,7 +51,7 @@ public:
   std::size_t triangle_count() const { return live_faces_; }
   std::size_t vertex_count() const { return live_vertices_; }
   std::size_t component_count() const { return components_.alive_count(); }
-  std::size_t waiting_edge_count() const { return delayed_.size() + parked_.size(); }
+  std::size_t waiting_edge_count() const { return queues_.waiting_count(); }
   const SimplifyCounters& counters() const { return counters_; }
   mesh::SurfaceMesh snapshot() const;
 
@@ -108,10 +106,10 @@ private:
   detail::EdgeGeometry geometry_of(HH h) const;
   void place(EH e);
   std::uint32_t stamp_of(EH e) const;
-  // `hold`: for a parked edge, where the open faces hold it back (none: not known; it is placed
-  // again when the region changes).
+  // Moves e between the queues (EdgeQueues::move) and keeps its component's count of waiting
+  // edges. `hold`: for a parked edge, where the open faces hold it back (none: not known; it is
+  // placed again when the region changes).
   void set_state(EH e, detail::EdgeState state, double key, const Region::NearestFace* hold = nullptr);
-  static void hold_at(detail::EdgeRecord& r, const Region::NearestFace* hold);
   // After the region grew from `before`: places again the parked edges whose square of their face
   // the grown region no longer has open, the only ones the merge may free, and renumbers the
   // others' faces (surface_merge.cpp).
@@ -121,7 +119,7 @@ private:
   void find_parked_faces();
   // Puts e in Q at `cost` with its candidate position (evaluated now: the stamp is today's).
   void enqueue(EH e, double cost, const detail::Vec3& target, bool retried);
-  detail::Pending& pending(EH e) { return pending_[erec(e).pending_or_square]; }
+  detail::Pending& pending(EH e) { return queues_.pending(erec(e)); }
   bool prepare_inputs(HH h, detail::CostInputs& in);
   // A face's corners from its first halfedge on, their positions relative to the origin and its
   // normal (p1 - p0) x (p2 - p0): what every term of the face is computed from (surface_cost.cpp).
@@ -178,13 +176,7 @@ private:
   detail::FaceRecord* frec_ = nullptr;
   detail::HalfedgeMesh::Point* points_ = nullptr;
 
-  std::vector<std::int32_t> slots_; // edge -> position in Q, W or the parked list
-  detail::IndexedHeap candidates_;  // Q, by eps_alpha
-  // The Pending of each edge in Q, at the index its record keeps: emptied with Q, its room given
-  // back at a compaction with Q empty (collect_garbage()).
-  detail::PendingPool pending_;
-  detail::BucketQueue delayed_; // W, by lag key (unit buckets)
-  detail::ParkedEdges parked_;  // W, edges waiting for the region to grow
+  detail::EdgeQueues queues_; // Q, W and the parked edges
   detail::ComponentTable components_;
   detail::IdMap previous_ids_; // ids of the last layer: the next one may repeat them
   detail::IdMap current_ids_;

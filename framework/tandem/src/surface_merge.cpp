@@ -88,7 +88,7 @@ void WorkingSurface::Engine::place_parked_again(const Region& before) {
   // order, as placing every parked edge would (the same queues, to the bit).
   const std::vector<int> kept = before.open_faces_kept_in(region_);
   std::vector<std::int32_t> again;
-  for (std::int32_t e : parked_.items()) {
+  for (std::int32_t e : queues_.parked()) {
     detail::EdgeRecord& r = erec_[static_cast<std::size_t>(e)];
     const int face = face_after_merge(r, kept, before, region_);
     if (face >= 0 && face < detail::kUnknownFace) {
@@ -103,11 +103,11 @@ void WorkingSurface::Engine::place_parked_again(const Region& before) {
 }
 
 void WorkingSurface::Engine::find_parked_faces() {
-  for (std::int32_t e : parked_.items()) {
+  for (std::int32_t e : queues_.parked()) {
     detail::EdgeRecord& r = erec_[static_cast<std::size_t>(e)];
     if (r.face != detail::kUnknownFace) continue;
     const Region::NearestFace hold = face_rule_->holding_face(geometry_of(mesh_->halfedge_handle(EH(e), 0)), region_);
-    hold_at(r, &hold);
+    detail::EdgeQueues::hold_at(r, &hold);
   }
 }
 

@@ -63,7 +63,7 @@ detail::SurfaceState WorkingSurface::Engine::export_state() const {
     std::uint32_t v0 = vertex(mesh_->from_vertex_handle(h)), v1 = vertex(mesh_->to_vertex_handle(h));
     if (v1 < v0) std::swap(v0, v1);
     s.edges.push_back(
-        {v0, v1, r.state, r.key, r.state == EdgeState::candidate ? pending_[r.pending_or_square] : detail::Pending{}});
+        {v0, v1, r.state, r.key, r.state == EdgeState::candidate ? queues_.pending(r) : detail::Pending{}});
   }
   // Edges and ids in a canonical order (the mesh numbers edges in the order they were made): the
   // record of a surface rebuilt from a record is then the same record.

@@ -221,6 +221,87 @@ TEST(Region, AFaceIsKeptExactlyWhenALaterOpenFaceHoldsAllOfIt) {
   EXPECT_GT(closed_count, 50u);
 }
 
+// A worker's region grows one leaf (or one other worker's region) at a time, and merged_with()
+// computes again only the planes the newcomer has faces on. Oracle: the region built at once from
+// the same blocks in the same order. The open faces must be the same rectangles in the same order
+// (the parked edges name a face by its index), at every step.
+TEST(Region, GrowingOneLeafAtATimeGivesTheFacesOfAWholeComputation) {
+  const Box cube{{0, 0, 0}, {32, 24, 16}};
+  std::size_t steps = 0, multi = 0;
+  for (unsigned seed = 1; seed <= 6; ++seed) {
+    std::mt19937 random(seed);
+    std::vector<Box> leaves;
+    for (std::int64_t i = 0; i < 8; ++i)
+      for (std::int64_t j = 0; j < 6; ++j)
+        for (std::int64_t k = 0; k < 4; ++k)
+          leaves.push_back(Box{{4 * i, 4 * j, 4 * k}, {4 * i + 4, 4 * j + 4, 4 * k + 4}});
+    std::shuffle(leaves.begin(), leaves.end(), random);
+    // Two growing regions that sometimes merge with each other, as two workers' surfaces do.
+    std::array<Region, 2> region;
+    for (std::size_t n = 0; n < leaves.size(); ++n) {
+      Region& r = region[random() % 2];
+      r = r.merged_with(Region::block(cube, leaves[n]));
+      const Region whole(cube, r.blocks());
+      ASSERT_EQ(r.open_faces(), whole.open_faces()) << "seed " << seed << " leaf " << n;
+      ++steps;
+      if (random() % 17 == 0 && !region[0].empty() && !region[1].empty()) {
+        region[0] = region[0].merged_with(region[1]);
+        region[1] = Region();
+        const Region again(cube, region[0].blocks());
+        ASSERT_EQ(region[0].open_faces(), again.open_faces()) << "seed " << seed << " after leaf " << n;
+        ++multi;
+      }
+    }
+    const Region all = region[0].merged_with(region[1]);
+    ASSERT_EQ(all.blocks().size(), 1u) << "the whole cube is one block";
+    EXPECT_TRUE(all.open_faces().empty());
+  }
+  EXPECT_GT(multi, 5u);
+  EXPECT_EQ(steps, 6u * 192u);
+}
+
+// The overlap test sweeps along the first axis; oracle: every pair compared.
+TEST(Region, FindsAnOverlapAmongManyBlocksExactlyWhenThereIsOne) {
+  const Box cube{{0, 0, 0}, {48, 40, 40}};
+  std::size_t refused = 0;
+  for (unsigned seed = 1; seed <= 300; ++seed) {
+    std::mt19937 random(seed);
+    std::vector<Box> blocks;
+    for (int n = 0; n < 12; ++n) {
+      Box b;
+      for (int a = 0; a < 3; ++a) {
+        b.lo[a] = random() % 36;
+        b.hi[a] = b.lo[a] + 1 + random() % (a == 0 ? 12 : 4);
+      }
+      blocks.push_back(b);
+    }
+    bool any = false;
+    for (std::size_t i = 0; i < blocks.size(); ++i)
+      for (std::size_t j = 0; j < i; ++j)
+        any = any || !blocks[i].intersection(blocks[j]).empty();
+    if (any) {
+      EXPECT_THROW(Region(cube, blocks), InvalidArgument) << "seed " << seed;
+      ++refused;
+    } else {
+      EXPECT_NO_THROW(Region(cube, blocks)) << "seed " << seed;
+    }
+    // The same, one block at a time through merged_with().
+    Region grown;
+    bool threw = false;
+    for (const Box& b : blocks) {
+      try {
+        grown = grown.merged_with(Region::block(cube, b));
+      } catch (const InvalidArgument&) {
+        threw = true;
+        break;
+      }
+    }
+    EXPECT_EQ(threw, any) << "seed " << seed;
+  }
+  EXPECT_GT(refused, 50u);
+  EXPECT_LT(refused, 250u);
+}
+
 TEST(Region, RejectsBlocksOutsideTheCubeOrOverlapping) {
   const Box cube{{0, 0, 0}, {10, 10, 10}};
   EXPECT_THROW(Region::block(cube, Box{{0, 0, 0}, {11, 5, 5}}), InvalidArgument);

@@ -113,7 +113,8 @@ void WorkingSurface::Engine::find_parked_faces() {
 
 void WorkingSurface::Engine::absorb_state(detail::SurfaceState&& t) {
   const Region region = merge_region_state(t);
-  const std::string where_ = where(region_, t.region);
+  // Only for a message: a worker's region can hold thousands of blocks.
+  const auto where_ = [&] { return where(region_, t.region); };
   const std::size_t nb = t.points.size(), nt = t.triangles.size();
 
   // Lattice id -> live original vertex of this surface. A lattice edge both sides share lies in
@@ -146,7 +147,7 @@ void WorkingSurface::Engine::absorb_state(detail::SurfaceState&& t) {
   for (std::size_t i = 0; i < nb; ++i) {
     const detail::StateVertex& r = t.vertices[i];
     if (r.component < 0 || static_cast<std::size_t>(r.component) >= component.size())
-      throw DataError(where_ + ": vertex " + std::to_string(i) + " of the other side has no component");
+      throw DataError(where_() + ": vertex " + std::to_string(i) + " of the other side has no component");
     const std::int32_t j = r.lattice_id == detail::kNoLatticeId ? -1 : ids.find(r.lattice_id);
     if (j < 0) {
       vertex[i] = VH(static_cast<int>(next++));
@@ -175,7 +176,7 @@ void WorkingSurface::Engine::absorb_state(detail::SurfaceState&& t) {
       // end, so the positions must agree to the bit.
       const detail::Vec3 p = position(v);
       if (std::memcmp(p.data(), t.points[i].data(), sizeof(detail::Vec3)) != 0)
-        throw DataError(where_ + ": lattice edge " + std::to_string(r.lattice_id) +
+        throw DataError(where_() + ": lattice edge " + std::to_string(r.lattice_id) +
                             " has different positions on the two sides",
                         {.block = t.region.to_string()}, "both blocks must come from the same volume and isovalue");
       w.shape += r.shape;
@@ -197,7 +198,7 @@ void WorkingSurface::Engine::absorb_state(detail::SurfaceState&& t) {
     const auto& tri = t.triangles[k];
     const FH f = detail::insert_triangle(*mesh_, vertex[tri[0]], vertex[tri[1]], vertex[tri[2]]);
     if (!f.is_valid())
-      throw DataError(where_ + ": triangle " + std::to_string(k) +
+      throw DataError(where_() + ": triangle " + std::to_string(k) +
                           " of the other side would make the surface non-manifold",
                       {.block = t.region.to_string()},
                       "the two surfaces must be the partial surfaces of adjacent blocks of one extraction");

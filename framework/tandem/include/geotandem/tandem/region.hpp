@@ -9,6 +9,7 @@
 // n samples is the cells [0, n - 1) (marching_cubes.hpp, cube_cells()).
 
 #include <array>
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -75,7 +76,9 @@ public:
 
   // The union with a region of the same cube; when the union fills its bounding box (brothers),
   // it is that box as a single block. Throws InvalidArgument when the cubes differ or the blocks
-  // overlap.
+  // overlap. The open faces are the same, in the same order, as Region(cube, blocks) would find,
+  // but only the planes where `other` has block faces are computed again: O(this + other), not
+  // O(this^2), for a worker's region that takes in one leaf at a time.
   Region merged_with(const Region& other) const;
 
   // For each open face of this region, the index of an open face of `later` that holds the whole
@@ -92,7 +95,9 @@ public:
 
 private:
   void compute_open_faces();
-  void coalesce_open_faces();
+  void add_open_faces_of_plane(int axis, std::int64_t plane, const std::vector<std::size_t>& low,
+                               const std::vector<std::size_t>& high, std::vector<OpenFace>& out) const;
+  static void coalesce_plane(std::vector<OpenFace>& faces);
 
   volume::Box cube_{};
   std::vector<volume::Box> blocks_;

@@ -4,7 +4,6 @@
 #include <array>
 #include <cmath>
 #include <limits>
-#include <map>
 #include <tuple>
 #include <utility>
 
@@ -59,12 +58,6 @@ double OpenFace::distance(const std::array<double, 3>& p) const {
 
 namespace {
 
-bool overlap(const volume::Box& a, const volume::Box& b) {
-  for (int k = 0; k < 3; ++k)
-    if (!(a.lo[k] < b.hi[k] && b.lo[k] < a.hi[k])) return false;
-  return true;
-}
-
 InvalidArgument overlapping(const volume::Box& a, const volume::Box& b) {
   return InvalidArgument("region: blocks " + a.to_string() + " and " + b.to_string() + " overlap",
                          {.block = b.to_string()}, "merge only regions made of different blocks");
@@ -73,112 +66,32 @@ InvalidArgument overlapping(const volume::Box& a, const volume::Box& b) {
 // A plane of the cube where blocks have faces: axis, coordinate.
 using Plane = std::pair<int, std::int64_t>;
 
+// The planes of the faces of `boxes`, sorted, each once.
+std::vector<Plane> planes_of(const std::vector<volume::Box>& boxes) {
+  std::vector<Plane> planes;
+  planes.reserve(6 * boxes.size());
+  for (const volume::Box& b : boxes)
+    for (int axis = 0; axis < 3; ++axis) {
+      planes.emplace_back(axis, b.lo[axis]);
+      planes.emplace_back(axis, b.hi[axis]);
+    }
+  std::sort(planes.begin(), planes.end());
+  planes.erase(std::unique(planes.begin(), planes.end()), planes.end());
+  return planes;
+}
+
 // The blocks with a face on one plane: `low`, those whose low face lies on it (they lie above it);
 // `high`, those whose high face does. Each in the order of the region's blocks.
 struct PlaneBlocks {
   std::vector<std::size_t> low, high;
 };
 
-} // namespace
-
-Region::Region(const volume::Box& cube_cells, std::vector<volume::Box> blocks)
-    : cube_(cube_cells), blocks_(std::move(blocks)) {
-  if (cube_.empty())
-    throw InvalidArgument("region: the cube's cells " + cube_.to_string() + " are empty", {},
-                          "a cube needs at least two samples along every axis");
-  for (const volume::Box& b : blocks_)
-    if (b.empty() || !cube_.contains(b))
-      throw InvalidArgument("region: block " + b.to_string() + " is empty or leaves the cube's cells " +
-                                cube_.to_string(),
-                            {.block = b.to_string()}, "blocks are boxes of cells inside the cube");
-  // Overlaps, swept along the first axis: a block is compared only with the blocks that start
-  // before it ends there (a region read from a worker's surface may hold thousands of leaves).
-  std::vector<std::size_t> order(blocks_.size());
-  for (std::size_t i = 0; i < order.size(); ++i)
-    order[i] = i;
-  std::sort(order.begin(), order.end(), [this](std::size_t a, std::size_t b) {
-    return std::pair(blocks_[a].lo[0], a) < std::pair(blocks_[b].lo[0], b);
-  });
-  for (std::size_t i = 0; i < order.size(); ++i)
-    for (std::size_t j = i + 1; j < order.size() && blocks_[order[j]].lo[0] < blocks_[order[i]].hi[0]; ++j)
-      if (overlap(blocks_[order[i]], blocks_[order[j]]))
-        throw overlapping(blocks_[std::min(order[i], order[j])], blocks_[std::max(order[i], order[j])]);
-  compute_open_faces();
-}
-
-void Region::compute_open_faces() {
-  // The blocks with a face on each plane, in the order of blocks_: only those can cover a face of
-  // another block there. Looking at every other block for every face cost O(n^2).
-  std::map<Plane, PlaneBlocks> planes;
-  for (std::size_t n = 0; n < blocks_.size(); ++n)
-    for (int axis = 0; axis < 3; ++axis) {
-      planes[{axis, blocks_[n].lo[axis]}].low.push_back(n);
-      planes[{axis, blocks_[n].hi[axis]}].high.push_back(n);
-    }
-  open_faces_.clear();
-  for (const auto& [plane, on] : planes)
-    add_open_faces_of_plane(plane.first, plane.second, on.low, on.high, open_faces_);
-}
-
-// The open faces on one plane, in the order of a whole computation (sorted by coalesce_plane()):
-// each block face there minus the faces of the blocks facing it, then joined.
-void Region::add_open_faces_of_plane(int axis, std::int64_t plane, const std::vector<std::size_t>& low,
-                                     const std::vector<std::size_t>& high, std::vector<OpenFace>& out) const {
-  int u = 0, v = 0;
-  other_axes(axis, u, v);
-  const auto rect = [u, v](const volume::Box& b) {
-    return Rect{static_cast<double>(b.lo[u]), static_cast<double>(b.hi[u]), static_cast<double>(b.lo[v]),
-                static_cast<double>(b.hi[v])};
-  };
-  std::vector<OpenFace> faces;
-  std::vector<Rect> pieces, next;
-  std::vector<std::pair<double, std::size_t>> facing; // (start along u, block), by start
-  std::vector<std::size_t> covers;
-  for (int side = 0; side < 2; ++side) {
-    // A face of the whole cube is never open.
-    if (plane == (side == 0 ? cube_.lo[axis] : cube_.hi[axis])) continue;
-    // The blocks on the other side, found by their span along u: a plane of a worker's region
-    // can hold hundreds of leaf faces on each side.
-    facing.clear();
-    double widest = 0.0;
-    for (std::size_t n : side == 0 ? high : low) {
-      const Rect c = rect(blocks_[n]);
-      facing.emplace_back(c.lo0, n);
-      widest = std::max(widest, c.hi0 - c.lo0);
-    }
-    std::sort(facing.begin(), facing.end());
-    for (std::size_t i : side == 0 ? low : high) {
-      const Rect face = rect(blocks_[i]);
-      pieces.assign(1, face);
-      // Parts covered by a block of the region on the other side are interior, not open. Those
-      // that overlap the face are subtracted in the order of blocks_ (the pieces depend on it).
-      covers.clear();
-      for (auto c = std::lower_bound(facing.begin(), facing.end(), std::pair(face.lo0 - widest, std::size_t{0}));
-           c != facing.end() && c->first < face.hi0; ++c) {
-        const Rect r = rect(blocks_[c->second]);
-        if (r.hi0 > face.lo0 && r.lo1 < face.hi1 && r.hi1 > face.lo1) covers.push_back(c->second);
-      }
-      std::sort(covers.begin(), covers.end());
-      for (std::size_t n : covers) {
-        next.clear();
-        for (const Rect& r : pieces)
-          subtract(r, rect(blocks_[n]), next);
-        pieces.swap(next);
-      }
-      for (const Rect& r : pieces)
-        faces.push_back(OpenFace{axis, static_cast<double>(plane), {r.lo0, r.lo1}, {r.hi0, r.hi1}});
-    }
-  }
-  coalesce_plane(faces);
-  out.insert(out.end(), faces.begin(), faces.end());
-}
-
 // A region of many leaves (a worker's surface after many extractions) has one open rectangle per
 // leaf face; every placed edge asks its distance to them. Rectangles of one plane that share a
 // whole edge are joined: the set of points, and so every distance, is exactly the same. Two rounds
 // at most, the second only when the first joined some; the faces end sorted by their first axis's
 // span, then their second axis's start (a whole key: rectangles of one plane do not overlap).
-void Region::coalesce_plane(std::vector<OpenFace>& faces) {
+void coalesce_plane(std::vector<OpenFace>& faces) {
   auto join_along = [&faces](int along) {
     const int across = 1 - along;
     std::sort(faces.begin(), faces.end(), [across, along](const OpenFace& a, const OpenFace& b) {
@@ -204,6 +117,119 @@ void Region::coalesce_plane(std::vector<OpenFace>& faces) {
     join_along(1);
     if (faces.size() == before) break;
   }
+}
+
+// The open faces on one plane, sorted as coalesce_plane() leaves them: each block face there (not
+// on the cube's own faces) minus the faces of the blocks facing it, then joined.
+void add_open_faces_of_plane(const volume::Box& cube, const std::vector<volume::Box>& blocks, Plane plane,
+                             const PlaneBlocks& on, std::vector<OpenFace>& out) {
+  const auto [axis, at] = plane;
+  int u = 0, v = 0;
+  other_axes(axis, u, v);
+  const auto rect = [&blocks, u, v](std::size_t n) {
+    const volume::Box& b = blocks[n];
+    return Rect{static_cast<double>(b.lo[u]), static_cast<double>(b.hi[u]), static_cast<double>(b.lo[v]),
+                static_cast<double>(b.hi[v])};
+  };
+  std::vector<OpenFace> faces;
+  std::vector<Rect> pieces, next;
+  std::vector<std::pair<double, std::size_t>> facing; // (start along u, block), by start
+  std::vector<std::pair<std::size_t, Rect>> covers;   // by block
+  for (int side = 0; side < 2; ++side) {
+    // A face of the whole cube is never open.
+    if (at == (side == 0 ? cube.lo[axis] : cube.hi[axis])) continue;
+    // The blocks on the other side, found by their span along u: a plane of a worker's region
+    // can hold hundreds of leaf faces on each side.
+    facing.clear();
+    double widest = 0.0;
+    for (std::size_t n : side == 0 ? on.high : on.low) {
+      const Rect c = rect(n);
+      facing.emplace_back(c.lo0, n);
+      widest = std::max(widest, c.hi0 - c.lo0);
+    }
+    std::sort(facing.begin(), facing.end());
+    for (std::size_t i : side == 0 ? on.low : on.high) {
+      const Rect face = rect(i);
+      // Parts covered by a block of the region on the other side are interior, not open. Those
+      // that overlap the face are subtracted in the order of the blocks (the pieces depend on it).
+      covers.clear();
+      for (auto c = std::lower_bound(facing.begin(), facing.end(), std::pair(face.lo0 - widest, std::size_t{0}));
+           c != facing.end() && c->first < face.hi0; ++c) {
+        const Rect r = rect(c->second);
+        if (r.hi0 > face.lo0 && r.lo1 < face.hi1 && r.hi1 > face.lo1) covers.emplace_back(c->second, r);
+      }
+      std::sort(covers.begin(), covers.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+      pieces.assign(1, face);
+      for (const auto& [n, cover] : covers) {
+        next.clear();
+        for (const Rect& r : pieces)
+          subtract(r, cover, next);
+        pieces.swap(next);
+      }
+      for (const Rect& r : pieces)
+        faces.push_back(OpenFace{axis, static_cast<double>(at), {r.lo0, r.lo1}, {r.hi0, r.hi1}});
+    }
+  }
+  coalesce_plane(faces);
+  out.insert(out.end(), faces.begin(), faces.end());
+}
+
+// The open faces of the region `blocks` when only `planes` (sorted, each once) may differ from
+// `before`: the faces of `before` on other planes are kept, those of `planes` computed from the
+// blocks; in plane order. With every plane of the blocks and nothing before, a whole computation.
+std::vector<OpenFace> open_faces_on(const volume::Box& cube, const std::vector<volume::Box>& blocks,
+                                    const std::vector<Plane>& planes, const std::vector<OpenFace>& before) {
+  // Only blocks with a face on a plane can cover a face of another block there.
+  std::vector<PlaneBlocks> on(planes.size());
+  const auto add = [&planes, &on](Plane plane, std::vector<std::size_t> PlaneBlocks::*side, std::size_t n) {
+    const auto p = std::lower_bound(planes.begin(), planes.end(), plane);
+    if (p != planes.end() && *p == plane) (on[static_cast<std::size_t>(p - planes.begin())].*side).push_back(n);
+  };
+  for (std::size_t n = 0; n < blocks.size(); ++n)
+    for (int axis = 0; axis < 3; ++axis) {
+      add({axis, blocks[n].lo[axis]}, &PlaneBlocks::low, n);
+      add({axis, blocks[n].hi[axis]}, &PlaneBlocks::high, n);
+    }
+  std::vector<OpenFace> faces;
+  faces.reserve(before.size() + 4 * planes.size());
+  const auto plane_of = [](const OpenFace& f) { return Plane{f.axis, static_cast<std::int64_t>(f.plane)}; };
+  auto kept = before.begin();
+  for (std::size_t c = 0; c < planes.size(); ++c) {
+    for (; kept != before.end() && plane_of(*kept) < planes[c]; ++kept)
+      faces.push_back(*kept);
+    while (kept != before.end() && plane_of(*kept) == planes[c])
+      ++kept;
+    add_open_faces_of_plane(cube, blocks, planes[c], on[c], faces);
+  }
+  faces.insert(faces.end(), kept, before.end());
+  return faces;
+}
+
+} // namespace
+
+Region::Region(const volume::Box& cube_cells, std::vector<volume::Box> blocks)
+    : cube_(cube_cells), blocks_(std::move(blocks)) {
+  if (cube_.empty())
+    throw InvalidArgument("region: the cube's cells " + cube_.to_string() + " are empty", {},
+                          "a cube needs at least two samples along every axis");
+  for (const volume::Box& b : blocks_)
+    if (b.empty() || !cube_.contains(b))
+      throw InvalidArgument("region: block " + b.to_string() + " is empty or leaves the cube's cells " +
+                                cube_.to_string(),
+                            {.block = b.to_string()}, "blocks are boxes of cells inside the cube");
+  // Overlaps, swept along the first axis: a block is compared only with the blocks that start
+  // before it ends there (a region read from a worker's surface may hold thousands of leaves).
+  std::vector<std::size_t> order(blocks_.size());
+  for (std::size_t i = 0; i < order.size(); ++i)
+    order[i] = i;
+  std::sort(order.begin(), order.end(), [this](std::size_t a, std::size_t b) {
+    return std::pair(blocks_[a].lo[0], a) < std::pair(blocks_[b].lo[0], b);
+  });
+  for (std::size_t i = 0; i < order.size(); ++i)
+    for (std::size_t j = i + 1; j < order.size() && blocks_[order[j]].lo[0] < blocks_[order[i]].hi[0]; ++j)
+      if (blocks_[order[i]].overlaps(blocks_[order[j]]))
+        throw overlapping(blocks_[std::min(order[i], order[j])], blocks_[std::max(order[i], order[j])]);
+  open_faces_ = open_faces_on(cube_, blocks_, planes_of(blocks_), {});
 }
 
 Region::NearestFace Region::nearest_open_face(const std::array<double, 3>& p) const {
@@ -240,7 +266,7 @@ std::vector<int> Region::open_faces_kept_in(const Region& later) const {
 }
 
 int Region::open_face_holding(const OpenFace& piece) const {
-  // The faces are sorted by axis and plane (compute_open_faces() goes plane by plane).
+  // The faces are sorted by axis and plane (open_faces_on() goes plane by plane).
   const auto plane = [](const OpenFace& f) { return std::pair<int, double>(f.axis, f.plane); };
   auto f = std::lower_bound(open_faces_.begin(), open_faces_.end(), plane(piece),
                             [&](const OpenFace& x, const std::pair<int, double>& key) { return plane(x) < key; });
@@ -281,9 +307,9 @@ Region Region::merged_with(const Region& other) const {
   // Each side's blocks are disjoint already: only pairs across the two are compared.
   const volume::Box there = other.bounds();
   for (const volume::Box& a : blocks_)
-    if (overlap(a, there))
+    if (a.overlaps(there))
       for (const volume::Box& b : other.blocks_)
-        if (overlap(a, b)) throw overlapping(a, b);
+        if (a.overlaps(b)) throw overlapping(a, b);
   // A union that fills its bounding box (two brothers) is that box: one block, whose open faces
   // are whole rectangles, instead of one rectangle per face of every merged leaf (the distance to
   // the open faces is computed for every placed edge).
@@ -305,34 +331,7 @@ Region Region::merged_with(const Region& other) const {
   merged.cube_ = cube_;
   merged.blocks_ = blocks_;
   merged.blocks_.insert(merged.blocks_.end(), other.blocks_.begin(), other.blocks_.end());
-  std::vector<Plane> changed;
-  for (const volume::Box& b : other.blocks_)
-    for (int axis = 0; axis < 3; ++axis)
-      for (std::int64_t plane : {b.lo[axis], b.hi[axis]})
-        changed.emplace_back(axis, plane);
-  std::sort(changed.begin(), changed.end());
-  changed.erase(std::unique(changed.begin(), changed.end()), changed.end());
-  std::vector<PlaneBlocks> on(changed.size());
-  for (std::size_t n = 0; n < merged.blocks_.size(); ++n)
-    for (int axis = 0; axis < 3; ++axis) {
-      const volume::Box& b = merged.blocks_[n];
-      const auto low = std::lower_bound(changed.begin(), changed.end(), Plane{axis, b.lo[axis]});
-      if (low != changed.end() && *low == Plane{axis, b.lo[axis]}) on[low - changed.begin()].low.push_back(n);
-      const auto high = std::lower_bound(changed.begin(), changed.end(), Plane{axis, b.hi[axis]});
-      if (high != changed.end() && *high == Plane{axis, b.hi[axis]}) on[high - changed.begin()].high.push_back(n);
-    }
-  // The kept faces and the new ones, both in plane order, interleaved plane by plane.
-  merged.open_faces_.reserve(open_faces_.size() + 4 * changed.size());
-  auto kept = open_faces_.begin();
-  const auto plane_of = [](const OpenFace& f) { return Plane{f.axis, static_cast<std::int64_t>(f.plane)}; };
-  for (std::size_t c = 0; c < changed.size(); ++c) {
-    for (; kept != open_faces_.end() && plane_of(*kept) < changed[c]; ++kept)
-      merged.open_faces_.push_back(*kept);
-    while (kept != open_faces_.end() && plane_of(*kept) == changed[c])
-      ++kept;
-    merged.add_open_faces_of_plane(changed[c].first, changed[c].second, on[c].low, on[c].high, merged.open_faces_);
-  }
-  merged.open_faces_.insert(merged.open_faces_.end(), kept, open_faces_.end());
+  merged.open_faces_ = open_faces_on(cube_, merged.blocks_, planes_of(other.blocks_), open_faces_);
   return merged;
 }
 

@@ -9,7 +9,6 @@
 // n samples is the cells [0, n - 1) (marching_cubes.hpp, cube_cells()).
 
 #include <array>
-#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -94,11 +93,6 @@ public:
   std::string to_string() const;
 
 private:
-  void compute_open_faces();
-  void add_open_faces_of_plane(int axis, std::int64_t plane, const std::vector<std::size_t>& low,
-                               const std::vector<std::size_t>& high, std::vector<OpenFace>& out) const;
-  static void coalesce_plane(std::vector<OpenFace>& faces);
-
   volume::Box cube_{};
   std::vector<volume::Box> blocks_;
   std::vector<OpenFace> open_faces_;

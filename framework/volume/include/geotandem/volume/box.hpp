@@ -39,6 +39,12 @@ struct Box {
   // The box grown by `halo` samples on each side of each axis (may leave the cube: clip it).
   Box grown(const Index3& halo) const;
   Box intersection(const Box& other) const;
+  // Whether two non-empty boxes share a sample (intersection() is not empty), without building it.
+  bool overlaps(const Box& other) const {
+    for (int a = 0; a < 3; ++a)
+      if (!(lo[a] < other.hi[a] && other.lo[a] < hi[a])) return false;
+    return true;
+  }
   bool operator==(const Box&) const = default;
 
   // "[i0:i1, j0:j1, k0:k1]", the form used in every error message.

@@ -4,6 +4,7 @@
 #include <array>
 #include <cmath>
 #include <limits>
+#include <numeric>
 #include <tuple>
 #include <utility>
 
@@ -220,8 +221,7 @@ Region::Region(const volume::Box& cube_cells, std::vector<volume::Box> blocks)
   // Overlaps, swept along the first axis: a block is compared only with the blocks that start
   // before it ends there (a region read from a worker's surface may hold thousands of leaves).
   std::vector<std::size_t> order(blocks_.size());
-  for (std::size_t i = 0; i < order.size(); ++i)
-    order[i] = i;
+  std::iota(order.begin(), order.end(), std::size_t{0});
   std::sort(order.begin(), order.end(), [this](std::size_t a, std::size_t b) {
     return std::pair(blocks_[a].lo[0], a) < std::pair(blocks_[b].lo[0], b);
   });
@@ -291,10 +291,7 @@ volume::Box Region::bounds() const {
   if (blocks_.empty()) return {};
   volume::Box box = blocks_.front();
   for (const volume::Box& b : blocks_)
-    for (int a = 0; a < 3; ++a) {
-      box.lo[a] = std::min(box.lo[a], b.lo[a]);
-      box.hi[a] = std::max(box.hi[a], b.hi[a]);
-    }
+    box = box.hull(b);
   return box;
 }
 
@@ -313,11 +310,7 @@ Region Region::merged_with(const Region& other) const {
   // A union that fills its bounding box (two brothers) is that box: one block, whose open faces
   // are whole rectangles, instead of one rectangle per face of every merged leaf (the distance to
   // the open faces is computed for every placed edge).
-  volume::Box bounds = this->bounds();
-  for (int a = 0; a < 3; ++a) {
-    bounds.lo[a] = std::min(bounds.lo[a], there.lo[a]);
-    bounds.hi[a] = std::max(bounds.hi[a], there.hi[a]);
-  }
+  const volume::Box bounds = this->bounds().hull(there);
   std::size_t cells = 0;
   for (const Region* r : {this, &other})
     for (const volume::Box& b : r->blocks_)

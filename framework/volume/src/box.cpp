@@ -26,6 +26,15 @@ Box Box::grown(const Index3& halo) const {
   return b;
 }
 
+Box Box::hull(const Box& other) const {
+  Box b;
+  for (int a = 0; a < 3; ++a) {
+    b.lo[a] = std::min(lo[a], other.lo[a]);
+    b.hi[a] = std::max(hi[a], other.hi[a]);
+  }
+  return b;
+}
+
 Box Box::intersection(const Box& other) const {
   Box b;
   for (int a = 0; a < 3; ++a) {

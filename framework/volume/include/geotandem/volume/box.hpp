@@ -39,6 +39,8 @@ struct Box {
   // The box grown by `halo` samples on each side of each axis (may leave the cube: clip it).
   Box grown(const Index3& halo) const;
   Box intersection(const Box& other) const;
+  // The smallest box holding both (non-empty) boxes.
+  Box hull(const Box& other) const;
   // Whether two non-empty boxes share a sample (intersection() is not empty), without building it.
   bool overlaps(const Box& other) const {
     for (int a = 0; a < 3; ++a)

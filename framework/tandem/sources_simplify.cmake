@@ -7,7 +7,7 @@ set(TANDEM_SIMPLIFY_SOURCES
   src/region.cpp
   src/spare_meshes.cpp
   src/surface_engine.cpp
-  src/surface_cost.cpp
+  src/edge_cost.cpp
   src/triangle_insert.cpp
   src/surface_layers.cpp
   src/surface_dump.cpp

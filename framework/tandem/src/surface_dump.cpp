@@ -129,7 +129,7 @@ void WorkingSurface::Engine::collect_garbage(bool give_back) {
   std::vector<std::int32_t>().swap(local_index_);
   marks_.clear();
   refresh();
-  recompute_face_terms();
+  costs_.recompute_face_terms(frec_);
 
   auto remap = [&](std::int32_t& v) { v = v >= 0 ? moved[static_cast<std::size_t>(v)] : -1; };
   previous_ids_.for_each([&](std::uint64_t, std::int32_t& v) { remap(v); });

@@ -20,6 +20,16 @@ using detail::operator+;
 using detail::operator-;
 using detail::operator*;
 
+namespace {
+// The cube's last sample index on each axis: the far faces a border vertex stays on.
+std::array<double, 3> last_indices(const volume::Geometry& cube) {
+  std::array<double, 3> hi{};
+  for (int i = 0; i < 3; ++i)
+    hi[static_cast<std::size_t>(i)] = static_cast<double>(cube.shape[i] - 1);
+  return hi;
+}
+} // namespace
+
 WorkingSurface::Engine::~Engine() {
   detail::keep_spare_mesh(std::move(mesh_), region_.blocks().size() == 1);
 }
@@ -27,8 +37,9 @@ WorkingSurface::Engine::~Engine() {
 WorkingSurface::Engine::Engine(const volume::Geometry& cube, Region region, int axis, const SimplifyOptions& options,
                                mesh::ComponentSink* sink, CollapseObserver* observer)
     : cube_(cube), region_(std::move(region)), axis_(axis), options_(options), sink_(sink), observer_(observer),
-      cost_(options.max_error, options.isotropy), front_rule_(detail::make_front_rule(options.time_lag, axis)),
-      face_rule_(detail::make_face_rule(options.extended_time_lag)), mesh_(detail::take_spare_mesh()) {
+      cube_hi_(last_indices(cube)), front_rule_(detail::make_front_rule(options.time_lag, axis)),
+      face_rule_(detail::make_face_rule(options.extended_time_lag)), mesh_(detail::take_spare_mesh()),
+      costs_(*mesh_, options, cube_hi_) {
   options_.validate();
   cube_.validate();
   if (axis < 0 || axis > 2)
@@ -40,10 +51,10 @@ WorkingSurface::Engine::Engine(const volume::Geometry& cube, Region region, int 
                               " is not the cells of the cube " + cells.to_string(),
                           {}, "build the region from cube_cells(geometry.shape)");
   lattice_.shape = cube_.shape;
+  detail::Vec3 origin;
   for (std::size_t i = 0; i < 3; ++i)
-    origin_[i] = static_cast<double>(region_.blocks().front().lo[i]);
-  for (int i = 0; i < 3; ++i)
-    cube_hi_[static_cast<std::size_t>(i)] = static_cast<double>(cube_.shape[i] - 1);
+    origin[i] = static_cast<double>(region_.blocks().front().lo[i]);
+  costs_.set_origin(origin);
   refresh();
 }
 
@@ -52,6 +63,7 @@ void WorkingSurface::Engine::refresh() {
   erec_ = mesh_->edge_records();
   frec_ = mesh_->face_records();
   points_ = mesh_->points();
+  costs_.refresh(vrec_, points_);
   queues_.ensure_slots(mesh_->n_edges());
   marks_.ensure(mesh_->n_vertices());
 }
@@ -118,7 +130,7 @@ void WorkingSurface::Engine::place(EH e) {
     return;
   }
   Candidate c;
-  if (evaluate(h, c)) {
+  if (costs_.evaluate(h, c, counters_)) {
     enqueue(e, c.cost, c.position, false);
   } else {
     set_state(e, EdgeState::idle, 0.0);
@@ -168,7 +180,7 @@ void WorkingSurface::Engine::simplify(const CancelToken* cancel) {
       // Collapses nearby changed what its cost depends on: compute it again, and put it back
       // when it became dearer.
       Candidate c;
-      if (!evaluate(mesh_->halfedge_handle(e, 0), c)) continue;
+      if (!costs_.evaluate(mesh_->halfedge_handle(e, 0), c, counters_)) continue;
       if (c.cost > key + 1e-12 * (1.0 + key)) {
         enqueue(e, c.cost, c.position, false);
         continue;
@@ -207,13 +219,14 @@ void WorkingSurface::Engine::try_collapse(EH e, double cost, const detail::Vec3&
   // One more chance at the simple positions (volume-preserving when asked) that keep every
   // triangle's shape.
   CostInputs in;
-  if (!prepare_inputs(h, in)) return;
-  const auto prepared = cost_.prepare(in);
+  if (!costs_.inputs(h, in)) return;
+  const detail::AttaliCost& attali = costs_.attali();
+  const auto prepared = attali.prepare(in);
   Vec3 positions[3];
-  const int count = cost_.fallback_positions(prepared, positions);
+  const int count = attali.fallback_positions(prepared, positions);
   Candidate options[3];
   for (int k = 0; k < count; ++k)
-    options[k] = cost_.at(prepared, positions[k]);
+    options[k] = attali.at(prepared, positions[k]);
   for (int k = 1; k < count; ++k) // by cost (at most three)
     for (int j = k; j > 0 && options[j].cost < options[j - 1].cost; --j)
       std::swap(options[j], options[j - 1]);
@@ -249,7 +262,7 @@ void WorkingSurface::Engine::report_collapse(HH h, const Vec3& target, double co
   ev.cost = cost;
   ev.distance_bound = error;
   CostInputs in;
-  if (prepare_inputs(h, in)) ev.shape_error = cost_.at(cost_.prepare(in), target).shape_error;
+  if (costs_.inputs(h, in)) ev.shape_error = costs_.attali().at(costs_.attali().prepare(in), target).shape_error;
   // The invariants of the time lag and the extended time lag, checked on every collapse in debug.
   assert(front_rule_->key(g) < front_);
   assert(!options_.time_lag || ev.reach < ev.front);
@@ -289,7 +302,7 @@ void WorkingSurface::Engine::collapse(HH h, const Vec3& target, double cost, dou
       const FH f = mesh_->face_handle(s);
       if (f.is_valid()) {
         const VH p = mesh_->to_vertex_handle(s), q = mesh_->to_vertex_handle(mesh_->next_halfedge_handle(s));
-        if (!(v == b && (p == a || q == a))) remove_face_terms(f, a, b);
+        if (!(v == b && (p == a || q == a))) costs_.remove_face_terms(f, a, b);
       }
       s = detail::next_outgoing(*mesh_, s);
     } while (s != start);
@@ -323,7 +336,7 @@ void WorkingSurface::Engine::collapse(HH h, const Vec3& target, double cost, dou
   HH s = start;
   do {
     const FH f = mesh_->face_handle(s);
-    if (f.is_valid()) add_face_terms(f);
+    if (f.is_valid()) costs_.add_face_terms(f);
     s = detail::next_outgoing(*mesh_, s);
   } while (s != start);
 

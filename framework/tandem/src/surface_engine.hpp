@@ -1,7 +1,9 @@
 #pragma once
 // The machinery behind WorkingSurface: the working mesh and its records, the queues Q (candidates
 // by cost) and W (edges delayed by the front, by reach; edges parked by the open faces), the
-// component table, and the id maps that weld a layer to the previous one.
+// component table, and the id maps that weld a layer to the previous one. The cost of a collapse
+// (the face terms' sums and the evaluation) is its own object, EdgeCost (edge_cost.hpp): the engine
+// tells it which triangles join or leave the surface.
 //
 // Edge life cycle (place()): an edge whose lag key is not below the front is delayed; else, if
 // the open faces forbid it, parked; else its candidate is computed and it enters Q, or stays idle
@@ -19,6 +21,7 @@
 #include "collapse_ops.hpp"
 #include "component_table.hpp"
 #include "constraints.hpp"
+#include "edge_cost.hpp"
 #include "edge_queues.hpp"
 #include "geotandem/tandem/simplify.hpp"
 #include "id_map.hpp"
@@ -120,23 +123,6 @@ private:
   // Puts e in Q at `cost` with its candidate position (evaluated now: the stamp is today's).
   void enqueue(EH e, double cost, const detail::Vec3& target, bool retried);
   detail::Pending& pending(EH e) { return queues_.pending(erec(e)); }
-  bool prepare_inputs(HH h, detail::CostInputs& in);
-  // A face's corners from its first halfedge on, their positions relative to the origin and its
-  // normal (p1 - p0) x (p2 - p0): what every term of the face is computed from (surface_cost.cpp).
-  struct FaceCorners {
-    std::array<VH, 3> v;
-    std::array<detail::Vec3, 3> p;
-    detail::Vec3 normal;
-  };
-  FaceCorners corners(FH f) const;
-  detail::Isotropy face_isotropy(const FaceCorners& c) const;
-  // Face terms (isotropy, volume) into and out of the sums of the face's corners.
-  void add_face_terms(FH f);
-  void remove_face_terms(FH f, VH skip_a, VH skip_b);
-  void recompute_face_terms();
-  // `faces`: the corners of the triangles on both sides of h (null where there is none).
-  void volume_plane(HH h, const FaceCorners* const faces[2], detail::CostInputs& in) const;
-  bool evaluate(HH h, detail::Candidate& out);
   void try_collapse(EH e, double cost, const detail::Vec3& target, bool retried);
   // The distance bound the triangles around c would get (the E0 guarantee, collapse_distance.hpp).
   // The patch around h is read when `gathered` is false (then set): several positions of one
@@ -164,9 +150,7 @@ private:
   mesh::ComponentSink* sink_;
   CollapseObserver* observer_;
   std::array<double, 3> cube_hi_{};
-  detail::Vec3 origin_{}; // volume terms are computed relative to it (the first block's corner)
 
-  detail::AttaliCost cost_;
   std::unique_ptr<detail::FrontRule> front_rule_;
   std::unique_ptr<detail::FaceRule> face_rule_;
 
@@ -175,6 +159,7 @@ private:
   detail::EdgeRecord* erec_ = nullptr;
   detail::FaceRecord* frec_ = nullptr;
   detail::HalfedgeMesh::Point* points_ = nullptr;
+  detail::EdgeCost costs_; // the face terms' sums and the cost of each collapse
 
   detail::EdgeQueues queues_; // Q, W and the parked edges
   detail::ComponentTable components_;

@@ -154,7 +154,7 @@ void WorkingSurface::Engine::add_layer(const Layer& layer) {
 
   // Face terms, then delay(k): every edge of the new triangles waits in W.
   for (FH f : faces)
-    add_face_terms(f);
+    costs_.add_face_terms(f);
   for (FH f : faces) {
     HH h = mesh_->halfedge_handle(f);
     for (int k = 0; k < 3; ++k, h = mesh_->next_halfedge_handle(h)) {

@@ -213,7 +213,7 @@ void WorkingSurface::Engine::absorb_state(detail::SurfaceState&& t) {
   // The other side's face terms were relative to its own origin: computed again from this one's,
   // which also completes the sums of the welded vertices.
   for (FH f : faces)
-    add_face_terms(f);
+    costs_.add_face_terms(f);
   live_faces_ += nt;
 
   // The other side's queue states (the seam's edges are parked on both sides).

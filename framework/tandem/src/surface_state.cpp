@@ -21,7 +21,7 @@ detail::SurfaceState WorkingSurface::Engine::export_state() const {
   s.options = options_;
   s.front = front_;
   s.last_rank = last_rank_;
-  s.origin = origin_;
+  s.origin = costs_.origin();
   s.counters = counters_;
 
   // Components: the live roots, numbered in order (a find without path halving: this is const).
@@ -103,7 +103,7 @@ void WorkingSurface::Engine::import_state(detail::SurfaceState&& s) {
                     std::to_string(s.vertices.size()) + " vertex records");
   front_ = s.front;
   last_rank_ = s.last_rank;
-  origin_ = s.origin;
+  costs_.set_origin(s.origin);
   counters_ = s.counters;
 
   // Components first: vertices refer to them by index, which is also their id in the table.
@@ -153,7 +153,7 @@ void WorkingSurface::Engine::import_state(detail::SurfaceState&& s) {
     erec_[i] = detail::EdgeRecord{};
     erec_[i].alive = true;
   }
-  recompute_face_terms(); // the vertices' sums over their triangles, which the state does not carry
+  costs_.recompute_face_terms(frec_); // the vertices' sums over their triangles, which the state does not carry
 
   // Queues: every edge that is not idle goes back to its place with its key.
   for (std::size_t i = 0; i < s.edges.size(); ++i) {

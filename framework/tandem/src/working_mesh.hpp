@@ -67,7 +67,7 @@ struct VertexRecord {
   // around it (so for c and all its neighbours at each collapse).
   std::uint32_t version = 0;
   // Bit 2 * axis + side: the vertex lies on that face of the cube. This is the collapse loop's
-  // constraint hook (Engine::prepare_inputs): c keeps the coordinate of every axis with a bit set,
+  // constraint hook (EdgeCost::inputs, edge_cost.hpp): c keeps the coordinate of every axis with a bit set,
   // so one bit holds a vertex on a plane, two on a line, three in place; an edge whose ends carry
   // both sides of one axis never collapses. Cap or other constrained vertices set these bits.
   std::uint8_t border = 0;
@@ -154,7 +154,7 @@ struct EdgeRecord {
 static_assert(sizeof(EdgeRecord) == 16, "an edge record's size is counted in docs/algorithm.md (Memory)");
 
 // A face keeps no terms of its own: its isotropy and volume terms are a function of its corners'
-// positions, taken from its first halfedge on (surface_cost.cpp, face_terms()), so computing them
+// positions, taken from its first halfedge on (EdgeCost::add_face_terms, edge_cost.cpp), so computing them
 // again gives the same bits that were added to the corners' sums and can be subtracted exactly.
 // (Storing them cost 80 bytes per triangle held.)
 struct FaceRecord {

@@ -1,85 +1,79 @@
-// The inputs of the cost of a collapse, kept ready: the per-vertex sums of the isotropy and
-// volume terms of the triangles around each vertex, the volume plane, and the evaluation itself.
+#include "edge_cost.hpp"
+
 #include <cmath>
 
 #include "border_rule.hpp"
-#include "surface_engine.hpp"
 
-namespace geotandem::tandem {
-
-using detail::Candidate;
-using detail::CostInputs;
-using detail::Vec3;
-using detail::operator+;
-using detail::operator-;
-using detail::operator*;
+namespace geotandem::tandem::detail {
 
 namespace {
 // One corner's share of a triangle's terms: p x q and q - p for the two corners p, q that follow it
 // (add_face_terms and remove_face_terms compute them with the same expressions).
-inline void add_corner(detail::VertexRecord& r, const detail::Isotropy& isotropy, const Vec3& pq, const Vec3& link) {
+inline void add_corner(VertexRecord& r, const Isotropy& isotropy, const Vec3& pq, const Vec3& link) {
   r.isotropy += isotropy;
   r.cross_sum = r.cross_sum + pq;
   r.link_sum = r.link_sum + link;
 }
-inline void remove_corner(detail::VertexRecord& r, const detail::Isotropy& isotropy, const Vec3& pq, const Vec3& link) {
+inline void remove_corner(VertexRecord& r, const Isotropy& isotropy, const Vec3& pq, const Vec3& link) {
   r.isotropy -= isotropy;
   r.cross_sum = r.cross_sum - pq;
   r.link_sum = r.link_sum - link;
 }
 } // namespace
 
+EdgeCost::EdgeCost(const HalfedgeMesh& mesh, const SimplifyOptions& options, const std::array<double, 3>& cube_hi)
+    : mesh_(mesh), attali_(options.max_error, options.isotropy), max_error_(options.max_error),
+      preserve_volume_(options.preserve_volume), cube_hi_(cube_hi) {}
+
 // Every term of a face is computed here, from its first halfedge on and from the same positions,
 // so that computing it again gives the bits that were added (working_mesh.hpp, FaceRecord).
-inline WorkingSurface::Engine::FaceCorners WorkingSurface::Engine::corners(FH f) const {
-  const HH h0 = mesh_->halfedge_handle(f);
-  const HH h1 = mesh_->next_halfedge_handle(h0);
+inline EdgeCost::FaceCorners EdgeCost::corners(FH f) const {
+  const HH h0 = mesh_.halfedge_handle(f);
+  const HH h1 = mesh_.next_halfedge_handle(h0);
   FaceCorners c;
-  c.v = {mesh_->from_vertex_handle(h0), mesh_->to_vertex_handle(h0), mesh_->to_vertex_handle(h1)};
+  c.v = {mesh_.from_vertex_handle(h0), mesh_.to_vertex_handle(h0), mesh_.to_vertex_handle(h1)};
   for (std::size_t k = 0; k < 3; ++k)
     c.p[k] = position(c.v[k]) - origin_;
-  c.normal = detail::cross(c.p[1] - c.p[0], c.p[2] - c.p[0]);
+  c.normal = cross(c.p[1] - c.p[0], c.p[2] - c.p[0]);
   return c;
 }
 
-inline detail::Isotropy WorkingSurface::Engine::face_isotropy(const FaceCorners& c) const {
-  return detail::Isotropy::of_triangle(position(c.v[0]), position(c.v[1]), position(c.v[2]), c.normal);
+inline Isotropy EdgeCost::face_isotropy(const FaceCorners& c) const {
+  return Isotropy::of_triangle(position(c.v[0]), position(c.v[1]), position(c.v[2]), c.normal);
 }
 
-void WorkingSurface::Engine::add_face_terms(FH f) {
+void EdgeCost::add_face_terms(FH f) {
   const FaceCorners c = corners(f);
-  const detail::Isotropy isotropy = face_isotropy(c);
-  frec(f).alive = true;
+  const Isotropy isotropy = face_isotropy(c);
   for (std::size_t k = 0; k < 3; ++k) {
     const Vec3 &p = c.p[(k + 1) % 3], &q = c.p[(k + 2) % 3];
-    add_corner(vrec(c.v[k]), isotropy, detail::cross(p, q), q - p);
+    add_corner(vrec_[c.v[k].idx()], isotropy, cross(p, q), q - p);
   }
 }
 
-void WorkingSurface::Engine::remove_face_terms(FH f, VH skip_a, VH skip_b) {
+void EdgeCost::remove_face_terms(FH f, VH skip_a, VH skip_b) {
   // Computed again from the same positions in the same order: they cancel what add_face_terms
   // added exactly.
   const FaceCorners c = corners(f);
-  const detail::Isotropy isotropy = face_isotropy(c);
+  const Isotropy isotropy = face_isotropy(c);
   for (std::size_t k = 0; k < 3; ++k) {
     if (c.v[k] == skip_a || c.v[k] == skip_b) continue;
     const Vec3 &p = c.p[(k + 1) % 3], &q = c.p[(k + 2) % 3];
-    remove_corner(vrec(c.v[k]), isotropy, detail::cross(p, q), q - p);
+    remove_corner(vrec_[c.v[k].idx()], isotropy, cross(p, q), q - p);
   }
 }
 
-void WorkingSurface::Engine::recompute_face_terms() {
-  // From scratch: the running sums drift by rounding over many collapses.
-  for (std::size_t i = 0; i < mesh_->n_vertices(); ++i) {
-    vrec_[i].isotropy = detail::Isotropy{};
+void EdgeCost::recompute_face_terms(const FaceRecord* faces) {
+  for (std::size_t i = 0; i < mesh_.n_vertices(); ++i) {
+    vrec_[i].isotropy = Isotropy{};
     vrec_[i].cross_sum = {0.0, 0.0, 0.0};
     vrec_[i].link_sum = {0.0, 0.0, 0.0};
   }
-  for (std::size_t i = 0; i < mesh_->n_faces(); ++i)
-    if (frec_[i].alive) add_face_terms(FH(static_cast<int>(i)));
+  for (std::size_t i = 0; i < mesh_.n_faces(); ++i)
+    if (faces[i].alive) add_face_terms(FH(static_cast<int>(i)));
 }
 
-void WorkingSurface::Engine::volume_plane(HH h, const FaceCorners* const faces[2], CostInputs& in) const {
+void EdgeCost::volume_plane(HH h, const FaceCorners* const faces[2], CostInputs& in) const {
   // Six times the volume enclosed with a point s is the sum over triangles of det(p0 - s, p1 - s,
   // p2 - s). Moving a and b to c replaces, in every triangle (v, p, q) that keeps one of them,
   // det(v - s, p - s, q - s) by (c - s).((p - s) x (q - s)), and removes the two triangles of ab:
@@ -90,50 +84,50 @@ void WorkingSurface::Engine::volume_plane(HH h, const FaceCorners* const faces[2
   //   (p - s) x (q - s) = (p - o) x (q - o) - d x (q - p),   det_s(t) = det_o(t) - d.n_t.
   // A vertex keeps the sums of p x q and q - p over its triangles (v, p, q); those of det_o and
   // n_t follow from them and v (relative to o): v.(p x q), and p x q - v x (q - p).
-  const VH a = mesh_->from_vertex_handle(h), b = mesh_->to_vertex_handle(h);
-  const detail::VertexRecord& ra = vrec_[a.idx()];
-  const detail::VertexRecord& rb = vrec_[b.idx()];
+  const VH a = mesh_.from_vertex_handle(h), b = mesh_.to_vertex_handle(h);
+  const VertexRecord& ra = vrec_[a.idx()];
+  const VertexRecord& rb = vrec_[b.idx()];
   const Vec3 pa = in.a - origin_, pb = in.b - origin_;
   Vec3 cross_sum = ra.cross_sum + rb.cross_sum;
   Vec3 link_sum = ra.link_sum + rb.link_sum;
-  Vec3 normal_sum = cross_sum - (detail::cross(pa, ra.link_sum) + detail::cross(pb, rb.link_sum));
-  double det_sum = detail::dot(pa, ra.cross_sum) + detail::dot(pb, rb.cross_sum);
-  const HH sides[2] = {h, mesh_->opposite_halfedge_handle(h)};
+  Vec3 normal_sum = cross_sum - (cross(pa, ra.link_sum) + cross(pb, rb.link_sum));
+  double det_sum = dot(pa, ra.cross_sum) + dot(pb, rb.cross_sum);
+  const HH sides[2] = {h, mesh_.opposite_halfedge_handle(h)};
   for (int k = 0; k < 2; ++k) {
     const FaceCorners* fc = faces[k];
     if (!fc) continue;
     // The triangle (u, v, w) of ab (side goes from u to v) is counted at both u and v, and in S_ab
     // once; it vanishes, so its terms at u and v leave N:
     //   (v x w) + (w x u) = w x (u - v)   and   (w - v) + (u - w) = u - v.
-    det_sum -= detail::dot(fc->p[0], detail::cross(fc->p[1], fc->p[2]));
+    det_sum -= dot(fc->p[0], cross(fc->p[1], fc->p[2]));
     normal_sum = normal_sum - fc->normal;
     // The face's corners from the side's start on.
-    const VH from = mesh_->from_vertex_handle(sides[k]);
+    const VH from = mesh_.from_vertex_handle(sides[k]);
     const std::size_t i = fc->v[0] == from ? 0 : fc->v[1] == from ? 1 : 2;
     const Vec3& u = fc->p[i];
     const Vec3& v = fc->p[(i + 1) % 3];
     const Vec3& w = fc->p[(i + 2) % 3];
-    cross_sum = cross_sum - detail::cross(w, u - v);
+    cross_sum = cross_sum - cross(w, u - v);
     link_sum = link_sum - (u - v);
   }
   const Vec3 d = 0.5 * (in.a + in.b) - origin_;
   in.preserve_volume = true;
-  in.volume_normal = cross_sum - detail::cross(d, link_sum);
-  in.volume_offset = det_sum - detail::dot(d, normal_sum);
+  in.volume_normal = cross_sum - cross(d, link_sum);
+  in.volume_offset = det_sum - dot(d, normal_sum);
 }
 
-bool WorkingSurface::Engine::prepare_inputs(HH h, CostInputs& in) {
-  const VH a = mesh_->from_vertex_handle(h), b = mesh_->to_vertex_handle(h);
-  const detail::VertexRecord& ra = vrec(a);
-  const detail::VertexRecord& rb = vrec(b);
-  if (!detail::border_allows_collapse(ra.border, rb.border)) return false;
+bool EdgeCost::inputs(HH h, CostInputs& in) const {
+  const VH a = mesh_.from_vertex_handle(h), b = mesh_.to_vertex_handle(h);
+  const VertexRecord& ra = vrec_[a.idx()];
+  const VertexRecord& rb = vrec_[b.idx()];
+  if (!border_allows_collapse(ra.border, rb.border)) return false;
   const unsigned border = ra.border | rb.border;
   in.shape = ra.shape + rb.shape;
   in.weight = ra.weight() + rb.weight();
   in.isotropy = ra.isotropy;
   in.isotropy += rb.isotropy;
   // The triangles abx and aby are in both sums.
-  const FH f0 = mesh_->face_handle(h), f1 = mesh_->face_handle(mesh_->opposite_halfedge_handle(h));
+  const FH f0 = mesh_.face_handle(h), f1 = mesh_.face_handle(mesh_.opposite_halfedge_handle(h));
   FaceCorners c0, c1;
   const FaceCorners* faces[2] = {nullptr, nullptr};
   if (f0.is_valid()) {
@@ -148,7 +142,7 @@ bool WorkingSurface::Engine::prepare_inputs(HH h, CostInputs& in) {
   }
   in.a = position(a);
   in.b = position(b);
-  if (options_.preserve_volume) volume_plane(h, faces, in);
+  if (preserve_volume_) volume_plane(h, faces, in);
   in.fixed_axes = 0;
   for (unsigned i = 0; i < 3; ++i) {
     const unsigned bits = (border >> (2 * i)) & 3u;
@@ -159,21 +153,21 @@ bool WorkingSurface::Engine::prepare_inputs(HH h, CostInputs& in) {
   return true;
 }
 
-bool WorkingSurface::Engine::evaluate(HH h, Candidate& out) {
+bool EdgeCost::evaluate(HH h, Candidate& out, SimplifyCounters& counters) const {
   CostInputs in;
-  if (!prepare_inputs(h, in)) {
-    ++counters_.rejected_border;
+  if (!inputs(h, in)) {
+    ++counters.rejected_border;
     return false;
   }
-  ++counters_.evaluations;
-  const auto prepared = cost_.prepare(in);
-  out = cost_.best(prepared);
-  if (out.fallback) ++counters_.distrusted;
-  if (!(out.shape_error <= options_.max_error)) {
-    ++counters_.rejected_shape;
+  ++counters.evaluations;
+  const auto prepared = attali_.prepare(in);
+  out = attali_.best(prepared);
+  if (out.fallback) ++counters.distrusted;
+  if (!(out.shape_error <= max_error_)) {
+    ++counters.rejected_shape;
     return false;
   }
   return true;
 }
 
-} // namespace geotandem::tandem
+} // namespace geotandem::tandem::detail

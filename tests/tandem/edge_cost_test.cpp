@@ -1,0 +1,215 @@
+// EdgeCost (edge_cost.hpp) on its own, on a closed mesh built here: the volume plane it derives
+// from the running per-vertex sums is checked against the enclosed volume of the collapsed
+// triangles computed from scratch, and the sums against a recomputation.
+#include <gtest/gtest.h>
+
+#include <array>
+#include <cmath>
+#include <map>
+#include <random>
+#include <utility>
+#include <vector>
+
+#include "edge_cost.hpp"
+#include "triangle_insert.hpp"
+
+namespace geotandem::tandem {
+namespace {
+
+using detail::FH;
+using detail::HH;
+using detail::Vec3;
+using detail::VH;
+using detail::operator+;
+using detail::operator-;
+using detail::operator*;
+using Triangle = std::array<int, 3>;
+
+// An octahedron subdivided twice (66 vertices, 128 triangles, outward and counter-clockwise),
+// radius 5 around (20, 30, 40), each vertex moved by up to 0.4 on each axis.
+struct ClosedSurface {
+  std::vector<Vec3> points;
+  std::vector<Triangle> triangles;
+};
+
+ClosedSurface jittered_octahedron(unsigned seed) {
+  ClosedSurface s;
+  s.points = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
+  s.triangles = {{0, 2, 4}, {2, 1, 4}, {1, 3, 4}, {3, 0, 4}, {2, 0, 5}, {1, 2, 5}, {3, 1, 5}, {0, 3, 5}};
+  for (int level = 0; level < 2; ++level) {
+    std::map<std::pair<int, int>, int> middle;
+    const auto mid = [&](int i, int j) {
+      const auto key = std::minmax(i, j);
+      const auto found = middle.find(key);
+      if (found != middle.end()) return found->second;
+      Vec3 m = s.points[static_cast<std::size_t>(i)] + s.points[static_cast<std::size_t>(j)];
+      m = (1.0 / detail::norm(m)) * m;
+      s.points.push_back(m);
+      const int k = static_cast<int>(s.points.size() - 1);
+      middle.emplace(key, k);
+      return k;
+    };
+    std::vector<Triangle> finer;
+    for (const Triangle& t : s.triangles) {
+      const int a = mid(t[0], t[1]), b = mid(t[1], t[2]), c = mid(t[2], t[0]);
+      finer.insert(finer.end(), {{t[0], a, c}, {a, t[1], b}, {c, b, t[2]}, {a, b, c}});
+    }
+    s.triangles = std::move(finer);
+  }
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> jitter(-0.4, 0.4);
+  for (Vec3& p : s.points)
+    p = Vec3{20.0 + 5.0 * p[0] + jitter(rng), 30.0 + 5.0 * p[1] + jitter(rng), 40.0 + 5.0 * p[2] + jitter(rng)};
+  return s;
+}
+
+// Six times the enclosed volume, from scratch.
+double six_volume(const std::vector<Vec3>& points, const std::vector<Triangle>& triangles) {
+  double sum = 0.0;
+  for (const Triangle& t : triangles) {
+    const Vec3 &p = points[static_cast<std::size_t>(t[0])], &q = points[static_cast<std::size_t>(t[1])],
+               &r = points[static_cast<std::size_t>(t[2])];
+    sum += detail::dot(p, detail::cross(q, r));
+  }
+  return sum;
+}
+
+struct Built {
+  detail::HalfedgeMesh mesh;
+  std::vector<FH> faces;
+};
+
+void build(const ClosedSurface& s, Built& out) {
+  for (const Vec3& p : s.points)
+    out.mesh.add_vertex(detail::HalfedgeMesh::Point(p[0], p[1], p[2]));
+  for (const Triangle& t : s.triangles) {
+    const FH f = detail::insert_triangle(out.mesh, VH(t[0]), VH(t[1]), VH(t[2]));
+    ASSERT_TRUE(f.is_valid());
+    out.faces.push_back(f);
+  }
+}
+
+SimplifyOptions volume_options() {
+  SimplifyOptions options;
+  options.max_error = 0.5;
+  options.preserve_volume = true;
+  return options;
+}
+
+TEST(EdgeCost, VolumePlaneIsWhereTheCollapseKeepsTheEnclosedVolume) {
+  for (unsigned seed : {1u, 2u, 3u}) {
+    const ClosedSurface s = jittered_octahedron(seed);
+    Built b;
+    build(s, b);
+    detail::EdgeCost cost(b.mesh, volume_options(), {511.0, 511.0, 511.0});
+    cost.refresh(b.mesh.vertex_records(), b.mesh.points());
+    cost.set_origin({16.0, 24.0, 32.0}); // a block's corner: the sums are taken relative to it
+    for (FH f : b.faces)
+      cost.add_face_terms(f);
+    const double before = six_volume(s.points, s.triangles);
+
+    std::mt19937 rng(seed);
+    std::uniform_real_distribution<double> u(-1.0, 1.0);
+    for (std::size_t e = 0; e < b.mesh.n_edges(); ++e) {
+      const HH h = detail::HalfedgeMesh::halfedge_handle(detail::EH(static_cast<int>(e)), 0);
+      const int ia = b.mesh.from_vertex_handle(h).idx(), ib = b.mesh.to_vertex_handle(h).idx();
+      detail::CostInputs in;
+      ASSERT_TRUE(cost.inputs(h, in));
+      ASSERT_TRUE(in.preserve_volume);
+      EXPECT_EQ(in.fixed_axes, 0u);
+      const Vec3 mid = 0.5 * (in.a + in.b);
+      // Any c: six times the change of volume is N.(c - mid) - K (docs/algorithm.md, the volume
+      // plane), so K = 0 on the plane. c on the plane, then off it.
+      const Vec3 n = in.volume_normal;
+      ASSERT_GT(detail::norm(n), 0.0);
+      Vec3 along{u(rng), u(rng), u(rng)};
+      along = along - (detail::dot(along, n) / detail::dot(n, n)) * n;
+      const Vec3 on_plane = mid + (in.volume_offset / detail::dot(n, n)) * n + along;
+      for (const Vec3& c : {on_plane, Vec3(on_plane + (u(rng) / detail::norm(n)) * n)}) {
+        std::vector<Vec3> points = s.points;
+        points[static_cast<std::size_t>(ia)] = c;
+        points[static_cast<std::size_t>(ib)] = c;
+        std::vector<Triangle> kept;
+        for (Triangle t : s.triangles) {
+          const bool has_a = t[0] == ia || t[1] == ia || t[2] == ia, has_b = t[0] == ib || t[1] == ib || t[2] == ib;
+          if (!(has_a && has_b)) kept.push_back(t); // the two triangles of ab vanish
+        }
+        const double change = six_volume(points, kept) - before;
+        const double predicted = detail::dot(n, c - mid) - in.volume_offset;
+        EXPECT_NEAR(change, predicted, 1e-9 * std::abs(before)) << "seed " << seed << ", edge " << e;
+      }
+    }
+  }
+}
+
+TEST(EdgeCost, RunningSumsMatchARecomputationAfterFacesLeaveAndReturn) {
+  const ClosedSurface s = jittered_octahedron(7);
+  Built b;
+  build(s, b);
+  detail::EdgeCost cost(b.mesh, volume_options(), {511.0, 511.0, 511.0});
+  cost.refresh(b.mesh.vertex_records(), b.mesh.points());
+  cost.set_origin({16.0, 24.0, 32.0});
+  for (FH f : b.faces)
+    cost.add_face_terms(f);
+  // Every other face leaves its corners' sums (but those of vertices 0 and 1) and comes back, as
+  // the faces around a collapse do.
+  for (std::size_t k = 0; k < b.faces.size(); k += 2)
+    cost.remove_face_terms(b.faces[k], VH(0), VH(1));
+  for (std::size_t k = 0; k < b.faces.size(); k += 2)
+    cost.add_face_terms(b.faces[k]);
+  const std::vector<detail::VertexRecord> running(b.mesh.vertex_records(),
+                                                  b.mesh.vertex_records() + b.mesh.n_vertices());
+  cost.recompute_face_terms(b.mesh.face_records());
+  const detail::VertexRecord* fresh = b.mesh.vertex_records();
+  for (std::size_t v = 2; v < running.size(); ++v) {
+    for (std::size_t i = 0; i < 3; ++i) {
+      EXPECT_NEAR(running[v].cross_sum[i], fresh[v].cross_sum[i], 1e-9 * (1.0 + std::abs(fresh[v].cross_sum[i])));
+      EXPECT_NEAR(running[v].link_sum[i], fresh[v].link_sum[i], 1e-9 * (1.0 + std::abs(fresh[v].link_sum[i])));
+    }
+    EXPECT_NEAR(running[v].isotropy.area, fresh[v].isotropy.area, 1e-9 * fresh[v].isotropy.area);
+  }
+  // Vertices 0 and 1 kept the terms of the faces that left: theirs are counted twice.
+  for (int v = 0; v < 2; ++v) {
+    double twice = 0.0;
+    for (std::size_t k = 0; k < s.triangles.size(); k += 2) {
+      const Triangle& t = s.triangles[k];
+      if (t[0] != v && t[1] != v && t[2] != v) continue;
+      const Vec3 &p = s.points[static_cast<std::size_t>(t[0])], &q = s.points[static_cast<std::size_t>(t[1])],
+                 &r = s.points[static_cast<std::size_t>(t[2])];
+      twice += 0.5 * detail::norm(detail::cross(q - p, r - p));
+    }
+    EXPECT_GT(twice, 0.0);
+    const auto i = static_cast<std::size_t>(v);
+    EXPECT_NEAR(running[i].isotropy.area - fresh[i].isotropy.area, twice, 1e-9 * fresh[i].isotropy.area);
+  }
+}
+
+TEST(EdgeCost, CubeFacesFixTheCoordinateOrForbidTheCollapse) {
+  const ClosedSurface s = jittered_octahedron(3);
+  Built b;
+  build(s, b);
+  detail::EdgeCost cost(b.mesh, volume_options(), {63.0, 63.0, 63.0});
+  cost.refresh(b.mesh.vertex_records(), b.mesh.points());
+  for (FH f : b.faces)
+    cost.add_face_terms(f);
+  const HH h = b.mesh.halfedge_handle(VH(0));
+  const int ia = b.mesh.from_vertex_handle(h).idx(), ib = b.mesh.to_vertex_handle(h).idx();
+  detail::VertexRecord* r = b.mesh.vertex_records();
+  // a on the far z face: c keeps z = 63 (the cube's last index).
+  r[ia].border = 2u << 4;
+  detail::CostInputs in;
+  ASSERT_TRUE(cost.inputs(h, in));
+  EXPECT_EQ(in.fixed_axes, 4u);
+  EXPECT_EQ(in.fixed_value[2], 63.0);
+  // b on the near z face as well: both sides of one axis, never collapsed (counted as such).
+  r[ib].border = 1u << 4;
+  EXPECT_FALSE(cost.inputs(h, in));
+  SimplifyCounters counters;
+  detail::Candidate candidate;
+  EXPECT_FALSE(cost.evaluate(h, candidate, counters));
+  EXPECT_EQ(counters.rejected_border, 1u);
+  EXPECT_EQ(counters.evaluations, 0u);
+}
+
+} // namespace
+} // namespace geotandem::tandem

@@ -190,6 +190,35 @@ TEST_F(Recipes, OverridesApplyByIndexOrNameAndAreValidated) {
   EXPECT_THROW(parse_recipe(good, "r.yaml", registry, {"steps.nosuchstep.iso=1"}), InvalidArgument);
 }
 
+TEST_F(Recipes, AnErrorInAnOverriddenValueNamesTheSetNotALineOfTheFile) {
+  // The value of a --set is parsed on its own: its positions are within the value. They used to be
+  // reported as lines and columns of the recipe ("dir/recipe.yaml:1:5").
+  std::string shape = error_of(good, {"execution.workers=3", "input.synthetic.shape=[64, 2, 80]"});
+  EXPECT_EQ(shape.rfind("--set input.synthetic.shape=[64, 2, 80]: shape entry '2'", 0), 0u) << shape;
+  std::string range = error_of(good, {"steps.extract.isotropy=7"});
+  EXPECT_EQ(range.rfind("--set steps.extract.isotropy=7: ", 0), 0u) << range;
+  std::string key = error_of(good, {"execution={workers: 2, wokers: 3}"});
+  EXPECT_EQ(key.rfind("--set execution={workers: 2, wokers: 3}: unknown key 'wokers'", 0), 0u) << key;
+  // The second override of a key replaces the first: the error is the second's.
+  std::string twice = error_of(good, {"execution.workers=0", "execution.workers=-1"});
+  EXPECT_EQ(twice.rfind("--set execution.workers=-1: ", 0), 0u) << twice;
+  // An error in the file keeps its line and column with overrides elsewhere.
+  std::string in_file = error_of(replaced("workers: 4", "workers: 0"), {"steps.extract.iso=0.7"});
+  EXPECT_EQ(in_file.rfind("dir/recipe.yaml:21:12: 'workers' is 0", 0), 0u) << in_file;
+  // A path through a value is refused as such (it used to fail inside YAML as "not valid YAML").
+  std::string through = error_of(good, {"input.synthetic.kind.x=1"});
+  EXPECT_EQ(through.rfind("--set input.synthetic.kind.x=1: 'kind' holds a value ('seismic'), not keys", 0), 0u)
+      << through;
+  // A step given whole by a --set replaces the step (it used to turn the list into a mapping), and
+  // has no line in the file to report later.
+  Recipe r = parse_recipe(good, "dir/recipe.yaml", registry, {"steps.1={step: boxsum, factor: 2}"});
+  ASSERT_EQ(r.steps.size(), 4u);
+  EXPECT_EQ(r.steps[0].name, "boxsum");
+  EXPECT_DOUBLE_EQ(r.steps[0].params.at("factor").real, 2.0);
+  EXPECT_EQ(r.steps[0].where.line, 0);
+  EXPECT_GT(r.steps[1].where.line, 0);
+}
+
 TEST_F(Recipes, SegyHeaderBytesComeFromTheInputSection) {
   const std::string file_input = replaced("  synthetic: {kind: seismic, shape: [64, 48, 80], seed: 3}",
                                           "  file: f3.sgy\n  segy: {inline_byte: 9, crossline_byte: 21}");

@@ -22,21 +22,22 @@ namespace {
 using detail::error_at;
 using detail::MapReader;
 using detail::parse_execution;
+using detail::RecipeSource;
 
 constexpr std::int64_t big = std::int64_t(1) << 40;
 
 void parse_input(MapReader& m, InputSpec& in) {
-  in.where = detail::where_of(m.map());
+  in.where = m.source().where_of(m.map());
   bool has_file = m.has("file"), has_synth = m.has("synthetic");
   if (has_file == has_synth)
-    throw error_at(m.file(), m.map(), "input needs exactly one of 'file' or 'synthetic'",
+    throw error_at(m.source(), m.map(), "input needs exactly one of 'file' or 'synthetic'",
                    "file: path/to/cube.segy, or synthetic: {kind: seismic, shape: [160, 160, 128]}");
   in.nan = m.text("nan", "error");
   if (in.nan != "error" && in.nan != "fill")
-    throw error_at(m.file(), m.node("nan"), "'nan' is '" + in.nan + "'", "use 'error' or 'fill'");
+    throw error_at(m.source(), m.node("nan"), "'nan' is '" + in.nan + "'", "use 'error' or 'fill'");
   in.variable = m.text("variable", "");
   if (m.has("segy")) {
-    MapReader s(m.file(), m.node("segy"), "input.segy");
+    MapReader s(m.source(), m.node("segy"), "input.segy");
     in.segy_inline_byte = static_cast<int>(s.integer("inline_byte", 189, 1, 240));
     in.segy_crossline_byte = static_cast<int>(s.integer("crossline_byte", 193, 1, 240));
     s.finish({"inline_byte", "crossline_byte"});
@@ -45,21 +46,21 @@ void parse_input(MapReader& m, InputSpec& in) {
     in.file = m.required_text("file");
   } else {
     in.synthetic = true;
-    MapReader s(m.file(), m.node("synthetic"), "input.synthetic");
+    MapReader s(m.source(), m.node("synthetic"), "input.synthetic");
     in.synthetic_kind = s.text("kind", "seismic");
     if (in.synthetic_kind != "seismic" && in.synthetic_kind != "analytic")
-      throw error_at(m.file(), s.node("kind"), "synthetic kind '" + in.synthetic_kind + "' is unknown",
+      throw error_at(m.source(), s.node("kind"), "synthetic kind '" + in.synthetic_kind + "' is unknown",
                      suggestion_hint(in.synthetic_kind, {"seismic", "analytic"}));
     if (s.has("shape")) {
       YAML::Node shape = s.node("shape");
       if (!shape.IsSequence() || shape.size() != 3)
-        throw error_at(m.file(), shape, "shape must be a list of three sizes [inline, crossline, sample]");
+        throw error_at(m.source(), shape, "shape must be a list of three sizes [inline, crossline, sample]");
       for (int a = 0; a < 3; ++a) {
-        std::string t = detail::scalar_of(m.file(), shape[a], "a shape entry");
+        std::string t = detail::scalar_of(m.source(), shape[a], "a shape entry");
         char* end = nullptr;
         long long v = std::strtoll(t.c_str(), &end, 10);
         if (t.empty() || *end != '\0' || v < synth::min_edge || v > 100000)
-          throw error_at(m.file(), shape[a],
+          throw error_at(m.source(), shape[a],
                          "shape entry '" + t + "' must be an integer from " + std::to_string(synth::min_edge) +
                              " to 100000",
                          "the planted bodies of a synthetic cube need room");
@@ -69,7 +70,7 @@ void parse_input(MapReader& m, InputSpec& in) {
       try {
         volume::check_shape_fits({in.shape[0], in.shape[1], in.shape[2]}, "input.synthetic.shape");
       } catch (const InvalidArgument& e) {
-        throw error_at(m.file(), shape, e.message(), e.hint());
+        throw error_at(m.source(), shape, e.message(), e.hint());
       }
     }
     in.seed = static_cast<std::uint64_t>(s.integer("seed", 1, 0, big));
@@ -88,17 +89,17 @@ ParamValues parse_params(MapReader& m, const std::vector<ParamSpec>& specs, cons
     at.reset(m.map());
     if (m.has(spec.name)) {
       at.reset(m.node(spec.name));
-      text = detail::scalar_of(m.file(), at, "'" + spec.name + "' in " + what);
+      text = detail::scalar_of(m.source(), at, "'" + spec.name + "' in " + what);
     } else if (spec.default_value) {
       text = *spec.default_value;
     } else {
-      throw error_at(m.file(), m.map(), what + " needs '" + spec.name + "'",
+      throw error_at(m.source(), m.map(), what + " needs '" + spec.name + "'",
                      spec.name + ": " + spec.help + " (" + to_string(spec.type) + ")");
     }
     try {
       values[spec.name] = parse_param(spec, text);
     } catch (const Error& e) {
-      throw error_at(m.file(), at, what + ": " + e.message(), e.hint());
+      throw error_at(m.source(), at, what + ": " + e.message(), e.hint());
     }
   }
   return values;
@@ -117,16 +118,17 @@ void check_step(MapReader& m, const Plugin& plugin, const ParamValues& values, c
         at.reset(m.node(spec.name));
         break;
       }
-    throw error_at(m.file(), at, what + ": " + e.message(), e.hint());
+    throw error_at(m.source(), at, what + ": " + e.message(), e.hint());
   }
 }
 
-StepSpec parse_step(const std::string& file, const YAML::Node& node, std::size_t index, const PluginRegistry& plugins) {
-  MapReader m(file, node, "step " + std::to_string(index + 1));
+StepSpec parse_step(const RecipeSource& source, const YAML::Node& node, std::size_t index,
+                    const PluginRegistry& plugins) {
+  MapReader m(source, node, "step " + std::to_string(index + 1));
   StepSpec step;
-  step.where = detail::where_of(node);
+  step.where = source.where_of(node);
   if (!m.has("step"))
-    throw error_at(file, node, "step " + std::to_string(index + 1) + " needs 'step: NAME'",
+    throw error_at(source, node, "step " + std::to_string(index + 1) + " needs 'step: NAME'",
                    "NAME is a step listed by 'geotandem plugins' (an attribute, extract, remove_bubbles, ...)");
   step.name = m.required_text("step");
   std::string what = "step " + std::to_string(index + 1) + " (" + step.name + ")";
@@ -138,11 +140,11 @@ StepSpec parse_step(const std::string& file, const YAML::Node& node, std::size_t
     } catch (const Error& e) {
       hint = e.hint();
     }
-    throw error_at(file, m.node("step"), "unknown step or plugin '" + step.name + "'", hint);
+    throw error_at(source, m.node("step"), "unknown step or plugin '" + step.name + "'", hint);
   }
   step.kind = plugin->kind();
   if (step.kind == StepKind::export_step || step.kind == StepKind::report)
-    throw error_at(file, m.node("step"),
+    throw error_at(source, m.node("step"),
                    what + " is " + (step.kind == StepKind::export_step ? "an export" : "the report") +
                        ", which belongs in the output section, not in the steps",
                    step.kind == StepKind::export_step ? "output: {exports: [{format: vtp}]}"
@@ -152,7 +154,7 @@ StepSpec parse_step(const std::string& file, const YAML::Node& node, std::size_t
   step.arity = plugin->input_count();
   step.as = m.text("as", step.name);
   if (m.has("input") && m.has("inputs"))
-    throw error_at(file, node, what + " has both 'input' and 'inputs'", "use one of them");
+    throw error_at(source, node, what + " has both 'input' and 'inputs'", "use one of them");
   step.inputs = m.has("inputs") ? m.text_list("inputs") : m.text_list("input");
   step.params = parse_params(m, specs, what);
   std::vector<std::string> known = {"step", "as", "input", "inputs"};
@@ -165,7 +167,7 @@ StepSpec parse_step(const std::string& file, const YAML::Node& node, std::size_t
 
 // Checks the chain: names resolve to earlier results, arity, one extraction after the volume
 // steps, component steps after it.
-void check_chain(const std::string& file, const YAML::Node& steps_node, std::vector<StepSpec>& steps) {
+void check_chain(const RecipeSource& source, const YAML::Node& steps_node, std::vector<StepSpec>& steps) {
   std::set<std::string> results = {"input"};
   std::string previous = "input";
   bool extracted = false;
@@ -175,20 +177,20 @@ void check_chain(const std::string& file, const YAML::Node& steps_node, std::vec
     std::string what = "step " + std::to_string(n + 1) + " (" + s.name + ")";
     if (s.kind == StepKind::component) {
       if (!extracted)
-        throw error_at(file, at, what + " works on components, but no extract step comes before it",
+        throw error_at(source, at, what + " works on components, but no extract step comes before it",
                        "put an extract step first");
-      if (!s.inputs.empty()) throw error_at(file, at, what + " takes no input: it works on the store");
+      if (!s.inputs.empty()) throw error_at(source, at, what + " takes no input: it works on the store");
       continue;
     }
     if (extracted)
-      throw error_at(file, at, what + " comes after the extract step", "volume steps must come before extract");
+      throw error_at(source, at, what + " comes after the extract step", "volume steps must come before extract");
     if (s.inputs.empty()) s.inputs = {previous};
     for (const auto& in : s.inputs)
       if (!results.count(in))
-        throw error_at(file, at, what + " reads '" + in + "', which no earlier step produces",
+        throw error_at(source, at, what + " reads '" + in + "', which no earlier step produces",
                        suggestion_hint(in, std::vector<std::string>(results.begin(), results.end())));
     if (s.inputs.size() != static_cast<std::size_t>(s.arity))
-      throw error_at(file, at,
+      throw error_at(source, at,
                      what + " takes " + std::to_string(s.arity) + " input(s), got " + std::to_string(s.inputs.size()),
                      s.arity > 1 ? "inputs: [a, b]" : "input: NAME, or nothing for the previous step's result");
     if (s.kind == StepKind::extract) {
@@ -196,12 +198,12 @@ void check_chain(const std::string& file, const YAML::Node& steps_node, std::vec
       continue;
     }
     if (results.count(s.as) && s.as != "input")
-      throw error_at(file, at, what + " is named '" + s.as + "', like an earlier result", "give it another 'as:'");
+      throw error_at(source, at, what + " is named '" + s.as + "', like an earlier result", "give it another 'as:'");
     results.insert(s.as);
     previous = s.as;
   }
   if (!extracted)
-    throw error_at(file, steps_node, "the steps have no extract step", "add '- step: extract' with 'iso:'");
+    throw error_at(source, steps_node, "the steps have no extract step", "add '- step: extract' with 'iso:'");
 }
 
 // The step of `kind` named `name` in the registry, or an error saying the registry lacks it.
@@ -227,7 +229,7 @@ void parse_output(MapReader& m, Recipe& r, const std::string& recipe_stem, const
     try {
       volume::check_output_format(out.attribute_file);
     } catch (const InvalidArgument& e) {
-      throw error_at(m.file(), m.node("attribute"), "output.attribute: " + e.message(), e.hint());
+      throw error_at(m.source(), m.node("attribute"), "output.attribute: " + e.message(), e.hint());
     }
   }
   // A synthetic input's shape is known now: an attribute cube the disk cannot hold is refused here.
@@ -236,20 +238,20 @@ void parse_output(MapReader& m, Recipe& r, const std::string& recipe_stem, const
       volume::check_disk_fits({r.input.shape[0], r.input.shape[1], r.input.shape[2]},
                               std::filesystem::path(out.directory) / out.attribute_file, "output.attribute");
     } catch (const IoError& e) {
-      throw error_at(m.file(), m.node("attribute"), e.message(), e.hint());
+      throw error_at(m.source(), m.node("attribute"), e.message(), e.hint());
     }
   }
   if (m.has("exports")) {
     const Plugin& exporter = output_step(plugins, "export", StepKind::export_step);
     YAML::Node list = m.node("exports");
-    if (!list.IsSequence()) throw error_at(m.file(), list, "'exports' must be a list");
+    if (!list.IsSequence()) throw error_at(m.source(), list, "'exports' must be a list");
     for (std::size_t n = 0; n < list.size(); ++n) {
       std::string what = "export " + std::to_string(n + 1);
-      MapReader e(m.file(), list[n], what);
+      MapReader e(m.source(), list[n], what);
       StepSpec step;
       step.kind = StepKind::export_step;
       step.name = step.as = exporter.name();
-      step.where = detail::where_of(list[n]);
+      step.where = m.source().where_of(list[n]);
       step.params = parse_params(e, exporter.params(), what);
       std::vector<std::string> known;
       for (const auto& s : exporter.params())
@@ -258,7 +260,7 @@ void parse_output(MapReader& m, Recipe& r, const std::string& recipe_stem, const
       check_step(e, exporter, step.params, what);
       const std::string& wanted = step.params.at("selection").text;
       if (!wanted.empty() && std::find(selections.begin(), selections.end(), wanted) == selections.end())
-        throw error_at(m.file(), e.node("selection"),
+        throw error_at(m.source(), e.node("selection"),
                        what + " exports selection '" + wanted + "', which no component step of the recipe writes",
                        selections.empty() ? std::string("leave 'selection' out to export every component")
                                           : suggestion_hint(wanted, selections));
@@ -268,7 +270,7 @@ void parse_output(MapReader& m, Recipe& r, const std::string& recipe_stem, const
       spec.path = step.params.at("path").text.empty() ? "bodies." + spec.format : step.params.at("path").text;
       for (const auto& earlier : out.exports)
         if (fs::path(earlier.path).lexically_normal() == fs::path(spec.path).lexically_normal())
-          throw error_at(m.file(), list[n],
+          throw error_at(m.source(), list[n],
                          what + " writes " + spec.path + ", like an earlier export: the second would overwrite it",
                          "give each export its own 'path'");
       spec.per_component = step.params.at("per_component").boolean;
@@ -281,15 +283,15 @@ void parse_output(MapReader& m, Recipe& r, const std::string& recipe_stem, const
   StepSpec report;
   report.kind = StepKind::report;
   report.name = report.as = reporter.name();
-  report.where = detail::where_of(m.map());
+  report.where = m.source().where_of(m.map());
   report.params = default_values(reporter.params());
   if (m.has("report")) {
     YAML::Node at = m.node("report");
-    std::string text = detail::scalar_of(m.file(), at, "'report' in output");
+    std::string text = detail::scalar_of(m.source(), at, "'report' in output");
     try {
       report.params["path"] = parse_param(reporter.params().front(), text);
     } catch (const Error& e) {
-      throw error_at(m.file(), at, e.message() + " in output", e.hint());
+      throw error_at(m.source(), at, e.message() + " in output", e.hint());
     }
   }
   out.report = report.params.at("path").text;
@@ -337,33 +339,34 @@ Recipe parse_recipe(const std::string& text, const std::string& name, const Plug
                     const std::vector<std::string>& overrides) {
   // One document, no duplicate keys, no control characters (yaml_reader.cpp).
   YAML::Node root = detail::load_single_document(text, name);
+  RecipeSource source(name);
   for (const auto& o : overrides)
-    detail::apply_override(root, o);
+    source.add_override(detail::apply_override(root, o), o);
 
   Recipe r;
   r.path = name;
   r.base_dir = fs::path(name).parent_path().string();
-  MapReader top(name, root, "the recipe");
+  MapReader top(source, root, "the recipe");
   std::int64_t version = top.integer("version", 1, 1, 1);
   (void)version;
-  if (!top.has("input")) throw error_at(name, root, "the recipe has no 'input' section");
-  if (!top.has("steps")) throw error_at(name, root, "the recipe has no 'steps' section");
-  MapReader input(name, top.node("input"), "input");
+  if (!top.has("input")) throw error_at(source, root, "the recipe has no 'input' section");
+  if (!top.has("steps")) throw error_at(source, root, "the recipe has no 'steps' section");
+  MapReader input(source, top.node("input"), "input");
   parse_input(input, r.input);
   YAML::Node steps = top.node("steps");
   if (!steps.IsSequence() || steps.size() == 0)
-    throw error_at(name, steps, "'steps' must be a non-empty list of steps");
+    throw error_at(source, steps, "'steps' must be a non-empty list of steps");
   for (std::size_t n = 0; n < steps.size(); ++n)
-    r.steps.push_back(parse_step(name, steps[n], n, plugins));
-  check_chain(name, steps, r.steps);
+    r.steps.push_back(parse_step(source, steps[n], n, plugins));
+  check_chain(source, steps, r.steps);
   std::string stem = fs::path(name).stem().string();
   {
     YAML::Node empty(YAML::NodeType::Map);
-    MapReader out(name, top.has("output") ? top.node("output") : empty, "output");
+    MapReader out(source, top.has("output") ? top.node("output") : empty, "output");
     parse_output(out, r, stem, plugins);
   }
   if (top.has("execution")) {
-    MapReader ex(name, top.node("execution"), "execution");
+    MapReader ex(source, top.node("execution"), "execution");
     parse_execution(ex, r.execution);
   }
   top.finish({"version", "input", "steps", "output", "execution"});

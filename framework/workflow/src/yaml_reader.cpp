@@ -144,14 +144,62 @@ InvalidArgument error_at(const std::string& file, const YAML::Node& node, const 
   return InvalidArgument(message, context, hint);
 }
 
-std::string scalar_of(const std::string& file, const YAML::Node& node, const std::string& what) {
-  if (!node.IsScalar()) throw error_at(file, node, what + " must be a single value, not a list or mapping");
+namespace {
+// Whether `node` is `root` or inside it (aliases in a recipe are bounded by check_node).
+bool contains(const YAML::Node& root, const YAML::Node& node, int depth = 0) {
+  if (root.is(node)) return true;
+  if (depth > max_depth) return false;
+  if (root.IsSequence()) {
+    for (const auto& item : root)
+      if (contains(item, node, depth + 1)) return true;
+  } else if (root.IsMap()) {
+    for (const auto& entry : root)
+      if (contains(entry.first, node, depth + 1) || contains(entry.second, node, depth + 1)) return true;
+  }
+  return false;
+}
+} // namespace
+
+void RecipeSource::add_override(const YAML::Node& value, std::string text) {
+  overrides_.emplace_back(value, std::move(text));
+}
+
+const std::string* RecipeSource::override_of(const YAML::Node& node) const {
+  // The last override of a key replaced any earlier one's value: search from the last.
+  for (auto it = overrides_.rbegin(); it != overrides_.rend(); ++it)
+    if (contains(it->first, node)) return &it->second;
+  return nullptr;
+}
+
+Where RecipeSource::where_of(const YAML::Node& node) const {
+  if (override_of(node)) return {};
+  return detail::where_of(node);
+}
+
+ErrorContext RecipeSource::context_of(const YAML::Node& node) const {
+  if (const std::string* text = override_of(node)) return ErrorContext{"--set " + *text};
+  ErrorContext context{file_};
+  const Where w = detail::where_of(node);
+  if (w.line > 0) {
+    context.line = w.line;
+    context.column = w.column;
+  }
+  return context;
+}
+
+InvalidArgument error_at(const RecipeSource& source, const YAML::Node& node, const std::string& message,
+                         const std::string& hint) {
+  return InvalidArgument(message, source.context_of(node), hint);
+}
+
+std::string scalar_of(const RecipeSource& source, const YAML::Node& node, const std::string& what) {
+  if (!node.IsScalar()) throw error_at(source, node, what + " must be a single value, not a list or mapping");
   return node.Scalar();
 }
 
-MapReader::MapReader(std::string file, const YAML::Node& node, std::string what)
-    : file_(std::move(file)), node_(node), what_(std::move(what)) {
-  if (!node_.IsMap()) throw error_at(file_, node_, what_ + " must be a mapping of keys to values");
+MapReader::MapReader(const RecipeSource& source, const YAML::Node& node, std::string what)
+    : source_(source), node_(node), what_(std::move(what)) {
+  if (!node_.IsMap()) throw error_at(source_, node_, what_ + " must be a mapping of keys to values");
 }
 
 bool MapReader::has(const std::string& key) const {
@@ -165,24 +213,24 @@ const YAML::Node MapReader::node(const std::string& key) {
 
 std::string MapReader::text(const std::string& key, const std::string& fallback) {
   if (!has(key)) return fallback;
-  return scalar_of(file_, node(key), "'" + key + "' in " + what_);
+  return scalar_of(source_, node(key), "'" + key + "' in " + what_);
 }
 
 std::string MapReader::required_text(const std::string& key) {
-  if (!has(key)) throw error_at(file_, node_, what_ + " needs '" + key + "'");
+  if (!has(key)) throw error_at(source_, node_, what_ + " needs '" + key + "'");
   return text(key, {});
 }
 
 std::int64_t MapReader::integer(const std::string& key, std::int64_t fallback, std::int64_t min, std::int64_t max) {
   if (!has(key)) return fallback;
   YAML::Node n = node(key);
-  std::string s = scalar_of(file_, n, "'" + key + "' in " + what_);
+  std::string s = scalar_of(source_, n, "'" + key + "' in " + what_);
   char* end = nullptr;
   errno = 0;
   long long v = std::strtoll(s.c_str(), &end, 10);
-  if (s.empty() || *end != '\0' || errno) throw error_at(file_, n, "'" + key + "' is '" + s + "', not an integer");
+  if (s.empty() || *end != '\0' || errno) throw error_at(source_, n, "'" + key + "' is '" + s + "', not an integer");
   if (v < min || v > max)
-    throw error_at(file_, n, "'" + key + "' is " + s + ", out of range",
+    throw error_at(source_, n, "'" + key + "' is " + s + ", out of range",
                    "use a value between " + std::to_string(min) + " and " + std::to_string(max));
   return v;
 }
@@ -190,14 +238,14 @@ std::int64_t MapReader::integer(const std::string& key, std::int64_t fallback, s
 double MapReader::real(const std::string& key, double fallback, double min, double max) {
   if (!has(key)) return fallback;
   YAML::Node n = node(key);
-  std::string s = scalar_of(file_, n, "'" + key + "' in " + what_);
+  std::string s = scalar_of(source_, n, "'" + key + "' in " + what_);
   char* end = nullptr;
   errno = 0;
   double v = std::strtod(s.c_str(), &end);
   if (s.empty() || *end != '\0' || errno || !std::isfinite(v))
-    throw error_at(file_, n, "'" + key + "' is '" + s + "', not a number");
+    throw error_at(source_, n, "'" + key + "' is '" + s + "', not a number");
   if (v < min || v > max)
-    throw error_at(file_, n, "'" + key + "' is " + s + ", out of range",
+    throw error_at(source_, n, "'" + key + "' is " + s + ", out of range",
                    "use a value between " + std::to_string(min) + " and " + std::to_string(max));
   return v;
 }
@@ -205,10 +253,10 @@ double MapReader::real(const std::string& key, double fallback, double min, doub
 bool MapReader::boolean(const std::string& key, bool fallback) {
   if (!has(key)) return fallback;
   YAML::Node n = node(key);
-  std::string s = scalar_of(file_, n, "'" + key + "' in " + what_);
+  std::string s = scalar_of(source_, n, "'" + key + "' in " + what_);
   if (s == "true" || s == "yes" || s == "on") return true;
   if (s == "false" || s == "no" || s == "off") return false;
-  throw error_at(file_, n, "'" + key + "' is '" + s + "', not true or false");
+  throw error_at(source_, n, "'" + key + "' is '" + s + "', not true or false");
 }
 
 std::vector<std::string> MapReader::text_list(const std::string& key) {
@@ -216,9 +264,9 @@ std::vector<std::string> MapReader::text_list(const std::string& key) {
   if (!has(key)) return out;
   YAML::Node n = node(key);
   if (n.IsScalar()) return {n.Scalar()};
-  if (!n.IsSequence()) throw error_at(file_, n, "'" + key + "' in " + what_ + " must be a name or a list of names");
+  if (!n.IsSequence()) throw error_at(source_, n, "'" + key + "' in " + what_ + " must be a name or a list of names");
   for (const auto& item : n)
-    out.push_back(scalar_of(file_, item, "an item of '" + key + "'"));
+    out.push_back(scalar_of(source_, item, "an item of '" + key + "'"));
   return out;
 }
 
@@ -230,7 +278,7 @@ void MapReader::finish(const std::vector<std::string>& known) const {
     for (const auto& k : known)
       is_known = is_known || k == key;
     if (is_known) continue;
-    throw error_at(file_, entry.first, "unknown key '" + key + "' in " + what_, suggestion_hint(key, known));
+    throw error_at(source_, entry.first, "unknown key '" + key + "' in " + what_, suggestion_hint(key, known));
   }
 }
 

@@ -6,6 +6,7 @@
 
 #include <set>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "geotandem/core/error.hpp"
@@ -17,8 +18,34 @@ Where where_of(const YAML::Node& node);
 // An InvalidArgument at `node` in `file`.
 InvalidArgument error_at(const std::string& file, const YAML::Node& node, const std::string& message,
                          const std::string& hint = {});
+
+// Where the nodes of a recipe's tree come from: its file, or a --set override grafted onto the
+// tree. An override's value is parsed on its own, so its nodes carry positions within the value:
+// an error at one of them names the --set, not a line of the file.
+class RecipeSource {
+public:
+  explicit RecipeSource(std::string file) : file_(std::move(file)) {}
+  // `value`: the node apply_override() put in the tree for the override `text`.
+  void add_override(const YAML::Node& value, std::string text);
+  const std::string& file() const { return file_; }
+  // The node's line and column in the file; none for a node of an override.
+  Where where_of(const YAML::Node& node) const;
+  // file:line:column, or the --set naming the value.
+  ErrorContext context_of(const YAML::Node& node) const;
+
+private:
+  // The --set text of the override `node` belongs to, or null.
+  const std::string* override_of(const YAML::Node& node) const;
+
+  std::string file_;
+  std::vector<std::pair<YAML::Node, std::string>> overrides_;
+};
+
+// An InvalidArgument at `node`, located by `source`.
+InvalidArgument error_at(const RecipeSource& source, const YAML::Node& node, const std::string& message,
+                         const std::string& hint = {});
 // The node's scalar text; an error naming `what` when it is not a scalar.
-std::string scalar_of(const std::string& file, const YAML::Node& node, const std::string& what);
+std::string scalar_of(const RecipeSource& source, const YAML::Node& node, const std::string& what);
 
 // Recipes larger than this are refused (a recipe is a page of text; /dev/zero is not).
 inline constexpr std::uintmax_t max_recipe_bytes = 1 << 20;
@@ -35,8 +62,8 @@ YAML::Node load_single_document(const std::string& text, const std::string& file
 
 class MapReader {
 public:
-  // `what` names the mapping in messages ("input", "step 2 (extract)").
-  MapReader(std::string file, const YAML::Node& node, std::string what);
+  // `what` names the mapping in messages ("input", "step 2 (extract)"). `source` outlives the reader.
+  MapReader(const RecipeSource& source, const YAML::Node& node, std::string what);
 
   bool has(const std::string& key) const;
   void rename(std::string what) { what_ = std::move(what); }
@@ -52,11 +79,11 @@ public:
   // `known` (the keys the getters may read).
   void finish(const std::vector<std::string>& known) const;
 
-  const std::string& file() const { return file_; }
+  const RecipeSource& source() const { return source_; }
   const YAML::Node& map() const { return node_; }
 
 private:
-  std::string file_;
+  const RecipeSource& source_;
   YAML::Node node_;
   std::string what_;
   std::set<std::string> used_;

@@ -3,6 +3,7 @@ set(TANDEM_SIMPLIFY_SOURCES
   src/attali_cost.cpp
   src/collapse_ops.cpp
   src/collapse_distance.cpp
+  src/component_reader.cpp
   src/component_table.cpp
   src/region.cpp
   src/spare_meshes.cpp

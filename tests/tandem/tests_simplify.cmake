@@ -4,7 +4,7 @@ add_library(geotandem_simplify_fixtures STATIC ${CMAKE_CURRENT_SOURCE_DIR}/simpl
 target_link_libraries(geotandem_simplify_fixtures PUBLIC geotandem::tandem geotandem::mesh)
 geotandem_target_defaults(geotandem_simplify_fixtures)
 
-geotandem_add_test(simplify_units_test SOURCES simplify_units_test.cpp edge_queues_test.cpp region_test.cpp edge_cost_test.cpp
+geotandem_add_test(simplify_units_test SOURCES simplify_units_test.cpp edge_queues_test.cpp region_test.cpp engine_parts_test.cpp
                    DEPS geotandem::tandem LABELS tandem)
 # White-box tests of the internals (cost, heap, maps) see the part's private headers.
 target_include_directories(simplify_units_test PRIVATE ${PROJECT_SOURCE_DIR}/framework/tandem/src)

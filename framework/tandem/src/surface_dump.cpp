@@ -27,46 +27,11 @@ std::size_t WorkingSurface::Engine::dump() {
 void WorkingSurface::Engine::dump_component(std::int32_t root) {
   const detail::ComponentRecord record = components_.at(root);
   assert(record.member >= 0 && vrec(VH(record.member)).alive);
-  if (local_index_.size() < mesh_->n_vertices()) local_index_.resize(mesh_->n_vertices(), -1);
-
-  // Gather the component by a traversal of one-rings from its member vertex.
   mesh::Component component;
   component.key = record.key;
   std::vector<VH> order;
-  const std::uint32_t stamp = marks_.next_stamp();
-  const VH start(record.member);
-  marks_.mark(start, stamp);
-  order.push_back(start);
   std::vector<FH> faces;
-  for (std::size_t next = 0; next < order.size(); ++next) {
-    const VH v = order[next];
-    local_index_[static_cast<std::size_t>(v.idx())] = static_cast<std::int32_t>(next);
-    const HH first = mesh_->halfedge_handle(v);
-    HH h = first;
-    do {
-      const VH w = mesh_->to_vertex_handle(h);
-      if (!marks_.marked(w, stamp)) {
-        marks_.mark(w, stamp);
-        order.push_back(w);
-      }
-      const FH f = mesh_->face_handle(h);
-      if (f.is_valid() && mesh_->halfedge_handle(f) == h) faces.push_back(f); // each face once
-      h = detail::next_outgoing(*mesh_, h);
-    } while (h != first);
-  }
-  component.surface.points.reserve(order.size());
-  for (VH v : order)
-    component.surface.points.push_back(position(v));
-  component.surface.triangles.reserve(faces.size());
-  for (FH f : faces) {
-    const HH h = mesh_->halfedge_handle(f);
-    const VH v0 = mesh_->from_vertex_handle(h), v1 = mesh_->to_vertex_handle(h),
-             v2 = mesh_->to_vertex_handle(mesh_->next_halfedge_handle(h));
-    component.surface.triangles.push_back(
-        {static_cast<std::uint32_t>(local_index_[static_cast<std::size_t>(v0.idx())]),
-         static_cast<std::uint32_t>(local_index_[static_cast<std::size_t>(v1.idx())]),
-         static_cast<std::uint32_t>(local_index_[static_cast<std::size_t>(v2.idx())])});
-  }
+  component.surface = reader_.read(*mesh_, points_, VH(record.member), marks_, order, faces);
 
   if (sink_) {
     component.stats = mesh::measure_component(component.surface, cube_);
@@ -126,7 +91,7 @@ void WorkingSurface::Engine::make_room(std::size_t nv, std::size_t ne, std::size
 void WorkingSurface::Engine::collect_garbage(bool give_back) {
   queues_.forget_numbers();
   const std::vector<std::int32_t> moved = mesh_->compact(give_back);
-  std::vector<std::int32_t>().swap(local_index_);
+  reader_.release();
   marks_.clear();
   refresh();
   costs_.recompute_face_terms(frec_);

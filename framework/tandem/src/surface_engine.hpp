@@ -19,6 +19,7 @@
 #include "attali_cost.hpp"
 #include "collapse_distance.hpp"
 #include "collapse_ops.hpp"
+#include "component_reader.hpp"
 #include "component_table.hpp"
 #include "constraints.hpp"
 #include "edge_cost.hpp"
@@ -167,7 +168,7 @@ private:
   detail::IdMap current_ids_;
   detail::VertexMarks marks_;
   detail::CollapseDistance distance_;
-  std::vector<std::int32_t> local_index_;            // scratch for dumping
+  detail::ComponentReader reader_;                   // reads a finished component out for dumping
   std::vector<std::int32_t> isolated_;               // vertices of the last layer that no triangle uses yet
   std::vector<std::array<double, 3>> new_positions_; // scratch: the vertices a layer creates
 

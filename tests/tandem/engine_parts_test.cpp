@@ -1,15 +1,19 @@
-// EdgeCost (edge_cost.hpp) on its own, on a closed mesh built here: the volume plane it derives
-// from the running per-vertex sums is checked against the enclosed volume of the collapsed
-// triangles computed from scratch, and the sums against a recomputation.
+// The engine's parts on their own, on closed meshes built here. EdgeCost (edge_cost.hpp): the
+// volume plane it derives from the running per-vertex sums against the enclosed volume of the
+// collapsed triangles computed from scratch, and the sums against a recomputation.
+// ComponentReader (component_reader.hpp): a component read out of a mesh holding several is that
+// component, whole, closed and oriented as it was.
 #include <gtest/gtest.h>
 
 #include <array>
 #include <cmath>
 #include <map>
 #include <random>
+#include <set>
 #include <utility>
 #include <vector>
 
+#include "component_reader.hpp"
 #include "edge_cost.hpp"
 #include "triangle_insert.hpp"
 
@@ -209,6 +213,63 @@ TEST(EdgeCost, CubeFacesFixTheCoordinateOrForbidTheCollapse) {
   EXPECT_FALSE(cost.evaluate(h, candidate, counters));
   EXPECT_EQ(counters.rejected_border, 1u);
   EXPECT_EQ(counters.evaluations, 0u);
+}
+
+TEST(ComponentReader, ReadsOneComponentWholeClosedAndOrientedAsItWas) {
+  // Three jittered octahedra side by side in one mesh, their vertices interleaved so that a
+  // component's vertices are not a range of numbers.
+  std::vector<ClosedSurface> bodies;
+  for (unsigned seed : {4u, 5u, 6u})
+    bodies.push_back(jittered_octahedron(seed));
+  const std::size_t n = bodies[0].points.size();
+  detail::HalfedgeMesh mesh;
+  for (std::size_t i = 0; i < n; ++i)
+    for (std::size_t b = 0; b < bodies.size(); ++b) {
+      const Vec3& p = bodies[b].points[i];
+      mesh.add_vertex(detail::HalfedgeMesh::Point(p[0] + 20.0 * static_cast<double>(b), p[1], p[2]));
+    }
+  const auto vertex = [&](std::size_t b, int i) { return VH(static_cast<int>(static_cast<std::size_t>(i) * 3 + b)); };
+  for (std::size_t b = 0; b < bodies.size(); ++b)
+    for (const Triangle& t : bodies[b].triangles)
+      ASSERT_TRUE(detail::insert_triangle(mesh, vertex(b, t[0]), vertex(b, t[1]), vertex(b, t[2])).is_valid());
+
+  detail::ComponentReader reader;
+  detail::VertexMarks marks;
+  marks.ensure(mesh.n_vertices());
+  for (std::size_t b = 0; b < bodies.size(); ++b) {
+    std::vector<VH> vertices;
+    std::vector<FH> faces;
+    const mesh::SurfaceMesh surface = reader.read(mesh, mesh.points(), vertex(b, 17), marks, vertices, faces);
+    ASSERT_EQ(surface.points.size(), n);
+    ASSERT_EQ(surface.triangles.size(), bodies[b].triangles.size());
+    ASSERT_EQ(vertices.size(), n);
+    ASSERT_EQ(faces.size(), bodies[b].triangles.size());
+    EXPECT_EQ(vertices.front(), vertex(b, 17));
+    std::set<int> seen;
+    for (std::size_t k = 0; k < vertices.size(); ++k) {
+      EXPECT_EQ(static_cast<std::size_t>(vertices[k].idx()) % 3, b); // only this body's vertices
+      EXPECT_TRUE(seen.insert(vertices[k].idx()).second);            // each once
+      const Vec3 p = detail::to_vec(mesh.points()[vertices[k].idx()]);
+      EXPECT_EQ(surface.points[k], p); // numbered in the order visited
+    }
+    // Closed and consistently oriented: every directed edge once, and its opposite once.
+    std::set<std::pair<std::uint32_t, std::uint32_t>> directed;
+    for (const auto& t : surface.triangles)
+      for (int k = 0; k < 3; ++k)
+        EXPECT_TRUE(directed.insert({t[static_cast<std::size_t>(k)], t[static_cast<std::size_t>((k + 1) % 3)]}).second);
+    for (const auto& [u, v] : directed)
+      EXPECT_TRUE(directed.count({v, u})) << u << " " << v;
+    // The same enclosed volume as the body it was built from (so the orientation was kept).
+    std::vector<Vec3> shifted = bodies[b].points;
+    for (Vec3& p : shifted)
+      p[0] += 20.0 * static_cast<double>(b);
+    std::vector<Triangle> triangles;
+    for (const auto& t : surface.triangles)
+      triangles.push_back({static_cast<int>(t[0]), static_cast<int>(t[1]), static_cast<int>(t[2])});
+    EXPECT_NEAR(six_volume(surface.points, triangles), six_volume(shifted, bodies[b].triangles),
+                1e-9 * six_volume(shifted, bodies[b].triangles));
+    EXPECT_GT(six_volume(surface.points, triangles), 0.0);
+  }
 }
 
 } // namespace

@@ -8,6 +8,7 @@
 #include <array>
 #include <cmath>
 #include <map>
+#include <optional>
 #include <random>
 #include <set>
 #include <utility>
@@ -93,6 +94,15 @@ void build(const ClosedSurface& s, Built& out) {
   }
 }
 
+// Every face's terms into its corners' sums, relative to `origin`: what an engine holds after
+// appending the faces.
+void add_all_faces(detail::EdgeCost& cost, Built& b, const Vec3& origin) {
+  cost.refresh(b.mesh.vertex_records(), b.mesh.points());
+  cost.set_origin(origin);
+  for (FH f : b.faces)
+    cost.add_face_terms(f);
+}
+
 SimplifyOptions volume_options() {
   SimplifyOptions options;
   options.max_error = 0.5;
@@ -100,16 +110,28 @@ SimplifyOptions volume_options() {
   return options;
 }
 
+// A jittered octahedron in a working mesh and its EdgeCost (cube faces at 0 and `cube_hi`), with
+// every face's terms in.
+struct Costed {
+  ClosedSurface s;
+  Built b;
+  std::optional<detail::EdgeCost> cost;
+};
+
+void make_costed(unsigned seed, double cube_hi, const Vec3& origin, Costed& out) {
+  out.s = jittered_octahedron(seed);
+  build(out.s, out.b);
+  out.cost.emplace(out.b.mesh, volume_options(), std::array<double, 3>{cube_hi, cube_hi, cube_hi});
+  add_all_faces(*out.cost, out.b, origin);
+}
+
 TEST(EdgeCost, VolumePlaneIsWhereTheCollapseKeepsTheEnclosedVolume) {
   for (unsigned seed : {1u, 2u, 3u}) {
-    const ClosedSurface s = jittered_octahedron(seed);
-    Built b;
-    build(s, b);
-    detail::EdgeCost cost(b.mesh, volume_options(), {511.0, 511.0, 511.0});
-    cost.refresh(b.mesh.vertex_records(), b.mesh.points());
-    cost.set_origin({16.0, 24.0, 32.0}); // a block's corner: the sums are taken relative to it
-    for (FH f : b.faces)
-      cost.add_face_terms(f);
+    Costed costed;
+    make_costed(seed, 511.0, {16.0, 24.0, 32.0}, costed); // a block's corner: sums are relative to it
+    const ClosedSurface& s = costed.s;
+    Built& b = costed.b;
+    detail::EdgeCost& cost = *costed.cost;
     const double before = six_volume(s.points, s.triangles);
 
     std::mt19937 rng(seed);
@@ -147,14 +169,11 @@ TEST(EdgeCost, VolumePlaneIsWhereTheCollapseKeepsTheEnclosedVolume) {
 }
 
 TEST(EdgeCost, RunningSumsMatchARecomputationAfterFacesLeaveAndReturn) {
-  const ClosedSurface s = jittered_octahedron(7);
-  Built b;
-  build(s, b);
-  detail::EdgeCost cost(b.mesh, volume_options(), {511.0, 511.0, 511.0});
-  cost.refresh(b.mesh.vertex_records(), b.mesh.points());
-  cost.set_origin({16.0, 24.0, 32.0});
-  for (FH f : b.faces)
-    cost.add_face_terms(f);
+  Costed costed;
+  make_costed(7, 511.0, {16.0, 24.0, 32.0}, costed);
+  const ClosedSurface& s = costed.s;
+  Built& b = costed.b;
+  detail::EdgeCost& cost = *costed.cost;
   // Every other face leaves its corners' sums (but those of vertices 0 and 1) and comes back, as
   // the faces around a collapse do.
   for (std::size_t k = 0; k < b.faces.size(); k += 2)
@@ -189,13 +208,10 @@ TEST(EdgeCost, RunningSumsMatchARecomputationAfterFacesLeaveAndReturn) {
 }
 
 TEST(EdgeCost, CubeFacesFixTheCoordinateOrForbidTheCollapse) {
-  const ClosedSurface s = jittered_octahedron(3);
-  Built b;
-  build(s, b);
-  detail::EdgeCost cost(b.mesh, volume_options(), {63.0, 63.0, 63.0});
-  cost.refresh(b.mesh.vertex_records(), b.mesh.points());
-  for (FH f : b.faces)
-    cost.add_face_terms(f);
+  Costed costed;
+  make_costed(3, 63.0, {0.0, 0.0, 0.0}, costed);
+  Built& b = costed.b;
+  detail::EdgeCost& cost = *costed.cost;
   const HH h = b.mesh.halfedge_handle(VH(0));
   const int ia = b.mesh.from_vertex_handle(h).idx(), ib = b.mesh.to_vertex_handle(h).idx();
   detail::VertexRecord* r = b.mesh.vertex_records();

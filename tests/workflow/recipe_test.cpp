@@ -199,6 +199,8 @@ TEST_F(Recipes, AnErrorInAnOverriddenValueNamesTheSetNotALineOfTheFile) {
   EXPECT_EQ(range.rfind("--set steps.extract.isotropy=7: ", 0), 0u) << range;
   std::string key = error_of(good, {"execution={workers: 2, wokers: 3}"});
   EXPECT_EQ(key.rfind("--set execution={workers: 2, wokers: 3}: unknown key 'wokers'", 0), 0u) << key;
+  std::string added = error_of(good, {"execution.wokers=3"}); // the key itself comes from the --set
+  EXPECT_EQ(added.rfind("--set execution.wokers=3: unknown key 'wokers'", 0), 0u) << added;
   // The second override of a key replaces the first: the error is the second's.
   std::string twice = error_of(good, {"execution.workers=0", "execution.workers=-1"});
   EXPECT_EQ(twice.rfind("--set execution.workers=-1: ", 0), 0u) << twice;

@@ -340,8 +340,10 @@ Recipe parse_recipe(const std::string& text, const std::string& name, const Plug
   // One document, no duplicate keys, no control characters (yaml_reader.cpp).
   YAML::Node root = detail::load_single_document(text, name);
   RecipeSource source(name);
-  for (const auto& o : overrides)
-    source.add_override(detail::apply_override(root, o), o);
+  for (const auto& o : overrides) {
+    const detail::GraftedOverride grafted = detail::apply_override(root, o);
+    source.add_override(grafted.key, grafted.value, o);
+  }
 
   Recipe r;
   r.path = name;

@@ -45,7 +45,7 @@ std::optional<YAML::Node> element(const YAML::Node& node, const std::string& par
 }
 } // namespace
 
-YAML::Node apply_override(YAML::Node root, const std::string& text) {
+GraftedOverride apply_override(YAML::Node root, const std::string& text) {
   auto eq = text.find('=');
   if (eq == std::string::npos || eq == 0)
     throw InvalidArgument("--set '" + text + "' is not key=value", {}, "for example --set execution.workers=4");
@@ -77,15 +77,18 @@ YAML::Node apply_override(YAML::Node root, const std::string& text) {
   }
   // A malformed value is the --set's fault, named as such (not "base.yaml:1:1").
   try {
-    YAML::Node parsed = load_single_document(value, "--set " + text);
+    GraftedOverride grafted;
+    grafted.value = load_single_document(value, "--set " + text);
     if (node.IsSequence()) {
       // A whole step: the element is replaced in the list (a key would turn the list into a map).
       YAML::Node target = *element(node, parts.back(), text);
-      target = parsed;
-    } else {
-      node[parts.back()] = parsed;
+      target = grafted.value;
+      return grafted;
     }
-    return parsed;
+    node[parts.back()] = grafted.value;
+    for (const auto& entry : node)
+      if (entry.second.is(grafted.value)) grafted.key.reset(entry.first);
+    return grafted;
   } catch (const YAML::Exception& e) {
     throw InvalidArgument("--set " + text + ": the value is not valid YAML: " + e.msg, {},
                           "quote the value, e.g. --set 'key=\"text\"'");

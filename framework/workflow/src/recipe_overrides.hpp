@@ -9,7 +9,12 @@ namespace geotandem::workflow::detail {
 
 // Applies one --set override to the YAML tree. Steps are addressed by index (steps.2.iso) or by
 // their 'as' / step name (steps.extract.iso). Throws InvalidArgument for a malformed override or
-// an unknown step. Returns the value's node, now in the tree (its positions are within the value).
-YAML::Node apply_override(YAML::Node root, const std::string& text);
+// an unknown step. Returns the nodes it put in the tree: the value (its positions are within the
+// value) and, in a mapping, its key (which has none).
+struct GraftedOverride {
+  YAML::Node key; // null when the value replaced a step of the list
+  YAML::Node value;
+};
+GraftedOverride apply_override(YAML::Node root, const std::string& text);
 
 } // namespace geotandem::workflow::detail

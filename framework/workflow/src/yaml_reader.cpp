@@ -160,14 +160,14 @@ bool contains(const YAML::Node& root, const YAML::Node& node, int depth = 0) {
 }
 } // namespace
 
-void RecipeSource::add_override(const YAML::Node& value, std::string text) {
-  overrides_.emplace_back(value, std::move(text));
+void RecipeSource::add_override(const YAML::Node& key, const YAML::Node& value, std::string text) {
+  overrides_.push_back({key, value, std::move(text)});
 }
 
 const std::string* RecipeSource::override_of(const YAML::Node& node) const {
   // The last override of a key replaced any earlier one's value: search from the last.
   for (auto it = overrides_.rbegin(); it != overrides_.rend(); ++it)
-    if (contains(it->first, node)) return &it->second;
+    if ((!it->key.IsNull() && it->key.is(node)) || contains(it->value, node)) return &it->text;
   return nullptr;
 }
 

@@ -6,7 +6,6 @@
 
 #include <set>
 #include <string>
-#include <utility>
 #include <vector>
 
 #include "geotandem/core/error.hpp"
@@ -25,8 +24,9 @@ InvalidArgument error_at(const std::string& file, const YAML::Node& node, const 
 class RecipeSource {
 public:
   explicit RecipeSource(std::string file) : file_(std::move(file)) {}
-  // `value`: the node apply_override() put in the tree for the override `text`.
-  void add_override(const YAML::Node& value, std::string text);
+  // `key` and `value`: the nodes apply_override() put in the tree for the override `text` (a null
+  // key when there is none).
+  void add_override(const YAML::Node& key, const YAML::Node& value, std::string text);
   const std::string& file() const { return file_; }
   // The node's line and column in the file; none for a node of an override.
   Where where_of(const YAML::Node& node) const;
@@ -38,7 +38,11 @@ private:
   const std::string* override_of(const YAML::Node& node) const;
 
   std::string file_;
-  std::vector<std::pair<YAML::Node, std::string>> overrides_;
+  struct Override {
+    YAML::Node key, value;
+    std::string text;
+  };
+  std::vector<Override> overrides_;
 };
 
 // An InvalidArgument at `node`, located by `source`.

@@ -91,8 +91,14 @@ void add_validate_command(CLI::App& app, Context& context, Runner& run) {
       std::cout << args->recipe << ": valid, " << recipe.steps.size() << " steps:";
       for (const auto& s : recipe.steps)
         std::cout << ' ' << s.name;
-      std::cout << "; scheduler " << recipe.execution.scheduler << " with " << recipe.execution.workers
-                << " worker(s)\n";
+      // Without `workers`, a local run takes one worker per core, at most one per block
+      // (default_worker_count): the cube is not opened here to count them.
+      const workflow::ExecutionSpec& ex = recipe.execution;
+      std::cout << "; scheduler " << ex.scheduler << " with ";
+      if (ex.workers_given || ex.scheduler != "local")
+        std::cout << ex.workers << " worker(s)\n";
+      else
+        std::cout << "one worker per core, at most one per block\n";
       return 0;
     };
   });

@@ -61,6 +61,18 @@ TEST(WorkflowRecipes, SegyPlaceholderIsReplacedWithSet) {
   EXPECT_EQ(r.exit_code, 0) << r.err;
 }
 
+TEST(WorkflowRecipes, ValidateSaysHowManyWorkersARunWouldStart) {
+  // Without `workers` a local run starts one per core (it printed "1 worker(s)" and ran 2).
+  const std::string quickstart = test_paths::workflows() + "/quickstart.yaml";
+  auto by_default = run_geotandem("validate '" + quickstart + "'");
+  ASSERT_EQ(by_default.exit_code, 0) << by_default.err;
+  EXPECT_NE(by_default.out.find("scheduler local with one worker per core, at most one per block"), std::string::npos)
+      << by_default.out;
+  auto given = run_geotandem("validate '" + quickstart + "' --set execution.workers=3");
+  ASSERT_EQ(given.exit_code, 0) << given.err;
+  EXPECT_NE(given.out.find("scheduler local with 3 worker(s)"), std::string::npos) << given.out;
+}
+
 TEST(WorkflowRecipes, SlurmRecipeKeepsItsExecutionSection) {
   auto r = run_geotandem("validate '" + test_paths::workflows() + "/slurm.yaml'");
   ASSERT_EQ(r.exit_code, 0) << r.err;

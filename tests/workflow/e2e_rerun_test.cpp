@@ -110,3 +110,37 @@ TEST(WorkflowRerun, SecondRunReusesTheExtractionAndChangedStepsAreRecomputed) {
   EXPECT_NE(store.size(), components);
   EXPECT_NEAR(nlohmann::json::parse(store.runs().front().parameters).at("iso").get<double>(), 0.35, 1e-6); // a float
 }
+
+TEST(WorkflowRerun, AComponentStepThatKeepsNothingStillWritesTheReportAndNoStaleExport) {
+  ScratchDir dir;
+  fs::path out = dir.path() / "out";
+  std::string recipe = workflow_recipe("quickstart.yaml");
+  auto first = run_workflow(recipe, out, small);
+  ASSERT_EQ(first.command.exit_code, 0) << first.command.err;
+  ASSERT_TRUE(fs::exists(out / "bodies.ply"));
+
+  // A bubble rule no body passes: the exports have nothing to write. The run used to stop there
+  // ("no component to export", exit 2) before the report, leaving the first run's exports and
+  // report in place as if they were this run's.
+  auto none = run_workflow(recipe, out, with(small, "steps.remove_bubbles.min_volume=1e30"));
+  ASSERT_EQ(none.command.exit_code, 0) << none.command.err;
+  EXPECT_NE(none.command.out.find(", 0 kept"), std::string::npos) << none.command.out;
+  for (const char* file : {"bodies.ply", "bodies.vtp", "bodies.ts"}) {
+    EXPECT_FALSE(fs::exists(out / file)) << file << " of the first run is still there";
+    EXPECT_NE(none.command.err.find(std::string("no ") + file + " written"), std::string::npos) << none.command.err;
+  }
+  std::ifstream report_in(out / "report.html");
+  std::string report((std::istreambuf_iterator<char>(report_in)), std::istreambuf_iterator<char>());
+  EXPECT_NE(report.find("<span class=\"kept\">0 kept</span>"), std::string::npos) << "the report is the first run's";
+  EXPECT_NE(report.find("nothing to export"), std::string::npos);
+
+  // An export the recipe writes outside its output directory is never removed.
+  const fs::path outside = dir.path() / "mine.ply";
+  { std::ofstream(outside) << "not geotandem's"; }
+  auto kept_outside =
+      run_workflow(recipe, out,
+                   with(with(small, "steps.remove_bubbles.min_volume=1e30"),
+                        "output.exports=[{format: ply, path: " + fs::relative(outside, out).string() + "}]"));
+  ASSERT_EQ(kept_outside.command.exit_code, 0) << kept_outside.command.err;
+  EXPECT_TRUE(fs::exists(outside));
+}

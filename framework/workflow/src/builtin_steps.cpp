@@ -150,6 +150,20 @@ public:
     // (an absolute path, or ../ leading out) is never replaced.
     const auto inside = std::filesystem::path(path).lexically_normal();
     options.overwrite = inside.is_relative() && !inside.empty() && *inside.begin() != "..";
+    if (rows.empty()) {
+      // Nothing to export (no component was extracted, or the component steps kept none): no file,
+      // and not the one an earlier run left either, so that the output directory shows this run's
+      // result. The run goes on to its report, where the counts say why.
+      std::string note = "no " + path + " written";
+      std::error_code ec;
+      const auto target = out_dir / path;
+      if (options.overwrite && std::filesystem::is_regular_file(std::filesystem::symlink_status(target, ec)) &&
+          std::filesystem::remove(target, ec))
+        note += "; the one an earlier run wrote was removed";
+      context.log.warning("export " + p.at("format").text + ": the selection '" + q.selection +
+                          "' holds no component: " + note);
+      return {0, 0, ""};
+    }
     auto summary = store::export_components(store, rows, out_dir / path, options, context.progress, context.cancel);
     return {rows.size(), summary.components, path};
   }

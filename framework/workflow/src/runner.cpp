@@ -246,8 +246,8 @@ private:
     StepContext c = context(*progress);
     ExportOutcome r = plugin.export_components(*store_, step.params, selection_, out_dir_, c);
     const std::string label = step.params.count("format") ? step.name + " " + step.params.at("format").text : step.name;
-    report_.steps.push_back({label, since(t), r.rows, r.components, r.path});
-    report_.outputs.push_back(r.path);
+    report_.steps.push_back({label, since(t), r.rows, r.components, r.path.empty() ? "nothing to export" : r.path});
+    if (!r.path.empty()) report_.outputs.push_back(r.path);
   }
 
   // The report: every component of the store, marked kept when in the final selection.

@@ -72,7 +72,7 @@ struct ComponentOutcome {
 struct ExportOutcome {
   std::uint64_t rows = 0;       // components asked for
   std::uint64_t components = 0; // written
-  std::string path;             // relative to the output directory
+  std::string path;             // relative to the output directory; empty when nothing was written
 };
 
 class Plugin {

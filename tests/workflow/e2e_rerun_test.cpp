@@ -143,4 +143,6 @@ TEST(WorkflowRerun, AComponentStepThatKeepsNothingStillWritesTheReportAndNoStale
                         "output.exports=[{format: ply, path: " + fs::relative(outside, out).string() + "}]"));
   ASSERT_EQ(kept_outside.command.exit_code, 0) << kept_outside.command.err;
   EXPECT_TRUE(fs::exists(outside));
+  EXPECT_NE(kept_outside.command.err.find("already there is not this run's"), std::string::npos)
+      << kept_outside.command.err;
 }

@@ -160,6 +160,8 @@ public:
       if (options.overwrite && std::filesystem::is_regular_file(std::filesystem::symlink_status(target, ec)) &&
           std::filesystem::remove(target, ec))
         note += "; the one an earlier run wrote was removed";
+      else if (std::filesystem::exists(std::filesystem::symlink_status(target, ec)))
+        note += "; the " + path + " already there is not this run's";
       context.log.warning("export " + p.at("format").text + ": the selection '" + q.selection +
                           "' holds no component: " + note);
       return {0, 0, ""};

@@ -162,8 +162,8 @@ public:
         note += "; the one an earlier run wrote was removed";
       else if (std::filesystem::exists(std::filesystem::symlink_status(target, ec)))
         note += "; the " + path + " already there is not this run's";
-      context.log.warning("export " + p.at("format").text + ": the selection '" + q.selection +
-                          "' holds no component: " + note);
+      const std::string from = q.selection.empty() ? "the store" : "the selection '" + q.selection + "'";
+      context.log.warning("export " + p.at("format").text + ": " + from + " holds no component: " + note);
       return {0, 0, ""};
     }
     auto summary = store::export_components(store, rows, out_dir / path, options, context.progress, context.cancel);

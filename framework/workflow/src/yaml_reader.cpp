@@ -133,15 +133,22 @@ Where where_of(const YAML::Node& node) {
   return {mark.line + 1, mark.column + 1};
 }
 
-InvalidArgument error_at(const std::string& file, const YAML::Node& node, const std::string& message,
-                         const std::string& hint) {
-  Where w = where_of(node);
+namespace {
+// `file`, with the node's line and column when it has them.
+ErrorContext context_in(const std::string& file, const YAML::Node& node) {
+  const Where w = where_of(node);
   ErrorContext context{file};
   if (w.line > 0) {
     context.line = w.line;
     context.column = w.column;
   }
-  return InvalidArgument(message, context, hint);
+  return context;
+}
+} // namespace
+
+InvalidArgument error_at(const std::string& file, const YAML::Node& node, const std::string& message,
+                         const std::string& hint) {
+  return InvalidArgument(message, context_in(file, node), hint);
 }
 
 namespace {
@@ -178,13 +185,7 @@ Where RecipeSource::where_of(const YAML::Node& node) const {
 
 ErrorContext RecipeSource::context_of(const YAML::Node& node) const {
   if (const std::string* text = override_of(node)) return ErrorContext{"--set " + *text};
-  ErrorContext context{file_};
-  const Where w = detail::where_of(node);
-  if (w.line > 0) {
-    context.line = w.line;
-    context.column = w.column;
-  }
-  return context;
+  return context_in(file_, node);
 }
 
 InvalidArgument error_at(const RecipeSource& source, const YAML::Node& node, const std::string& message,

@@ -78,6 +78,11 @@ void CollapseDistance::gather(const HalfedgeMesh& mesh, HH h, const HalfedgeMesh
         old_edges_.push_back({0, 1});
     }
   }
+  // The link in counter-clockwise order around c (seen from the side the patch faces): each new
+  // triangle (c, p, q) is one step p -> q of it.
+  fan_next_.assign(points_.size(), -1);
+  for (const auto& t : new_triangles_)
+    fan_next_[static_cast<std::size_t>(t[1])] = t[2];
   // The vector area of the patch (the same before and after: it depends on the boundary only; c
   // is not in the old triangles) and the frame of the projection.
   Vec3 n{0.0, 0.0, 0.0};
@@ -144,9 +149,11 @@ double CollapseDistance::projected(const Vec3& c, double limit) {
   // a and b first: on a refused collapse it is usually there that d_c passes the limit, and every
   // way out below gives the same answer (no use of the projection), so their order is free.
   double w[3];
+  int sector[2];                // the link vertex on the clockwise side of the sector of the fan around c holding a, b
   for (int i = 0; i < 2; ++i) { // a and b, in the new patch (c is its triangles' first corner)
     const auto* t = locate(new_triangles_, at(i), w);
     if (!t) return -1.0;
+    sector[i] = (*t)[1];
     const double z = w[0] * at(2).z + w[1] * at((*t)[1]).z + w[2] * at((*t)[2]).z;
     if (!require(w[0], tol(i) + std::fabs(z - at(i).z) - w[1] * tol((*t)[1]) - w[2] * tol((*t)[2]))) return -1.0;
   }
@@ -180,27 +187,36 @@ double CollapseDistance::projected(const Vec3& c, double limit) {
     if (!require(1.0, old + std::fabs(z - at(2).z))) return -1.0;
   }
   // Crossings of the old interior edges (at a or b) with the new ones (c x): c is the origin. The
-  // sign tests that rule a pair out are taken without branches (they went either way about half
-  // the time), and only the pairs left are computed.
+  // new edge c x can only cross the old edge p q (p is a or b) when x's direction lies in the wedge
+  // that p q spans seen from c, under pi; the fan being one turn in order, those x are a run of
+  // the link from the sector holding p to q (or to the sector holding b). Both ends of the run are
+  // taken with their sectors' sides, and the crossings are then computed exactly; p q nearly in
+  // line with c tries every x.
   const int n_points = static_cast<int>(projected_.size());
-  hits_.resize(projected_.size());
+  hits_.resize(projected_.size() + 1);
   for (const auto& e : old_edges_) {
     const Point2 &p = at(e[0]), &q = at(e[1]);
     const double du = q.u - p.u, dv = q.v - p.v;
-    const double side_c = cross2(du, dv, -p.u, -p.v);
+    const double turn = cross2(p.u, p.v, q.u, q.v);
     int count = 0;
-    for (int x = 3; x < n_points; ++x) {
-      const Point2& r = at(x);
-      // p and q on the same side of the line c x, or c and x on the same side of p q (c is the
-      // origin): multiplications only, for the many pairs that do not cross.
-      const double side_p = cross2(r.u, r.v, p.u, p.v), side_q = cross2(r.u, r.v, q.u, q.v);
-      const double side_x = cross2(du, dv, r.u - p.u, r.v - p.v);
-      const int apart = (static_cast<int>(side_p > 0.0) & static_cast<int>(side_q > 0.0)) |
-                        (static_cast<int>(side_p < 0.0) & static_cast<int>(side_q < 0.0)) |
-                        (static_cast<int>(side_c > 0.0) & static_cast<int>(side_x > 0.0)) |
-                        (static_cast<int>(side_c < 0.0) & static_cast<int>(side_x < 0.0)) | static_cast<int>(x == e[1]);
-      hits_[static_cast<std::size_t>(count)] = x;
-      count += 1 - apart;
+    bool walked = false;
+    if (std::fabs(turn) > 1e-6 * (p.u * p.u + p.v * p.v + q.u * q.u + q.v * q.v)) {
+      const int p_cw = sector[e[0]], p_ccw = fan_next_[static_cast<std::size_t>(p_cw)];
+      const int q_cw = e[1] > 1 ? e[1] : sector[1];
+      const int q_ccw = e[1] > 1 ? e[1] : fan_next_[static_cast<std::size_t>(q_cw)];
+      const int last = turn > 0.0 ? q_ccw : p_ccw;
+      for (int x = turn > 0.0 ? p_cw : q_cw; x > 1 && count < n_points; x = fan_next_[static_cast<std::size_t>(x)]) {
+        if (x != e[1]) hits_[static_cast<std::size_t>(count++)] = x;
+        if (x == last) {
+          walked = true;
+          break;
+        }
+      }
+    }
+    if (!walked) { // in line with c (or a fan that is not one turn, which the tests above rule out)
+      count = 0;
+      for (int x = 3; x < n_points; ++x)
+        if (x != e[1]) hits_[static_cast<std::size_t>(count++)] = x;
     }
     for (int k = 0; k < count; ++k) {
       const int x = hits_[static_cast<std::size_t>(k)];

@@ -66,6 +66,7 @@ private:
   std::vector<std::array<int, 3>> old_triangles_;
   std::vector<std::array<int, 3>> new_triangles_;
   std::vector<std::array<int, 2>> old_edges_; // interior edges of the old patch (at a or b)
+  std::vector<int> fan_next_;                 // per link vertex, the next one counter-clockwise around c
   // The gathered patch: a and b with their bounds, whether either is on the surface's boundary,
   // and the patch's vector area with the frame (u, v, n) of the projection.
   Vec3 a_{}, b_{};

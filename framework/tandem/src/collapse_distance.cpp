@@ -149,7 +149,9 @@ double CollapseDistance::projected(const Vec3& c, double limit) {
   // a and b first: on a refused collapse it is usually there that d_c passes the limit, and every
   // way out below gives the same answer (no use of the projection), so their order is free.
   double w[3];
-  int sector[2];                // the link vertex on the clockwise side of the sector of the fan around c holding a, b
+  // The sectors of the fan around c that hold a and b, each named by the link vertex on its
+  // clockwise side.
+  int sector[2];
   for (int i = 0; i < 2; ++i) { // a and b, in the new patch (c is its triangles' first corner)
     const auto* t = locate(new_triangles_, at(i), w);
     if (!t) return -1.0;

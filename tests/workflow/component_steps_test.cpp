@@ -108,6 +108,23 @@ TEST(RemoveBubbles, CutComponentsAreJudgedByAreaAndMinTrianglesApplies) {
   EXPECT_THROW(remove_bubbles(f.store, rules), InvalidArgument);
 }
 
+TEST(RemoveBubbles, AHollowBodysInnerSurfaceIsDroppedByAVolumeRuleOnly) {
+  geotandem::testing::ScratchDir dir;
+  Fixture f(dir.file("store"));
+  // A hollow body: its outer surface (5000) and its inner one, whose enclosed volume is negative;
+  // and a speck.
+  f.add({component(1, 5000, 0, true), component(2, -800, 0, true), component(3, 2, 0, true)});
+  BubbleRemoval rules;
+  rules.closed_only = true; // no volume rule: nothing goes for its volume
+  auto r = remove_bubbles(f.store, rules);
+  EXPECT_EQ(r.kept, (std::vector<std::uint64_t>{1, 3, 2}));
+  EXPECT_EQ(r.after, 3u);
+  rules.min_volume_fraction = 0.1;
+  r = remove_bubbles(f.store, rules);
+  EXPECT_DOUBLE_EQ(r.threshold, 500.0);
+  EXPECT_EQ(r.kept, (std::vector<std::uint64_t>{1}));
+}
+
 TEST(SortByAzimuth, HistogramRangeWithWrapAndAxialMean) {
   geotandem::testing::ScratchDir dir;
   Fixture f(dir.file("store"));

@@ -51,13 +51,16 @@ BubbleResult remove_bubbles(store::ComponentStore& store, const BubbleRemoval& r
     }
   }
   result.threshold = threshold;
+  // Volumes are signed: the inner surface of a hollow body encloses a negative volume, so any
+  // volume rule drops it, but without one nothing is dropped for its volume.
+  const bool by_volume = rules.min_volume > 0 || rules.min_volume_fraction > 0 || rules.min_volume_percentile > 0;
   std::vector<const store::ComponentRow*> kept;
   for (const auto& r : rows) {
     if (r.stats.triangle_count < rules.min_triangles) continue;
     // Cut bodies are closed by caps and measured like any other, unless closed_only drops them.
     if (rules.closed_only && r.stats.cut_by_border) continue;
-    bool big =
-        r.stats.closed ? r.stats.volume >= threshold : !rules.closed_only && r.stats.area >= sphere_area(threshold);
+    const bool big = !by_volume || (r.stats.closed ? r.stats.volume >= threshold
+                                                   : !rules.closed_only && r.stats.area >= sphere_area(threshold));
     if (big) kept.push_back(&r);
   }
   std::sort(kept.begin(), kept.end(), [](const auto* a, const auto* b) {

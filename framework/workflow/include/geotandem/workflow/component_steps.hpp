@@ -30,7 +30,9 @@ struct BubbleResult {
 // Keeps a component when its volume reaches the threshold and it has enough triangles. A component
 // cut by the cube's border has no enclosed volume; it is kept when the area of its part inside the
 // cube reaches the area of a sphere of the threshold volume (by the isoperimetric inequality no
-// body smaller than the threshold has that much surface), unless closed_only.
+// body smaller than the threshold has that much surface), unless closed_only. Volumes are signed:
+// a volume rule drops the inner surface of a hollow body (negative volume); with no volume rule
+// set, no component is dropped for its volume.
 // Throws InvalidArgument for out-of-range rules or an unknown `from` selection.
 BubbleResult remove_bubbles(store::ComponentStore& store, const BubbleRemoval& rules);
 

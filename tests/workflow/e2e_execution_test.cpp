@@ -6,7 +6,6 @@
 
 #include <algorithm>
 #include <cstdlib>
-#include <fstream>
 #include <thread>
 
 #include "e2e_support.hpp"
@@ -38,8 +37,7 @@ TEST(WorkflowExecution, SlurmRecipeRunsWithLocalWorkersAndSaysSo) {
                           {"input.synthetic.shape=[64, 64, 48]", "execution.workers=2", "execution.scheduler=local"});
   ASSERT_EQ(run.command.exit_code, 0) << run.command.err;
   EXPECT_GT(store::ComponentStore::open(out / "store").size(), 0u);
-  std::ifstream in(out / "report.html");
-  std::string report((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const std::string report = read_text(out / "report.html");
   EXPECT_NE(report.find("2 local worker processes"), std::string::npos);
 }
 
@@ -65,8 +63,7 @@ TEST(WorkflowExecution, ReportStatesTheWorkersTheDefaultGave) {
   auto run = run_workflow(workflow_recipe("quickstart.yaml"), out,
                           {"input.synthetic.shape=[64, 64, 48]", "steps.extract.block_size=16"});
   ASSERT_EQ(run.command.exit_code, 0) << run.command.err;
-  std::ifstream in(out / "report.html");
-  std::string report((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const std::string report = read_text(out / "report.html");
   const unsigned cores = std::max(1u, std::thread::hardware_concurrency());
   const std::string expected = cores >= 2 ? std::to_string(std::min(cores, 48u)) + " local worker processes"
                                           : std::string("local, in this process");

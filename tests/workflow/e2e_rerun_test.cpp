@@ -79,8 +79,7 @@ TEST(WorkflowRerun, SecondRunReusesTheExtractionAndChangedStepsAreRecomputed) {
     EXPECT_EQ(store.size(), components);
     EXPECT_EQ(store.load_selection("kept").keys, kept_before);
   }
-  std::ifstream report_in(out / "report.html");
-  std::string report((std::istreambuf_iterator<char>(report_in)), std::istreambuf_iterator<char>());
+  const std::string report = read_text(out / "report.html");
   EXPECT_NE(report.find("reused from a previous run"), std::string::npos);
 
   // A stricter bubble rule: the extraction is reused, remove_bubbles and sort_by_azimuth are
@@ -129,8 +128,7 @@ TEST(WorkflowRerun, AComponentStepThatKeepsNothingStillWritesTheReportAndNoStale
     EXPECT_FALSE(fs::exists(out / file)) << file << " of the first run is still there";
     EXPECT_NE(none.command.err.find(std::string("no ") + file + " written"), std::string::npos) << none.command.err;
   }
-  std::ifstream report_in(out / "report.html");
-  std::string report((std::istreambuf_iterator<char>(report_in)), std::istreambuf_iterator<char>());
+  const std::string report = read_text(out / "report.html");
   EXPECT_NE(report.find("<span class=\"kept\">0 kept</span>"), std::string::npos) << "the report is the first run's";
   EXPECT_NE(report.find("nothing to export"), std::string::npos);
 

@@ -30,6 +30,8 @@ WorkflowRun run_workflow(const std::string& recipe, const std::filesystem::path&
 std::string workflow_recipe(const std::string& name);
 
 nlohmann::json read_json(const std::filesystem::path& path);
+// A file's whole content (empty when it cannot be read: the assertions on it then fail).
+std::string read_text(const std::filesystem::path& path);
 
 // A planted body of the ground truth JSON, with what the matching needs.
 struct PlantedBody {

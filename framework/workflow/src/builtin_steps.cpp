@@ -157,10 +157,10 @@ public:
       std::string note = "no " + path + " written";
       std::error_code ec;
       const auto target = out_dir / path;
-      if (options.overwrite && std::filesystem::is_regular_file(std::filesystem::symlink_status(target, ec)) &&
-          std::filesystem::remove(target, ec))
+      const auto status = std::filesystem::symlink_status(target, ec);
+      if (options.overwrite && std::filesystem::is_regular_file(status) && std::filesystem::remove(target, ec))
         note += "; the one an earlier run wrote was removed";
-      else if (std::filesystem::exists(std::filesystem::symlink_status(target, ec)))
+      else if (std::filesystem::exists(status))
         note += "; the " + path + " already there is not this run's";
       const std::string from = q.selection.empty() ? "the store" : "the selection '" + q.selection + "'";
       context.log.warning("export " + p.at("format").text + ": " + from + " holds no component: " + note);

@@ -147,6 +147,16 @@ void adjust_outgoing_halfedge(HalfedgeMesh& m, VH v) {
 
 namespace {
 
+[[maybe_unused]] bool fan_is_closed(const HalfedgeMesh& m, VH v) {
+  const HH start = m.halfedge_handle(v);
+  HH g = start;
+  do {
+    if (boundary_halfedge(m, g)) return false;
+    g = next_outgoing(m, g);
+  } while (g != start);
+  return true;
+}
+
 // The face of h0 has become a loop of two halfedges h0 (v0 -> v1) and h1 (v1 -> v0): drop the
 // edge of h0 and the face, and let h1 take the place of h0's opposite in the neighbouring face.
 void collapse_loop(HalfedgeMesh& m, HH h0, CollapseResult& r) {
@@ -185,6 +195,11 @@ CollapseResult collapse_halfedge(HalfedgeMesh& m, HH h) {
   const FH fh = m.face_handle(h), fo = m.face_handle(o);
   const VH x = fh.is_valid() ? m.to_vertex_handle(hn) : VH();
   const VH y = fo.is_valid() ? m.to_vertex_handle(on) : VH();
+  // A vertex whose fan is closed keeps it closed (c's is when a's and b's are; x and y only lose
+  // the triangles of ab): only those at the boundary need their outgoing halfedge looked for.
+  const bool c_on_boundary = m.is_boundary(a) || m.is_boundary(b);
+  const bool x_on_boundary = x.is_valid() && m.is_boundary(x);
+  const bool y_on_boundary = y.is_valid() && m.is_boundary(y);
 
   // Every halfedge that ended at a now ends at b.
   const HH start = m.halfedge_handle(a);
@@ -212,9 +227,12 @@ CollapseResult collapse_halfedge(HalfedgeMesh& m, HH h) {
   if (fh.is_valid()) collapse_loop(m, hn, r);
   if (fo.is_valid()) collapse_loop(m, on, r);
 
-  adjust_outgoing_halfedge(m, b);
-  if (x.is_valid()) adjust_outgoing_halfedge(m, x);
-  if (y.is_valid()) adjust_outgoing_halfedge(m, y);
+  if (c_on_boundary) adjust_outgoing_halfedge(m, b);
+  if (x_on_boundary) adjust_outgoing_halfedge(m, x);
+  if (y_on_boundary) adjust_outgoing_halfedge(m, y);
+  assert(c_on_boundary || fan_is_closed(m, b));
+  assert(x_on_boundary || !x.is_valid() || fan_is_closed(m, x));
+  assert(y_on_boundary || !y.is_valid() || fan_is_closed(m, y));
   return r;
 }
 

@@ -1,12 +1,13 @@
 // Hostile but realistic invocations: FIFOs, devices and directories where files belong, recipes with
-// duplicate keys or a second document, absurd shapes, overflowing sidecars, a negative SEG-Y sample
-// interval, unwritable outputs, out of memory, Ctrl-C and SIGTERM. Each ends promptly with its typed
-// exit code (2, 3, 4, 5; 130 for an interrupt), never a hang, never 70.
+// duplicate keys or a second document, absurd shapes, a cube one sample thick, overflowing sidecars, a negative SEG-Y
+// sample interval, unwritable outputs, out of memory, Ctrl-C and SIGTERM. Each ends promptly with its typed exit code
+// (2, 3, 4, 5; 130 for an interrupt), never a hang, never 70.
 
 #include <gtest/gtest.h>
 #include <signal.h>
 #include <sys/stat.h>
 
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 
@@ -182,6 +183,47 @@ TEST(HostileInputCli, ARawSidecarWhoseByteCountOverflowsIsRefused) {
   auto r = run_geotandem("info '" + cube + "'");
   EXPECT_EQ(r.exit_code, 4) << r.err;
   EXPECT_NE(r.err.find("more than 2^64 bytes"), std::string::npos) << r.err;
+}
+
+TEST(HostileInputCli, ACubeOneSampleThickIsRefusedBeforeAStoreIsMade) {
+  // A single crossline (20 x 1 x 30 samples) of a raw cube written by hand: a 2-D section, no cell.
+  ScratchDir dir;
+  const auto cube = dir.file("section.raw");
+  std::string samples(20 * 1 * 30 * sizeof(float), '\0');
+  for (std::size_t i = 0; i < samples.size() / sizeof(float); ++i) {
+    const float v = i % 7 == 0 ? 1.0f : 0.0f;
+    std::memcpy(samples.data() + i * sizeof(float), &v, sizeof v);
+  }
+  write_text(cube, samples);
+  nlohmann::json sidecar = {{"format", "geotandem-raw"},
+                            {"version", 1},
+                            {"dtype", "float32"},
+                            {"byte_order", "little"},
+                            {"order", "C"},
+                            {"shape", {20, 1, 30}},
+                            {"axes", {"inline", "crossline", "sample"}}};
+  sidecar["geometry"] = {
+      {"inline0", 1},    {"inline_step", 1},
+      {"crossline0", 1}, {"crossline_step", 1},
+      {"z0", 0},         {"dz", 4},
+      {"z_unit", "ms"},  {"affine", {{"x0", 0.0}, {"xi", 12.5}, {"xj", 0.0}, {"y0", 0.0}, {"yi", 0.0}, {"yj", 12.5}}}};
+  write_text(cube + ".json", sidecar.dump());
+  const auto info = run_geotandem("-q info '" + cube + "'");
+  ASSERT_EQ(info.exit_code, 0) << info.err; // a valid cube, just not 3-D
+
+  for (const std::string blocks : {"0", "8"}) {
+    auto r =
+        run_geotandem("-q extract '" + cube + "' --iso 0.5 --block-size " + blocks + " --out '" + dir.file("st") + "'");
+    EXPECT_EQ(r.exit_code, 2) << r.err;
+    EXPECT_NE(r.err.find("section.raw: the cube has 1 sample along the crossline axis"), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("at least 2 samples along each axis"), std::string::npos) << r.err;
+    EXPECT_FALSE(std::filesystem::exists(dir.file("st"))) << "a store was made for a cube it cannot hold";
+  }
+  write_text(dir.file("r.yaml"), extract_recipe("file: section.raw", "out"));
+  auto r = run_geotandem("-q run-workflow '" + dir.file("r.yaml") + "'");
+  EXPECT_EQ(r.exit_code, 2) << r.err;
+  EXPECT_NE(r.err.find("section.raw: the cube has 1 sample along the crossline axis"), std::string::npos) << r.err;
+  EXPECT_FALSE(std::filesystem::exists(dir.file("out/store")));
 }
 
 TEST(HostileInputCli, ANegativeSegySampleIntervalIsAnError) {

@@ -146,9 +146,23 @@ void warn_if_empty(ExtractResult& result, const ExtractSettings& settings, Logge
   }
 }
 
+void require_cells(const volume::Geometry& geometry, const std::string& source) {
+  static const char* const kAxes[3] = {"inline", "crossline", "sample"};
+  const auto& n = geometry.shape;
+  for (std::size_t axis = 0; axis < 3; ++axis) {
+    if (n[axis] >= 2) continue;
+    throw InvalidArgument(
+        "the cube has " + std::to_string(n[axis]) + " sample" + (n[axis] == 1 ? "" : "s") + " along the " +
+            kAxes[axis] + " axis (shape " + std::to_string(n[0]) + " x " + std::to_string(n[1]) + " x " +
+            std::to_string(n[2]) + "): an isosurface needs at least 2 samples along each axis",
+        {source}, "a single inline, crossline or time slice is a 2-D section; extract from a 3-D cube");
+  }
+}
+
 ExtractResult extract_to_store(const volume::Volume& volume, store::ComponentStore& store,
                                const ExtractSettings& settings, Logger& log, Progress& progress,
                                const CancelToken& cancel) {
+  require_cells(volume.geometry(), {});
   if (!(store.geometry() == volume.geometry()))
     throw InvalidArgument("the store was made for another cube geometry", {store.directory().string()},
                           "extract into a new store directory");

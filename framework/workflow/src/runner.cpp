@@ -139,6 +139,7 @@ private:
   StepContext context(Progress& progress) { return StepContext{log_, progress, cancel_}; }
 
   void extract(const Plugin& plugin, const StepSpec& step) {
+    require_cells(volumes_.result->geometry(), volumes_.input->source()); // before anything is written
     if (settings_.fresh && fs::exists(store_dir_)) {
       store::ComponentStore::remove(store_dir_); // Refuses while another process writes it
       log_.info("--fresh: removed the previous store " + store_dir_.string());

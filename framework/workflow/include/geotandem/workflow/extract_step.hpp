@@ -85,6 +85,12 @@ void check_extract_params(const ParamValues& values);
 // The settings of validated values (every parameter of extract_params()).
 ExtractSettings extract_settings(const ParamValues& values);
 
+// Throws InvalidArgument unless the cube has at least two samples along each axis (marching cubes
+// needs one cell; a single inline, crossline or time slice has none). `source` names the cube in
+// the error (its file). Called before anything is written, by the commands and the runner, and
+// again by extract_to_store.
+void require_cells(const volume::Geometry& geometry, const std::string& source);
+
 // Extracts the isosurface of `volume` at settings.iso into `store` (which must be writable and
 // have the volume's geometry), as one block or, with settings.block_size > 0, through the block
 // tree (tandem::extract_blocks). Components are committed as they finish, so an interrupted run

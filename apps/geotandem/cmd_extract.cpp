@@ -84,7 +84,8 @@ void add_extract_command(CLI::App& app, Context& context, Runner& run) {
   cmd->add_option("--workers", a->workers,
                   "local worker processes extracting and merging the blocks (manager/worker runtime); the default is "
                   "one per core, at most one per block (a cube of one block is extracted in this process); 0: "
-                  "everything in this process, on one core");
+                  "everything in this process, on one core")
+      ->check(CLI::Range(0, 4096));
   // Start afresh instead of resuming (refused while another process writes the store).
   cmd->add_flag("--fresh", a->fresh, "replace the store in --out instead of resuming it");
   cmd->add_option("--inline-byte", a->segy.inline_byte, "SEG-Y: trace header byte (1-based) of the inline numbers")

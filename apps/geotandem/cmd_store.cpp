@@ -26,20 +26,22 @@ struct Filters {
               *limit_opt = nullptr;
 
   void add_to(CLI::App* cmd) {
-    min_volume_opt = cmd->add_option("--min-volume", min_volume, "smallest enclosed volume (world units)");
-    max_volume_opt = cmd->add_option("--max-volume", max_volume, "largest enclosed volume (world units)");
+    min_volume_opt =
+        cmd->add_option("--min-volume", min_volume, "smallest enclosed volume (world units)")->check(not_nan());
+    max_volume_opt =
+        cmd->add_option("--max-volume", max_volume, "largest enclosed volume (world units)")->check(not_nan());
     cmd->add_option("--azimuth", azimuth, "azimuth range A:B in degrees from north, axial; 170:10 wraps past north");
     cmd->add_option("--box", box, "world box x0,y0,z0,x1,y1,z1 that the component's bounding box must meet");
-    min_triangles_opt = cmd->add_option("--min-triangles", min_triangles, "fewest triangles");
-    max_triangles_opt = cmd->add_option("--max-triangles", max_triangles, "most triangles");
-    min_vertices_opt = cmd->add_option("--min-vertices", min_vertices, "fewest vertices");
-    max_vertices_opt = cmd->add_option("--max-vertices", max_vertices, "most vertices");
+    min_triangles_opt = cmd->add_option("--min-triangles", min_triangles, "fewest triangles")->check(not_negative());
+    max_triangles_opt = cmd->add_option("--max-triangles", max_triangles, "most triangles")->check(not_negative());
+    min_vertices_opt = cmd->add_option("--min-vertices", min_vertices, "fewest vertices")->check(not_negative());
+    max_vertices_opt = cmd->add_option("--max-vertices", max_vertices, "most vertices")->check(not_negative());
     cmd->add_flag("--closed", closed, "closed surfaces only (not cut by the cube border)");
     cmd->add_option("--selection,--select", selection, "members of this named selection only (e.g. kept, sorted)");
     cmd->add_option("--sort", sort, "key, volume (largest first), azimuth, or selection (the selection's own order)")
         ->capture_default_str();
     cmd->add_flag("--reverse", reverse, "reverse the sort order");
-    limit_opt = cmd->add_option("--limit", limit, "at most this many components");
+    limit_opt = cmd->add_option("--limit", limit, "at most this many components")->check(not_negative());
   }
 
   store::Query query() const {

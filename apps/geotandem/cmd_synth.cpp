@@ -98,7 +98,9 @@ void add_synth_command(CLI::App& app, Context& context, Runner& run) {
                   "inline, crossline and sample counts (each at least " + std::to_string(synth::min_edge) + ")")
       ->expected(3)
       ->capture_default_str();
-  cmd->add_option("--seed", s->seed, "random seed; the same seed and shape give the same cube")->capture_default_str();
+  cmd->add_option("--seed", s->seed, "random seed; the same seed and shape give the same cube")
+      ->capture_default_str()
+      ->check(not_negative());
   cmd->add_option("--out", s->out, "output cube; the format comes from the extension (.nc, .zarr, .tif, .segy, .raw)")
       ->required();
   cmd->add_option("--snr", s->snr, "seismic: RMS signal / RMS noise (> 0, default 4)");

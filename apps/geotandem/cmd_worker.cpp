@@ -4,6 +4,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <filesystem>
 
 #include "command.hpp"
@@ -90,10 +91,12 @@ void add_worker_command(CLI::App& app, Context& context, Runner& run) {
       ->required();
   auto timeout = std::make_shared<double>(10.0);
   cmd->add_option("--manager-timeout", *timeout, "seconds of silence after which the manager is taken for gone")
-      ->capture_default_str();
+      ->capture_default_str()
+      ->check(positive());
   cmd->callback([options, timeout, &context, &run] {
     run = [options, timeout, &context] {
-      options->manager_timeout = std::chrono::milliseconds(static_cast<std::int64_t>(*timeout * 1000));
+      // Under a billion seconds (31 years): inf means never, and the milliseconds must fit.
+      options->manager_timeout = std::chrono::milliseconds(static_cast<std::int64_t>(std::min(*timeout, 1e9) * 1000));
       Logger& log = context.log;
       return runtime::run_worker(
           *options, [&log](const std::string& d) { return open_described_volume(d, log); }, log, context.cancel);

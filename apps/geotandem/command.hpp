@@ -40,6 +40,16 @@ void add_validate_command(CLI::App& app, Context& context, Runner& run);
 void add_workflow_command(CLI::App& app, Context& context, Runner& run);
 void add_worker_command(CLI::App& app, Context& context, Runner& run);
 
+// Checks on numeric options that CLI11 (2.1) would otherwise take in silently: a negative number
+// given to an unsigned option wraps around to a huge one (`--workers -1` asked for 2^64 - 1 local
+// workers), and NaN passes every comparison after it.
+// A count or a seed: no sign.
+const CLI::Validator& not_negative();
+// A real number that is not NaN (infinities pass: a bound that is not there).
+const CLI::Validator& not_nan();
+// A real number > 0, not NaN (infinity passes).
+const CLI::Validator& positive();
+
 // cmd_worker.cpp: how workers rebuild the input volume. The description of a cube file (JSON
 // text), and the volume a description names (the runtime's VolumeFactory).
 std::string describe_cube_file(const std::string& path, const std::string& nan, const std::string& variable,

@@ -185,6 +185,50 @@ TEST(HostileInputCli, ARawSidecarWhoseByteCountOverflowsIsRefused) {
   EXPECT_NE(r.err.find("more than 2^64 bytes"), std::string::npos) << r.err;
 }
 
+TEST(HostileInputCli, NegativeCountsAndNaNBoundsAreUsageErrors) {
+  // CLI11 turns "-1" for an unsigned option into 2^64 - 1: `--workers -1` started local workers
+  // until the machine ran out of processes, `--limit -1` listed everything, and a NaN volume bound
+  // silently selected nothing.
+  ScratchDir dir;
+  const auto cube = dir.file("c.raw");
+  ASSERT_EQ(run_geotandem("-q synth --kind analytic --shape 40 40 40 --out '" + cube + "'").exit_code, 0);
+  auto workers = run_child(dir.path().string(),
+                           {"-q", "extract", cube, "--iso", "0.5", "--out", dir.file("st"), "--workers", "-1"}, 30);
+  ASSERT_FALSE(workers.hung) << "--workers -1 started workers";
+  EXPECT_EQ(workers.exit_code, 2) << workers.err;
+  EXPECT_NE(workers.err.find("--workers"), std::string::npos) << workers.err;
+  EXPECT_FALSE(std::filesystem::exists(dir.file("st")));
+
+  ASSERT_EQ(run_geotandem("-q extract '" + cube + "' --iso 0.5 --workers 0 --out '" + dir.file("st") + "'").exit_code,
+            0);
+  const std::string store = " '" + dir.file("st") + "'";
+  const auto listed = run_geotandem("-q store ls" + store);
+  ASSERT_EQ(listed.exit_code, 0) << listed.err;
+  for (const std::string option : {"--min-triangles -3", "--max-vertices -1", "--limit -1"}) {
+    auto r = run_geotandem("-q store ls" + store + " " + option);
+    EXPECT_EQ(r.exit_code, 2) << option << ": " << r.out;
+    EXPECT_NE(r.err.find("is negative"), std::string::npos) << option << ": " << r.err;
+  }
+  for (const std::string option : {"--min-volume nan", "--max-volume NaN"}) {
+    auto r = run_geotandem("-q store ls" + store + " " + option);
+    EXPECT_EQ(r.exit_code, 2) << option << ": " << r.out;
+    EXPECT_NE(r.err.find("is not a number"), std::string::npos) << option << ": " << r.err;
+  }
+  // Infinite bounds are bounds that are not there.
+  auto unbounded = run_geotandem("-q store ls" + store + " --min-volume -inf --max-volume inf");
+  EXPECT_EQ(unbounded.exit_code, 0) << unbounded.err;
+  EXPECT_EQ(unbounded.out, listed.out);
+
+  auto seed = run_geotandem("-q synth --kind analytic --shape 40 40 40 --seed -1 --out '" + dir.file("s.raw") + "'");
+  EXPECT_EQ(seed.exit_code, 2) << seed.err;
+  EXPECT_FALSE(std::filesystem::exists(dir.file("s.raw")));
+  auto timeout =
+      run_child(dir.path().string(),
+                {"worker", "--connect", "tcp://127.0.0.1:9", "--token", "t", "--manager-timeout", "nan"}, 30);
+  ASSERT_FALSE(timeout.hung);
+  EXPECT_EQ(timeout.exit_code, 2) << timeout.err;
+}
+
 TEST(HostileInputCli, ACubeOneSampleThickIsRefusedBeforeAStoreIsMade) {
   // A single crossline (20 x 1 x 30 samples) of a raw cube written by hand: a 2-D section, no cell.
   ScratchDir dir;

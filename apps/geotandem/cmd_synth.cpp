@@ -8,6 +8,7 @@
 
 #include "command.hpp"
 #include "geotandem/core/error.hpp"
+#include "geotandem/core/output_path.hpp"
 #include "geotandem/synth/synthetic.hpp"
 #include "geotandem/volume/io.hpp"
 
@@ -113,6 +114,7 @@ void add_synth_command(CLI::App& app, Context& context, Runner& run) {
       std::error_code ec;
       if (!s->overwrite && std::filesystem::exists(truth_path, ec))
         throw IoError("the ground-truth file already exists", {truth_path}, "remove it or pass --overwrite");
+      require_replaceable(truth_path);
       volume::WriteOptions options;
       options.overwrite = s->overwrite;
       auto progress = context.progress();

@@ -3,6 +3,8 @@
 
 #include <gtest/gtest.h>
 #include <signal.h>
+#include <sys/stat.h>
+#include <sys/sysmacros.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -10,6 +12,8 @@
 #include <filesystem>
 #include <fstream>
 #include <set>
+#include <utility>
+#include <vector>
 
 #include <nlohmann/json.hpp>
 
@@ -279,6 +283,50 @@ TEST(StoreSafetyCli, CubesAreNeverWrittenOverTheInputNorInsideAStore) {
   EXPECT_EQ(inside.exit_code, 2) << inside.err;
   EXPECT_NE(inside.err.find("inside a component store"), std::string::npos) << inside.err;
   EXPECT_FALSE(std::filesystem::exists(store + "/shards/x.raw"));
+}
+
+TEST(StoreSafetyCli, OverwriteReplacesEarlierOutputsOnlyNeverADeviceAFifoOrADirectory) {
+  // As root, `--out /dev/null --overwrite` removed the device and put a file in its place; a
+  // directory named like a raw cube was removed with everything in it.
+  namespace fs = std::filesystem;
+  ScratchDir dir;
+  const auto cube = dir.file("cube.raw"), store = dir.file("store");
+  synth(cube, 3);
+  ASSERT_EQ(run_geotandem("-q extract " + q(cube) + " --iso 0.5 --out " + q(store)).exit_code, 0);
+  const std::string synth_args = "-q synth --kind analytic --shape 40 40 40 --overwrite --out ";
+
+  ASSERT_EQ(::mkfifo(dir.file("pipe.raw").c_str(), 0644), 0);
+  ASSERT_EQ(::mkfifo(dir.file("pipe.ply").c_str(), 0644), 0);
+  fs::create_directories(dir.file("folder.segy"));
+  std::ofstream(dir.file("folder.segy/keep.txt")) << "the user's file";
+  std::vector<std::pair<std::string, std::string>> refused = {
+      {synth_args + q(dir.file("pipe.raw")), "a FIFO"},
+      {synth_args + q(dir.file("folder.segy")), "a directory"},
+      {"-q store export " + q(store) + " --format ply --overwrite --out " + q(dir.file("pipe.ply")), "a FIFO"}};
+  // A device node needs root (the machines run as root; elsewhere that case is left out).
+  const bool device = ::mknod(dir.file("null.tif").c_str(), S_IFCHR | 0666, makedev(1, 3)) == 0;
+  if (device) refused.push_back({synth_args + q(dir.file("null.tif")), "a character device"});
+  for (const auto& [command, kind] : refused) {
+    auto r = run_geotandem(command);
+    EXPECT_EQ(r.exit_code, 3) << command << ": " << r.err;
+    EXPECT_NE(r.err.find("will not replace the output path: it is " + kind), std::string::npos) << r.err;
+  }
+  EXPECT_TRUE(fs::is_fifo(dir.file("pipe.raw")));
+  EXPECT_TRUE(fs::is_fifo(dir.file("pipe.ply")));
+  EXPECT_EQ(file_text(dir.file("folder.segy/keep.txt")), "the user's file");
+  if (device) {
+    EXPECT_TRUE(fs::is_character_file(dir.file("null.tif")));
+  }
+
+  // An earlier output, and a link to one (the link is replaced, not what it points to), are.
+  std::ofstream(dir.file("old.ply")) << "an earlier export";
+  fs::create_symlink(dir.file("old.ply"), dir.file("link.ply"));
+  EXPECT_EQ(run_geotandem("-q store export " + q(store) + " --format ply --overwrite --out " + q(dir.file("link.ply")))
+                .exit_code,
+            0);
+  EXPECT_FALSE(fs::is_symlink(dir.file("link.ply")));
+  EXPECT_EQ(file_text(dir.file("old.ply")), "an earlier export");
+  EXPECT_EQ(run_geotandem(synth_args + q(cube)).exit_code, 0);
 }
 
 TEST(StoreSafetyCli, ARunWithoutComponentsWarns) {

@@ -10,6 +10,7 @@
 #include "export_writers.hpp"
 #include "file_io.hpp"
 #include "geotandem/core/error.hpp"
+#include "geotandem/core/output_path.hpp"
 #include "geotandem/mesh/caps.hpp"
 #include "geotandem/store/check.hpp"
 
@@ -118,6 +119,7 @@ void refuse_existing(const std::filesystem::path& path, const ExportOptions& opt
   if (!options.overwrite && std::filesystem::exists(std::filesystem::symlink_status(path, ec)))
     throw IoError("the export target already exists", {path.string()},
                   "pass --overwrite to replace it, or name another file");
+  require_replaceable(path);
 }
 
 } // namespace

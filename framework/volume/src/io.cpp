@@ -4,6 +4,7 @@
 
 #include "formats.hpp"
 #include "geotandem/core/error.hpp"
+#include "geotandem/core/output_path.hpp"
 #include "geotandem/volume/size_guard.hpp"
 
 namespace fs = std::filesystem;
@@ -210,13 +211,17 @@ void write_volume(const Volume& volume, const std::string& path, const WriteOpti
   }
   // Refused before anything is written or removed when the disk cannot hold the cube.
   check_disk_fits(volume.geometry().shape, path, "the cube");
-  if (fs::exists(path, ec)) {
+  if (fs::exists(fs::symlink_status(path, ec))) {
     if (!options.overwrite) throw IoError("the output already exists", {path}, "remove it or pass --overwrite");
+    require_replaceable(path, ext == ".zarr"); // a Zarr store is a directory
     fs::remove_all(path, ec);
     if (ec) throw IoError("cannot remove the existing output: " + ec.message(), {path});
   }
   // A stale raw sidecar would describe the old cube until the new one is complete.
-  if (ext == ".raw") fs::remove(path + ".json", ec);
+  if (ext == ".raw") {
+    require_replaceable(path + ".json");
+    fs::remove(path + ".json", ec);
+  }
   writer(volume, path, options, report, cancel);
 }
 

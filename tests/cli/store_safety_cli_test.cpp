@@ -329,6 +329,38 @@ TEST(StoreSafetyCli, OverwriteReplacesEarlierOutputsOnlyNeverADeviceAFifoOrADire
   EXPECT_EQ(run_geotandem(synth_args + q(cube)).exit_code, 0);
 }
 
+TEST(StoreSafetyCli, AReportNeverReplacesAFileOutsideTheOutputDirectoryNorWritesIntoAFifo) {
+  // The report was written with a plain truncating open: `report: ../notes.html` replaced the
+  // user's file, and a FIFO at the report's path blocked the run forever.
+  ScratchDir dir;
+  const auto cube = dir.file("cube.raw");
+  synth(cube, 3);
+  const auto recipe = [&](const std::string& report) {
+    std::ofstream(dir.file("w.yaml")) << "version: 1\ninput:\n  file: cube.raw\nsteps:\n  - step: extract\n"
+                                      << "    input: input\n    iso: 0.5\noutput:\n  directory: " << dir.file("out")
+                                      << "\n  report: " << report << "\n  exports: []\n";
+  };
+  std::ofstream(dir.file("notes.html")) << "the user's notes";
+  recipe("../notes.html");
+  auto outside = run_geotandem("-q run-workflow " + q(dir.file("w.yaml")));
+  EXPECT_EQ(outside.exit_code, 3) << outside.err;
+  EXPECT_NE(outside.err.find("outside the output directory"), std::string::npos) << outside.err;
+  EXPECT_EQ(file_text(dir.file("notes.html")), "the user's notes");
+  EXPECT_FALSE(rows_of(dir.file("out/store")).empty()) << "the extraction before the report was lost";
+
+  recipe("report.html"); // inside: each run replaces its own report
+  ASSERT_EQ(run_geotandem("-q run-workflow " + q(dir.file("w.yaml"))).exit_code, 0);
+  ASSERT_EQ(run_geotandem("-q run-workflow " + q(dir.file("w.yaml"))).exit_code, 0);
+  EXPECT_NE(file_text(dir.file("out/report.html")).find("<html"), std::string::npos);
+
+  std::filesystem::remove(dir.file("out/report.html"));
+  ASSERT_EQ(::mkfifo(dir.file("out/report.html").c_str(), 0644), 0);
+  auto fifo = testing::run_child(dir.path().string(), {"-q", "run-workflow", dir.file("w.yaml")}, 60);
+  ASSERT_FALSE(fifo.hung) << "the run blocked on the FIFO";
+  EXPECT_EQ(fifo.exit_code, 3) << fifo.err;
+  EXPECT_TRUE(std::filesystem::is_fifo(dir.file("out/report.html")));
+}
+
 TEST(StoreSafetyCli, ARunWithoutComponentsWarns) {
   ScratchDir dir;
   const auto cube = dir.file("cube.raw"), store = dir.file("store");

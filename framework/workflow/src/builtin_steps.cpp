@@ -4,9 +4,11 @@
 
 #include "geotandem/workflow/builtin_steps.hpp"
 
+#include <filesystem>
 #include <sstream>
 
 #include "geotandem/core/error.hpp"
+#include "geotandem/core/output_path.hpp"
 #include "geotandem/store/export.hpp"
 #include "geotandem/workflow/component_steps.hpp"
 #include "geotandem/workflow/extract_step.hpp"
@@ -17,6 +19,13 @@ namespace geotandem::workflow {
 namespace {
 
 using detail::param_spec;
+
+// Whether a recipe's output path (relative to the output directory) stays inside it: what a rerun
+// may replace. A file elsewhere (an absolute path, or ../ leading out) is never replaced.
+bool inside_output_directory(const std::string& path) {
+  const auto normal = std::filesystem::path(path).lexically_normal();
+  return normal.is_relative() && !normal.empty() && *normal.begin() != "..";
+}
 
 class BuiltinStep : public Plugin {
 public:
@@ -148,8 +157,7 @@ public:
     std::string path = p.at("path").text.empty() ? "bodies." + p.at("format").text : p.at("path").text;
     // A rerun replaces the run's own exports, inside its output directory; a file elsewhere
     // (an absolute path, or ../ leading out) is never replaced.
-    const auto inside = std::filesystem::path(path).lexically_normal();
-    options.overwrite = inside.is_relative() && !inside.empty() && *inside.begin() != "..";
+    options.overwrite = inside_output_directory(path);
     if (rows.empty()) {
       // Nothing to export (no component was extracted, or the component steps kept none): no file,
       // and not the one an earlier run left either, so that the output directory shows this run's
@@ -181,6 +189,15 @@ public:
   std::string write_report(const ReportData& data, const ParamValues& p,
                            const std::filesystem::path& out_dir) const override {
     std::filesystem::path path = out_dir / p.at("path").text;
+    // As for the exports: a rerun replaces its own report, never a file outside the output
+    // directory, and never a device or a FIFO (writing into one would block or vanish).
+    std::error_code ec;
+    if (std::filesystem::exists(std::filesystem::symlink_status(path, ec))) {
+      if (!inside_output_directory(p.at("path").text))
+        throw IoError("the report target already exists outside the output directory", {path.string()},
+                      "remove it, or name a new file; a report inside the output directory is replaced by each run");
+      require_replaceable(path);
+    }
     workflow::write_report(data, path.string());
     return path.string();
   }

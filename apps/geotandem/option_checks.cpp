@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <cstdlib>
+#include <optional>
 #include <string>
 
 #include "command.hpp"
@@ -15,52 +16,44 @@ std::string trimmed(const std::string& text) {
   return text.substr(first, text.find_last_not_of(" \t") - first + 1);
 }
 
-// The value as a double, or NaN when it is not a number at all (CLI11 then says so itself).
-double real_of(const std::string& text) {
+// The value, when the whole text is a number ("nan" is one); otherwise CLI11 says what is wrong.
+std::optional<double> number_of(const std::string& text) {
   const std::string t = trimmed(text);
   char* end = nullptr;
   const double value = std::strtod(t.c_str(), &end);
-  return !t.empty() && end == t.c_str() + t.size() ? value : std::nan("");
+  if (t.empty() || end != t.c_str() + t.size()) return std::nullopt;
+  return value;
 }
 
-bool is_nan_text(const std::string& text) {
-  const std::string t = trimmed(text);
-  char* end = nullptr;
-  const double value = std::strtod(t.c_str(), &end);
-  return !t.empty() && end == t.c_str() + t.size() && std::isnan(value);
+// A validator from a test that returns what is wrong with the text, or nothing.
+CLI::Validator rule(const char* name, std::string (*wrong)(const std::string&)) {
+  return CLI::Validator([wrong](std::string& text) { return wrong(text); }, "", name);
 }
 
 } // namespace
 
 const CLI::Validator& not_negative() {
-  static const CLI::Validator check(
-      [](std::string& text) -> std::string {
-        if (trimmed(text).rfind('-', 0) == 0) return "'" + text + "' is negative; give a whole number from 0 up";
-        return {};
-      },
-      "", "not negative");
+  static const CLI::Validator check = rule("not negative", [](const std::string& text) -> std::string {
+    return trimmed(text).rfind('-', 0) == 0 ? "'" + text + "' is negative; give a whole number from 0 up" : "";
+  });
   return check;
 }
 
 const CLI::Validator& not_nan() {
-  static const CLI::Validator check(
-      [](std::string& text) -> std::string {
-        if (is_nan_text(text)) return "'" + text + "' is not a number; give a real number";
-        return {};
-      },
-      "", "not NaN");
+  static const CLI::Validator check = rule("not NaN", [](const std::string& text) -> std::string {
+    const auto value = number_of(text);
+    return value && std::isnan(*value) ? "'" + text + "' is not a number; give a real number" : "";
+  });
   return check;
 }
 
 const CLI::Validator& positive() {
-  static const CLI::Validator check(
-      [](std::string& text) -> std::string {
-        const double value = real_of(text);
-        if (is_nan_text(text)) return "'" + text + "' is not a number; give a number above 0";
-        if (!std::isnan(value) && !(value > 0.0)) return "'" + text + "' is not above 0; give a number above 0";
-        return {};
-      },
-      "", "positive");
+  static const CLI::Validator check = rule("positive", [](const std::string& text) -> std::string {
+    const auto value = number_of(text);
+    if (value && std::isnan(*value)) return "'" + text + "' is not a number; give a number above 0";
+    if (value && !(*value > 0.0)) return "'" + text + "' is not above 0; give a number above 0";
+    return "";
+  });
   return check;
 }
 

@@ -1,8 +1,10 @@
 // Stores that refuse mixed runs, damaged records found and repaired, exports that never clobber:
 // `geotandem` as a real child process on real cubes written by `geotandem synth`.
 
+#include <fcntl.h>
 #include <gtest/gtest.h>
 #include <signal.h>
+#include <sys/file.h>
 #include <sys/stat.h>
 #include <sys/sysmacros.h>
 #include <sys/wait.h>
@@ -359,6 +361,56 @@ TEST(StoreSafetyCli, AReportNeverReplacesAFileOutsideTheOutputDirectoryNorWrites
   ASSERT_FALSE(fifo.hung) << "the run blocked on the FIFO";
   EXPECT_EQ(fifo.exit_code, 3) << fifo.err;
   EXPECT_TRUE(std::filesystem::is_fifo(dir.file("out/report.html")));
+}
+
+TEST(StoreSafetyCli, TwoExtractionsStartingOnOneNewStoreNeverBreakIt) {
+  // Both used to build the index at once ("index statement failed: disk I/O error"), or one took
+  // the other's half-made store for an interrupted creation and deleted it.
+  ScratchDir dir;
+  const auto cube = dir.file("cube.raw");
+  synth(cube, 3);
+  const std::vector<std::string> extract = {"-q", "extract", cube, "--iso", "0.5", "--workers", "0", "--out"};
+
+  // Deterministic: this process is a creator half-way (a bare index, the directory locked).
+  const auto half = dir.file("half");
+  std::filesystem::create_directories(half + "/shards");
+  std::ofstream(half + "/index.sqlite") << "";
+  {
+    const int fd = ::open(half.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
+    ASSERT_GE(fd, 0);
+    ASSERT_EQ(::flock(fd, LOCK_EX | LOCK_NB), 0);
+    auto args = extract;
+    args.push_back(half);
+    auto r = testing::run_child(dir.path().string(), args, 60);
+    ::close(fd);
+    ASSERT_FALSE(r.hung);
+    EXPECT_EQ(r.exit_code, 3) << r.err;
+    EXPECT_NE(r.err.find("another process is writing this store"), std::string::npos) << r.err;
+    EXPECT_TRUE(std::filesystem::exists(half + "/index.sqlite")) << "the creator's files were deleted";
+  }
+  auto args = extract;
+  args.push_back(half);
+  auto alone = testing::run_child(dir.path().string(), args, 60); // the creator is gone: a fresh start
+  EXPECT_EQ(alone.exit_code, 0) << alone.err;
+  const auto want = rows_of(half);
+
+  // Two real processes started together, a few times: whichever loses says why, and the store is whole.
+  for (int round = 0; round < 3; ++round) {
+    const auto store = dir.file("race" + std::to_string(round));
+    auto with_store = extract;
+    with_store.push_back(store);
+    testing::Child first(dir.path().string(), with_store), second(dir.path().string(), with_store);
+    const auto a = first.wait_for(60), b = second.wait_for(60);
+    ASSERT_TRUE(a && b) << "an extraction hung";
+    EXPECT_TRUE(*a == 0 || *b == 0) << first.err() << second.err();
+    for (const auto* child : {&first, &second}) {
+      if (child == &first ? *a == 0 : *b == 0) continue;
+      EXPECT_EQ(child == &first ? *a : *b, 3) << child->err();
+      EXPECT_NE(child->err().find("another process"), std::string::npos) << child->err();
+    }
+    EXPECT_EQ(run_geotandem("-q store check " + q(store)).exit_code, 0);
+    EXPECT_EQ(rows_of(store).size(), want.size());
+  }
 }
 
 TEST(StoreSafetyCli, ARunWithoutComponentsWarns) {

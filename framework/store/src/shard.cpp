@@ -47,9 +47,11 @@ ShardWriter::ShardWriter(const std::filesystem::path& store_dir, const std::stri
   FileHandle guard(fd_);
   if (::flock(fd_, LOCK_EX | LOCK_NB) != 0) {
     int error = errno;
-    throw IoError(error == EWOULDBLOCK ? "shard is locked by another writer"
-                                       : "cannot lock shard: " + errno_text(error),
-                  {path_.string()}, "every writer process needs its own writer name");
+    if (error == EWOULDBLOCK)
+      throw IoError("shard is locked by another writer: another process is extracting into this store",
+                    {path_.string()},
+                    "wait until it ends, then run again to resume; or write to another output directory");
+    throw IoError("cannot lock shard: " + errno_text(error), {path_.string()});
   }
   if (!existed) sync_directory(dir);
   const std::uint64_t size = file_size(fd_, path_);

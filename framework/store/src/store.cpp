@@ -65,15 +65,23 @@ ComponentStore ComponentStore::create(const std::filesystem::path& dir, const vo
   std::error_code ec;
   if (exists(dir))
     throw InvalidArgument("a store already exists here", {dir.string()}, "open it, or remove it to start afresh");
-  if (std::filesystem::exists(dir, ec)) {
-    if (!std::filesystem::is_directory(dir, ec))
-      throw InvalidArgument("cannot create a store: the path is a file", {dir.string()});
-    if (!std::filesystem::is_empty(dir, ec) && is_interrupted_creation(dir)) {
-      for (const auto& entry : std::filesystem::directory_iterator(dir))
-        std::filesystem::remove_all(entry.path());
-    } else if (!std::filesystem::is_empty(dir, ec))
-      throw InvalidArgument("cannot create a store in a directory that is not empty", {dir.string()},
-                            "name a new or empty directory");
+  if (std::filesystem::exists(dir, ec) && !std::filesystem::is_directory(dir, ec))
+    throw InvalidArgument("cannot create a store: the path is a file", {dir.string()});
+  std::filesystem::create_directories(dir, ec);
+  if (ec) throw IoError("cannot create the store directory: " + ec.message(), {dir.string()});
+  // Created under an exclusive lock, and everything is checked again under it: two processes
+  // starting on one new output directory would otherwise both build the index, or one would take
+  // the other's half-made store for an interrupted creation and delete it.
+  FileHandle creating = lock_store_directory(dir, true);
+  if (exists(dir))
+    throw IoError("another process has just created a store here", {dir.string()},
+                  "wait until it ends and run again to resume it, or write to another output directory");
+  if (!std::filesystem::is_empty(dir, ec) && is_interrupted_creation(dir)) {
+    for (const auto& entry : std::filesystem::directory_iterator(dir))
+      std::filesystem::remove_all(entry.path());
+  } else if (!std::filesystem::is_empty(dir, ec)) {
+    throw InvalidArgument("cannot create a store in a directory that is not empty", {dir.string()},
+                          "name a new or empty directory");
   }
   std::filesystem::create_directories(dir / "shards", ec);
   if (ec) throw IoError("cannot create the store directory: " + ec.message(), {dir.string()});
@@ -82,7 +90,6 @@ ComponentStore ComponentStore::create(const std::filesystem::path& dir, const vo
   impl->dir = dir;
   impl->geometry = geometry;
   impl->writable = true;
-  impl->writer_lock = lock_store_directory(dir, false);
   impl->db = std::make_unique<Database>(index_path(dir).string(), true, false);
   configure_connection(*impl->db, true);
   create_schema(*impl->db);
@@ -100,6 +107,9 @@ ComponentStore ComponentStore::create(const std::filesystem::path& dir, const vo
   // store.json comes last: a directory without it is an interrupted creation, never a store.
   sync_directory(dir);
   write_file_atomically(info_path(dir), impl->info_json);
+  // From here on, the writer's shared lock, as when a store is opened.
+  share_store_lock(creating, dir);
+  impl->writer_lock = std::move(creating);
   return ComponentStore(std::move(impl));
 }
 

@@ -59,6 +59,8 @@ void configure_connection(Database& db, bool writable);
 // Takes the store's writer lock (shared: many writers of one store may coexist; exclusive: for
 // removal). Throws IoError when it cannot be had at once.
 FileHandle lock_store_directory(const std::filesystem::path& dir, bool exclusive);
+// Turns the exclusive lock a creation holds into the writer's shared one.
+void share_store_lock(const FileHandle& lock, const std::filesystem::path& dir);
 
 // The current time in UTC, ISO 8601 ("2024-05-01T12:00:00Z").
 std::string utc_now();

@@ -26,11 +26,18 @@ FileHandle lock_store_directory(const std::filesystem::path& dir, bool exclusive
   if (::flock(fd, (exclusive ? LOCK_EX : LOCK_SH) | LOCK_NB) != 0) {
     int error = errno;
     if (error == EWOULDBLOCK)
-      throw IoError(exclusive ? "another process is writing this store" : "another process is removing this store",
+      throw IoError(exclusive ? "another process is writing this store"
+                              : "another process is removing or creating this store",
                     {dir.string()}, "wait until it ends (or stop it), or write to another output directory");
     throw IoError("cannot lock the store directory: " + errno_text(error), {dir.string()});
   }
   return handle;
+}
+
+void share_store_lock(const FileHandle& lock, const std::filesystem::path& dir) {
+  // Nobody else holds a lock on the directory while this one is exclusive, so this cannot block.
+  if (::flock(lock.get(), LOCK_SH | LOCK_NB) != 0)
+    throw IoError("cannot lock the store directory: " + errno_text(errno), {dir.string()});
 }
 
 } // namespace detail

@@ -11,58 +11,10 @@
 #include "geotandem/store/check.hpp"
 #include "geotandem/store/export.hpp"
 #include "geotandem/store/store.hpp"
+#include "store_filters.hpp"
 
 namespace geotandem::app {
 namespace {
-
-// Filter options shared by ls and export. Options that were not given stay unset in the Query.
-struct Filters {
-  double min_volume = 0, max_volume = 0;
-  std::uint64_t min_triangles = 0, max_triangles = 0, min_vertices = 0, max_vertices = 0, limit = 0;
-  std::string azimuth, box, selection, sort = "key";
-  bool closed = false, reverse = false;
-  CLI::Option *min_volume_opt = nullptr, *max_volume_opt = nullptr, *min_triangles_opt = nullptr,
-              *max_triangles_opt = nullptr, *min_vertices_opt = nullptr, *max_vertices_opt = nullptr,
-              *limit_opt = nullptr;
-
-  void add_to(CLI::App* cmd) {
-    min_volume_opt =
-        cmd->add_option("--min-volume", min_volume, "smallest enclosed volume (world units)")->check(not_nan());
-    max_volume_opt =
-        cmd->add_option("--max-volume", max_volume, "largest enclosed volume (world units)")->check(not_nan());
-    cmd->add_option("--azimuth", azimuth, "azimuth range A:B in degrees from north, axial; 170:10 wraps past north");
-    cmd->add_option("--box", box, "world box x0,y0,z0,x1,y1,z1 that the component's bounding box must meet");
-    min_triangles_opt = cmd->add_option("--min-triangles", min_triangles, "fewest triangles")->check(not_negative());
-    max_triangles_opt = cmd->add_option("--max-triangles", max_triangles, "most triangles")->check(not_negative());
-    min_vertices_opt = cmd->add_option("--min-vertices", min_vertices, "fewest vertices")->check(not_negative());
-    max_vertices_opt = cmd->add_option("--max-vertices", max_vertices, "most vertices")->check(not_negative());
-    cmd->add_flag("--closed", closed, "closed surfaces only (not cut by the cube border)");
-    cmd->add_option("--selection,--select", selection, "members of this named selection only (e.g. kept, sorted)");
-    cmd->add_option("--sort", sort, "key, volume (largest first), azimuth, or selection (the selection's own order)")
-        ->capture_default_str();
-    cmd->add_flag("--reverse", reverse, "reverse the sort order");
-    limit_opt = cmd->add_option("--limit", limit, "at most this many components")->check(not_negative());
-  }
-
-  store::Query query() const {
-    store::Query q;
-    if (min_volume_opt->count()) q.min_volume = min_volume;
-    if (max_volume_opt->count()) q.max_volume = max_volume;
-    if (!azimuth.empty()) q.azimuth = store::parse_azimuth_range(azimuth);
-    if (!box.empty()) q.box = store::parse_world_box(box);
-    if (min_triangles_opt->count()) q.min_triangles = min_triangles;
-    if (max_triangles_opt->count()) q.max_triangles = max_triangles;
-    if (min_vertices_opt->count()) q.min_vertices = min_vertices;
-    if (max_vertices_opt->count()) q.max_vertices = max_vertices;
-    q.closed_only = closed;
-    q.selection = selection;
-    q.sort = store::parse_sort_key(sort);
-    // Volumes are wanted largest first; every other order reads naturally ascending.
-    q.descending = (q.sort == store::SortKey::volume) != reverse;
-    if (limit_opt->count()) q.limit = limit;
-    return q;
-  }
-};
 
 std::uint64_t parse_key(const std::string& text) {
   std::uint64_t key = 0;

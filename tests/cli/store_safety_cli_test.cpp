@@ -1,12 +1,11 @@
-// Stores that refuse mixed runs, damaged records found and repaired, exports that never clobber:
-// `geotandem` as a real child process on real cubes written by `geotandem synth`.
+// Stores that refuse mixed runs, damaged records found and repaired, two writers on one store:
+// `geotandem` as a real child process on real cubes written by `geotandem synth`. What the
+// outputs never clobber is in output_safety_cli_test.cpp.
 
 #include <fcntl.h>
 #include <gtest/gtest.h>
 #include <signal.h>
 #include <sys/file.h>
-#include <sys/stat.h>
-#include <sys/sysmacros.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -20,6 +19,7 @@
 #include <nlohmann/json.hpp>
 
 #include "child_process.hpp"
+#include "cli_store_support.hpp"
 #include "geotandem/store/store.hpp"
 #include "scratch.hpp"
 #include "test_paths.hpp"
@@ -27,29 +27,12 @@
 namespace geotandem {
 namespace {
 
+using testing::file_text;
+using testing::q;
+using testing::rows_of;
 using testing::run_geotandem;
 using testing::ScratchDir;
-
-std::string q(const std::string& path) {
-  return "'" + path + "'";
-}
-
-nlohmann::json rows_of(const std::string& store) {
-  auto r = run_geotandem("store ls --json " + q(store));
-  EXPECT_EQ(r.exit_code, 0) << r.err;
-  return r.exit_code == 0 ? nlohmann::json::parse(r.out) : nlohmann::json::array();
-}
-
-std::string file_text(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-}
-
-void synth(const std::string& out, int seed) {
-  auto r =
-      run_geotandem("-q synth --kind analytic --shape 64 56 48 --seed " + std::to_string(seed) + " --out " + q(out));
-  ASSERT_EQ(r.exit_code, 0) << r.err;
-}
+using testing::synth;
 
 TEST(StoreSafetyCli, ResumingWithOtherParametersIsRefusedAndListsTheDifferences) {
   ScratchDir dir;
@@ -223,144 +206,6 @@ TEST(StoreSafetyCli, CheckFindsADamagedRecordExportSkipsItAndARerunRepairsIt) {
   }
   EXPECT_EQ(run_geotandem("-q store export " + q(store) + " --format ply --out " + q(dir.file("again.ply"))).exit_code,
             0);
-}
-
-TEST(StoreSafetyCli, ExportsNeverClobberAFileNorWriteInsideAStore) {
-  ScratchDir dir;
-  const auto cube = dir.file("cube.raw"), store = dir.file("store");
-  synth(cube, 3);
-  ASSERT_EQ(run_geotandem("-q extract " + q(cube) + " --iso 0.5 --out " + q(store)).exit_code, 0);
-  const auto cube_bytes = file_text(cube), index_bytes = file_text(dir.file("store/index.sqlite"));
-
-  auto into_index = run_geotandem("-q store export " + q(store) + " --format obj --out " +
-                                  q(dir.file("store/index.sqlite")) + " --overwrite");
-  EXPECT_EQ(into_index.exit_code, 2) << into_index.err;
-  EXPECT_NE(into_index.err.find("inside a store"), std::string::npos) << into_index.err;
-  auto per_component = run_geotandem("-q store export " + q(store) + " --format obj --per-component --out " +
-                                     q(dir.file("store/shards")));
-  EXPECT_EQ(per_component.exit_code, 2) << per_component.err;
-  EXPECT_EQ(file_text(dir.file("store/index.sqlite")), index_bytes);
-  EXPECT_EQ(run_geotandem("-q store check " + q(store)).exit_code, 0);
-
-  auto onto_cube = run_geotandem("-q store export " + q(store) + " --format obj --out " + q(cube));
-  EXPECT_EQ(onto_cube.exit_code, 3) << onto_cube.err;
-  EXPECT_NE(onto_cube.err.find("--overwrite"), std::string::npos) << onto_cube.err;
-  EXPECT_EQ(file_text(cube), cube_bytes) << "the input cube was overwritten";
-
-  ASSERT_EQ(run_geotandem("-q store export " + q(store) + " --format obj --out " + q(dir.file("b.obj"))).exit_code, 0);
-  EXPECT_EQ(run_geotandem("-q store export " + q(store) + " --format obj --out " + q(dir.file("b.obj"))).exit_code, 3);
-  EXPECT_EQ(
-      run_geotandem("-q store export " + q(store) + " --format obj --out " + q(dir.file("b.obj")) + " --overwrite")
-          .exit_code,
-      0);
-  ASSERT_EQ(run_geotandem("-q store export " + q(store) + " --format ply --per-component --out " + q(dir.file("each")))
-                .exit_code,
-            0);
-  EXPECT_EQ(run_geotandem("-q store export " + q(store) + " --format ply --per-component --out " + q(dir.file("each")))
-                .exit_code,
-            3);
-}
-
-TEST(StoreSafetyCli, CubesAreNeverWrittenOverTheInputNorInsideAStore) {
-  ScratchDir dir;
-  const auto cube = dir.file("cube.raw"), store = dir.file("store");
-  synth(cube, 3);
-  const auto cube_bytes = file_text(cube);
-  {
-    // The attribute cube named after the input, one directory up from the output directory.
-    std::ofstream recipe(dir.file("w.yaml"));
-    recipe << "version: 1\ninput:\n  file: cube.raw\nsteps:\n  - step: extract\n    input: input\n    iso: 0.5\n"
-           << "output:\n  directory: " << dir.file("w-out") << "\n  attribute: ../cube.raw\n";
-  }
-  auto r = run_geotandem("-q run-workflow " + q(dir.file("w.yaml")));
-  EXPECT_EQ(r.exit_code, 3) << r.err;
-  EXPECT_NE(r.err.find("already exists"), std::string::npos) << r.err;
-  EXPECT_EQ(file_text(cube), cube_bytes) << "the input cube was overwritten";
-  auto fresh = run_geotandem("-q run-workflow " + q(dir.file("w.yaml")) + " --fresh");
-  EXPECT_EQ(fresh.exit_code, 3) << fresh.err;
-  EXPECT_EQ(file_text(cube), cube_bytes) << "--fresh overwrote the input cube";
-
-  ASSERT_EQ(run_geotandem("-q extract " + q(cube) + " --iso 0.5 --out " + q(store)).exit_code, 0);
-  auto inside = run_geotandem("-q synth --kind analytic --shape 40 40 40 --out " + q(store + "/shards/x.raw"));
-  EXPECT_EQ(inside.exit_code, 2) << inside.err;
-  EXPECT_NE(inside.err.find("inside a component store"), std::string::npos) << inside.err;
-  EXPECT_FALSE(std::filesystem::exists(store + "/shards/x.raw"));
-}
-
-TEST(StoreSafetyCli, OverwriteReplacesEarlierOutputsOnlyNeverADeviceAFifoOrADirectory) {
-  // As root, `--out /dev/null --overwrite` removed the device and put a file in its place; a
-  // directory named like a raw cube was removed with everything in it.
-  namespace fs = std::filesystem;
-  ScratchDir dir;
-  const auto cube = dir.file("cube.raw"), store = dir.file("store");
-  synth(cube, 3);
-  ASSERT_EQ(run_geotandem("-q extract " + q(cube) + " --iso 0.5 --out " + q(store)).exit_code, 0);
-  const std::string synth_args = "-q synth --kind analytic --shape 40 40 40 --overwrite --out ";
-
-  ASSERT_EQ(::mkfifo(dir.file("pipe.raw").c_str(), 0644), 0);
-  ASSERT_EQ(::mkfifo(dir.file("pipe.ply").c_str(), 0644), 0);
-  fs::create_directories(dir.file("folder.segy"));
-  std::ofstream(dir.file("folder.segy/keep.txt")) << "the user's file";
-  std::vector<std::pair<std::string, std::string>> refused = {
-      {synth_args + q(dir.file("pipe.raw")), "a FIFO"},
-      {synth_args + q(dir.file("folder.segy")), "a directory"},
-      {"-q store export " + q(store) + " --format ply --overwrite --out " + q(dir.file("pipe.ply")), "a FIFO"}};
-  // A device node needs root (the machines run as root; elsewhere that case is left out).
-  const bool device = ::mknod(dir.file("null.tif").c_str(), S_IFCHR | 0666, makedev(1, 3)) == 0;
-  if (device) refused.push_back({synth_args + q(dir.file("null.tif")), "a character device"});
-  for (const auto& [command, kind] : refused) {
-    auto r = run_geotandem(command);
-    EXPECT_EQ(r.exit_code, 3) << command << ": " << r.err;
-    EXPECT_NE(r.err.find("will not replace the output path: it is " + kind), std::string::npos) << r.err;
-  }
-  EXPECT_TRUE(fs::is_fifo(dir.file("pipe.raw")));
-  EXPECT_TRUE(fs::is_fifo(dir.file("pipe.ply")));
-  EXPECT_EQ(file_text(dir.file("folder.segy/keep.txt")), "the user's file");
-  if (device) {
-    EXPECT_TRUE(fs::is_character_file(dir.file("null.tif")));
-  }
-
-  // An earlier output, and a link to one (the link is replaced, not what it points to), are.
-  std::ofstream(dir.file("old.ply")) << "an earlier export";
-  fs::create_symlink(dir.file("old.ply"), dir.file("link.ply"));
-  EXPECT_EQ(run_geotandem("-q store export " + q(store) + " --format ply --overwrite --out " + q(dir.file("link.ply")))
-                .exit_code,
-            0);
-  EXPECT_FALSE(fs::is_symlink(dir.file("link.ply")));
-  EXPECT_EQ(file_text(dir.file("old.ply")), "an earlier export");
-  EXPECT_EQ(run_geotandem(synth_args + q(cube)).exit_code, 0);
-}
-
-TEST(StoreSafetyCli, AReportNeverReplacesAFileOutsideTheOutputDirectoryNorWritesIntoAFifo) {
-  // The report was written with a plain truncating open: `report: ../notes.html` replaced the
-  // user's file, and a FIFO at the report's path blocked the run forever.
-  ScratchDir dir;
-  const auto cube = dir.file("cube.raw");
-  synth(cube, 3);
-  const auto recipe = [&](const std::string& report) {
-    std::ofstream(dir.file("w.yaml")) << "version: 1\ninput:\n  file: cube.raw\nsteps:\n  - step: extract\n"
-                                      << "    input: input\n    iso: 0.5\noutput:\n  directory: " << dir.file("out")
-                                      << "\n  report: " << report << "\n  exports: []\n";
-  };
-  std::ofstream(dir.file("notes.html")) << "the user's notes";
-  recipe("../notes.html");
-  auto outside = run_geotandem("-q run-workflow " + q(dir.file("w.yaml")));
-  EXPECT_EQ(outside.exit_code, 3) << outside.err;
-  EXPECT_NE(outside.err.find("outside the output directory"), std::string::npos) << outside.err;
-  EXPECT_EQ(file_text(dir.file("notes.html")), "the user's notes");
-  EXPECT_FALSE(rows_of(dir.file("out/store")).empty()) << "the extraction before the report was lost";
-
-  recipe("report.html"); // inside: each run replaces its own report
-  ASSERT_EQ(run_geotandem("-q run-workflow " + q(dir.file("w.yaml"))).exit_code, 0);
-  ASSERT_EQ(run_geotandem("-q run-workflow " + q(dir.file("w.yaml"))).exit_code, 0);
-  EXPECT_NE(file_text(dir.file("out/report.html")).find("<html"), std::string::npos);
-
-  std::filesystem::remove(dir.file("out/report.html"));
-  ASSERT_EQ(::mkfifo(dir.file("out/report.html").c_str(), 0644), 0);
-  auto fifo = testing::run_child(dir.path().string(), {"-q", "run-workflow", dir.file("w.yaml")}, 60);
-  ASSERT_FALSE(fifo.hung) << "the run blocked on the FIFO";
-  EXPECT_EQ(fifo.exit_code, 3) << fifo.err;
-  EXPECT_TRUE(std::filesystem::is_fifo(dir.file("out/report.html")));
 }
 
 TEST(StoreSafetyCli, TwoExtractionsStartingOnOneNewStoreNeverBreakIt) {

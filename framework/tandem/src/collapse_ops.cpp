@@ -133,29 +133,28 @@ bool collapse_keeps_shape(const HalfedgeMesh& m, HH h, const Vec3& c, const Half
   return true;
 }
 
-void adjust_outgoing_halfedge(HalfedgeMesh& m, VH v) {
+namespace {
+
+// The first boundary halfedge out of v in rotation order from its own; invalid when its fan is
+// closed.
+HH boundary_outgoing(const HalfedgeMesh& m, VH v) {
   const HH start = m.halfedge_handle(v);
   HH g = start;
   do {
-    if (boundary_halfedge(m, g)) {
-      m.set_halfedge_handle(v, g);
-      return;
-    }
+    if (boundary_halfedge(m, g)) return g;
     g = next_outgoing(m, g);
   } while (g != start);
+  return HH();
+}
+
+} // namespace
+
+void adjust_outgoing_halfedge(HalfedgeMesh& m, VH v) {
+  const HH g = boundary_outgoing(m, v);
+  if (g.is_valid()) m.set_halfedge_handle(v, g);
 }
 
 namespace {
-
-[[maybe_unused]] bool fan_is_closed(const HalfedgeMesh& m, VH v) {
-  const HH start = m.halfedge_handle(v);
-  HH g = start;
-  do {
-    if (boundary_halfedge(m, g)) return false;
-    g = next_outgoing(m, g);
-  } while (g != start);
-  return true;
-}
 
 // The face of h0 has become a loop of two halfedges h0 (v0 -> v1) and h1 (v1 -> v0): drop the
 // edge of h0 and the face, and let h1 take the place of h0's opposite in the neighbouring face.
@@ -230,9 +229,9 @@ CollapseResult collapse_halfedge(HalfedgeMesh& m, HH h) {
   if (c_on_boundary) adjust_outgoing_halfedge(m, b);
   if (x_on_boundary) adjust_outgoing_halfedge(m, x);
   if (y_on_boundary) adjust_outgoing_halfedge(m, y);
-  assert(c_on_boundary || fan_is_closed(m, b));
-  assert(x_on_boundary || !x.is_valid() || fan_is_closed(m, x));
-  assert(y_on_boundary || !y.is_valid() || fan_is_closed(m, y));
+  assert(c_on_boundary || !boundary_outgoing(m, b).is_valid());
+  assert(x_on_boundary || !x.is_valid() || !boundary_outgoing(m, x).is_valid());
+  assert(y_on_boundary || !y.is_valid() || !boundary_outgoing(m, y).is_valid());
   return r;
 }
 

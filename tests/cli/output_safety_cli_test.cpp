@@ -19,12 +19,7 @@
 namespace geotandem {
 namespace {
 
-using testing::file_text;
-using testing::q;
-using testing::rows_of;
-using testing::run_geotandem;
-using testing::ScratchDir;
-using testing::synth;
+using namespace testing; // geotandem::testing: the child process, scratch directories, store helpers
 
 TEST(OutputSafetyCli, ExportsNeverClobberAFileNorWriteInsideAStore) {
   ScratchDir dir;

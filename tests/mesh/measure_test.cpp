@@ -214,8 +214,16 @@ TEST(Measure, CutByTheBorderOnEachOuterPlane) {
   for (Point& p : inside.points)
     p[2] += 1.0;
   EXPECT_FALSE(measure_component(inside, g).cut_by_border);
-  // A closed body touching a face with its vertices has no border to cut.
-  EXPECT_FALSE(measure_component(icosphere(2, 5.0, {5, 50, 50}), g).cut_by_border);
+  // A closed body with a corner on a face reaches that face (marching cubes puts a vertex on an
+  // outer plane only where the body does; a simplified cap may have lost every cap triangle): it is
+  // cut there, and measured as the closed solid it is.
+  const ComponentStats touching = measure_component(icosphere(2, 5.0, {5, 50, 50}), g);
+  EXPECT_EQ(touching.cut_faces, 0x01); // i-
+  EXPECT_TRUE(touching.closed);
+  EXPECT_GT(touching.volume, 0.0);
+  EXPECT_EQ(touching.cap_area, 0.0);
+  // One sample inside, it is not.
+  EXPECT_FALSE(measure_component(icosphere(2, 5.0, {6, 50, 50}), g).cut_by_border);
 }
 
 TEST(Measure, AzimuthOfAnElongatedBodyThroughAnyAffine) {

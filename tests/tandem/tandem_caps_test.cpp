@@ -199,5 +199,53 @@ TEST(Caps, TandemInOneAndManyBlocksMeasuresCutBodiesAsClosedSolids) {
   }
 }
 
+// A ball whose only sample on an outer face holds exactly the isovalue: inside (value >= iso), so
+// marching cubes makes a cap a 1/256 voxel wide around it. Simplification may remove every cap
+// triangle in one block layout and keep some in another, but the vertex on the face stays there
+// (its coordinate on the face is fixed): the body is cut by that face in every layout, as at full
+// resolution.
+TEST(Caps, ABodyTouchingAFaceAtOneSampleIsCutThereInEveryLayout) {
+  struct Touch {
+    std::string name;
+    std::array<double, 3> centre;
+    std::uint8_t face;
+  };
+  const double hi[3] = {static_cast<double>(kShape[0] - 1), static_cast<double>(kShape[1] - 1),
+                        static_cast<double>(kShape[2] - 1)};
+  constexpr double kRadius = 12.0;
+  const std::vector<Touch> touches = {{"i+", {hi[0] - kRadius, 36.0, 28.0}, 0x02},
+                                      {"j-", {40.0, kRadius, 27.0}, 0x04},
+                                      {"k+", {39.0, 35.0, hi[2] - kRadius}, 0x20}};
+  for (const Touch& t : touches) {
+    std::vector<float> samples(static_cast<std::size_t>(kShape[0] * kShape[1] * kShape[2]));
+    std::size_t n = 0;
+    for (std::int64_t i = 0; i < kShape[0]; ++i)
+      for (std::int64_t j = 0; j < kShape[1]; ++j)
+        for (std::int64_t k = 0; k < kShape[2]; ++k) {
+          const double x = static_cast<double>(i) - t.centre[0], y = static_cast<double>(j) - t.centre[1],
+                       z = static_cast<double>(k) - t.centre[2];
+          samples[n++] = static_cast<float>(kRadius - std::sqrt(x * x + y * y + z * z)); // 0 exactly at the touch
+        }
+    volume::MemoryVolume v(fixtures::test_geometry(kShape), std::move(samples), t.name);
+    const mesh::ComponentStats full =
+        mesh::measure_component(extract_surface(v, cube_cells(kShape), McOptions{}), v.geometry());
+    ASSERT_EQ(full.cut_faces, t.face) << t.name << ": " << mesh::cut_faces_text(full.cut_faces);
+    const std::int64_t sizes[3] = {0, 8, 16};
+    for (int axis : {0, 1, 2})
+      for (std::int64_t size : sizes) {
+        const std::string what = t.name + ", block size " + std::to_string(size) + ", axis " + std::to_string(axis);
+        TandemOptions options;
+        options.axis = axis;
+        fixtures::CollectingSink sink;
+        extract_blocks(v, cube_cells(kShape), size, options, &sink);
+        ASSERT_EQ(sink.components.size(), 1u) << what;
+        const mesh::Component& body = sink.components[0];
+        expect_closed(body.surface, what);
+        EXPECT_EQ(body.stats.cut_faces, t.face) << what << ": " << mesh::cut_faces_text(body.stats.cut_faces);
+        EXPECT_NEAR(body.stats.volume, full.volume, 0.01 * full.volume) << what;
+      }
+  }
+}
+
 } // namespace
 } // namespace geotandem::tandem

@@ -70,25 +70,25 @@ ComponentStats measure_component(const SurfaceMesh& index_surface, const volume:
 
   // Topology in index space, where the cube's outer planes are exact.
   const VertexStars stars = build_vertex_stars(index_surface);
-  // Cut faces: the planes of cap triangles, and of open borders lying on an outer plane (a
-  // surface extracted without caps).
   bool closed = true;
-  std::uint8_t cut = 0;
   walk_stars(
       index_surface, stars,
       [&](const EdgeVisit& e) {
         if (e.count != 2) closed = false;
-        if (e.count == 1)
-          cut |= static_cast<std::uint8_t>(outer_planes(index_surface.points[e.v], geometry.shape) &
-                                           outer_planes(index_surface.points[e.w], geometry.shape));
       },
       [](std::uint32_t, std::uint32_t, std::uint32_t) {});
+  // Cut faces: the outer planes the surface has a corner on. Only a lattice edge in an outer plane
+  // puts a marching-cubes vertex there, so the body reaches that face; a simplified vertex on a
+  // face keeps its coordinate there. Cap triangles alone would not do: a body that reaches a face
+  // at one sample equal to the isovalue gets a cap 1/256 voxel wide, which simplification removes
+  // in some block layouts and not in others.
+  std::uint8_t cut = 0;
   std::vector<bool> cap(index_surface.triangles.size(), false);
   for (std::size_t t = 0; t < cap.size(); ++t) {
-    const int face = cap_face(index_surface, index_surface.triangles[t], geometry.shape);
-    if (face < 0) continue;
-    cap[t] = true;
-    cut |= static_cast<std::uint8_t>(1u << face);
+    const Triangle& corners = index_surface.triangles[t];
+    for (std::uint32_t v : corners)
+      cut |= outer_planes(index_surface.points[v], geometry.shape);
+    cap[t] = cap_face(index_surface, corners, geometry.shape) >= 0;
   }
   stats.closed = closed;
   stats.cut_faces = cut;

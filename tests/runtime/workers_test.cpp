@@ -113,6 +113,38 @@ TEST(Workers, ARecipesAttributeChainRunsInTheWorkers) {
   }
 }
 
+// More workers asked for than the cube has blocks: one per block is started, with a warning that
+// says why, and the components are those of the in-process run.
+TEST(Workers, MoreWorkersThanBlocksStartOnePerBlock) {
+  ScratchDir dir;
+  const std::string cube = dir.file("small.raw");
+  auto r = run_geotandem("-q synth --kind analytic --shape 40 40 40 --seed 3 --out '" + cube + "'");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const std::string common = "extract '" + cube + "' --iso 0.5 --block-size 32 --out '";
+  r = run_geotandem("-q " + common + dir.file("ref") + "' --workers 0");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  r = run_geotandem("--log-level info " + common + dir.file("many") + "' --workers 40");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const std::string warning = "asked for 40 workers, but blocks of 32 cells split this cube into ";
+  const std::size_t at = r.err.find(warning);
+  ASSERT_NE(at, std::string::npos) << r.err;
+  const std::size_t blocks = std::stoul(r.err.substr(at + warning.size()));
+  EXPECT_GT(blocks, 1u);
+  EXPECT_LT(blocks, 40u);
+  EXPECT_NE(r.err.find("blocks: starting " + std::to_string(blocks)), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("extracting with " + std::to_string(blocks) + " local workers"), std::string::npos) << r.err;
+  const auto reference = components_of(dir.file("ref"), false), got = components_of(dir.file("many"), false);
+  ASSERT_GT(reference.size(), 1u);
+  ASSERT_EQ(got.size(), reference.size());
+  for (const auto& [key, c] : reference) {
+    ASSERT_TRUE(got.count(key)) << "component " << key;
+    EXPECT_NEAR(got.at(key).volume, c.volume, 0.005 * std::abs(c.volume) + 1e-9) << key;
+  }
+  // The run records the workers it started.
+  const auto runs = store::ComponentStore::open(dir.file("many")).runs();
+  EXPECT_EQ(nlohmann::json::parse(runs.back().parameters).at("workers").get<std::size_t>(), blocks);
+}
+
 // Waits until the manager has at least one worker child; empty after the timeout.
 std::vector<pid_t> workers_of(pid_t manager, double timeout_s) {
   const auto until = std::chrono::steady_clock::now() + std::chrono::duration<double>(timeout_s);

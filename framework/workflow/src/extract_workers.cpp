@@ -93,7 +93,16 @@ ExtractResult extract_with_workers(const volume::Volume& volume, store::Componen
   r.extended_time_lag = settings.extended_time_lag;
   r.dump = settings.mode != ExtractMode::tandem;
   r.brute = settings.mode == ExtractMode::brute;
-  options.workers = settings.workers;
+  // One task runs at a time per block: a worker beyond one per block would only start, wait and
+  // retire (on a cluster, a job queued for nothing).
+  const std::size_t leaves =
+      tandem::BlockTree(tandem::cube_cells(volume.geometry().shape), r.block_size).leaves().size();
+  options.workers = std::min(settings.workers, leaves);
+  if (options.workers < settings.workers)
+    log.warning("asked for " + std::to_string(settings.workers) + " workers, but blocks of " +
+                std::to_string(r.block_size) + " cells split this cube into " + std::to_string(leaves) +
+                (leaves == 1 ? " block" : " blocks") + ": starting " + std::to_string(options.workers) +
+                " (smaller blocks give more workers something to do)");
   options.bind = runtime::manager_bind_endpoint(settings.bind);
   options.worker_command = settings.worker_command;
   if (settings.relay_memory_mb >= 0) options.relay_memory = static_cast<std::uint64_t>(settings.relay_memory_mb) << 20;
@@ -101,16 +110,16 @@ ExtractResult extract_with_workers(const volume::Volume& volume, store::Componen
   ExtractSettings effective = settings;
   effective.block_size = r.block_size;
   nlohmann::json parameters = extract_run_parameters(volume, effective);
-  parameters["workers"] = settings.workers;
+  parameters["workers"] = options.workers;
 
   ExtractResult result;
   result.run = store.begin_run(parameters.dump());
   r.run = result.run;
   std::unique_ptr<runtime::Launcher> launcher = make_launcher(settings, store, options, log);
   runtime::Manager manager(options, store, launcher.get(), log, progress, cancel);
-  log.info("extracting with " + std::to_string(settings.workers) + " " +
+  log.info("extracting with " + std::to_string(options.workers) + " " +
            (settings.scheduler.empty() ? std::string("local") : settings.scheduler) + " worker" +
-           (settings.workers == 1 ? "" : "s"));
+           (options.workers == 1 ? "" : "s"));
   const std::uint64_t rows_before = store.size();
   const runtime::ManagerReport report = manager.run();
   result.components = report.components;

@@ -3,8 +3,10 @@
 // in recipes (workflow::extract_params()).
 
 #include <algorithm>
+#include <cstdio>
 #include <iostream>
 #include <optional>
+#include <string>
 #include <thread>
 
 #include "command.hpp"
@@ -15,6 +17,13 @@
 
 namespace geotandem::app {
 namespace {
+
+// Seconds as the progress lines give them: to a hundredth (a run's timings vary more than that).
+std::string seconds_text(double seconds) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.2f", seconds);
+  return text;
+}
 
 const workflow::ParamSpec& param(const std::string& name) {
   for (const auto& spec : workflow::extract_params())
@@ -132,7 +141,7 @@ void add_extract_command(CLI::App& app, Context& context, Runner& run) {
       if (r.duplicates) std::cout << " (" << r.duplicates << " already in the store)";
       if (s.workers > 0) {
         const auto& st = r.statistics;
-        std::cout << " in " << r.seconds << " s with " << st["workers"] << " worker(s) (" << st["deaths"]
+        std::cout << " in " << seconds_text(r.seconds) << " s with " << st["workers"] << " worker(s) (" << st["deaths"]
                   << " lost); tasks " << st["tasks"].dump() << "; "
                   << st["bytes"]["surfaces"].get<std::uint64_t>() / 1024 << " KiB of partial surfaces moved";
         if (st.value("skipped_leaves", 0) > 0)
@@ -142,15 +151,16 @@ void add_extract_command(CLI::App& app, Context& context, Runner& run) {
         std::cout << "store: " << a->out << " (run " << r.run << ")\n";
         return 0;
       }
-      std::cout << " from " << r.input_triangles << " marching-cubes triangles in " << r.seconds << " s; "
+      std::cout << " from " << r.input_triangles << " marching-cubes triangles in " << seconds_text(r.seconds) << " s; "
                 << r.collapses << " collapses; at most " << r.peak_triangles << " triangles in memory; peak memory "
                 << r.peak_rss_kb / 1024 << " MiB\n";
       if (s.block_size > 0) {
         const auto& b = r.blocks;
         std::cout << "blocks: " << b["leaves"] << " leaves, " << b["merges"] << " merges (" << b["seam_collapses"]
                   << " seam collapses), " << b["wire_bytes"].get<std::uint64_t>() / 1024 << " KiB shipped; "
-                  << b["seconds"]["leaves"] << " s in leaves, " << b["seconds"]["merge"] << " s merging, "
-                  << b["seconds"]["wire"] << " s on the wire form\n";
+                  << seconds_text(b["seconds"]["leaves"].get<double>()) << " s in leaves, "
+                  << seconds_text(b["seconds"]["merge"].get<double>()) << " s merging, "
+                  << seconds_text(b["seconds"]["wire"].get<double>()) << " s on the wire form\n";
       }
       std::cout << "store: " << a->out << " (run " << r.run << ")\n";
       return 0;

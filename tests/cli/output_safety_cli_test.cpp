@@ -143,6 +143,9 @@ TEST(OutputSafetyCli, AReportNeverReplacesAFileOutsideTheOutputDirectoryNorWrite
   auto outside = run_geotandem("-q run-workflow " + q(dir.file("w.yaml")));
   EXPECT_EQ(outside.exit_code, 3) << outside.err;
   EXPECT_NE(outside.err.find("outside the output directory"), std::string::npos) << outside.err;
+  // The error says which step of the recipe, and where: the report's is the output section (line 9).
+  EXPECT_NE(outside.err.find("in the recipe's step 'report' at " + dir.file("w.yaml") + ":9:"), std::string::npos)
+      << outside.err;
   EXPECT_EQ(file_text(dir.file("notes.html")), "the user's notes");
   EXPECT_FALSE(rows_of(dir.file("out/store")).empty()) << "the extraction before the report was lost";
 

@@ -1,5 +1,8 @@
 #include <gtest/gtest.h>
 
+#include <string>
+#include <utility>
+
 #include "geotandem/core/cancel.hpp"
 #include "geotandem/core/error.hpp"
 #include "geotandem/core/log.hpp"
@@ -21,6 +24,27 @@ TEST(Error, BlockAndWorkerContext) {
 TEST(Error, MessageWithoutContextIsBare) {
   FormatError e("bad");
   EXPECT_EQ(std::string(e.what()), "bad");
+}
+
+// Each kind keeps its exit code, context and hint; the note ends the message; a cancel stays one.
+TEST(Error, ANoteKeepsTheKindContextAndHint) {
+  const auto noted = [](const Error& e) -> std::pair<int, std::string> {
+    try {
+      throw_with_note(e, "; in step 'x'");
+    } catch (const Cancelled& c) {
+      return {-c.exit_code(), c.what()};
+    } catch (const Error& thrown) {
+      return {thrown.exit_code(), thrown.what()};
+    }
+  };
+  const ErrorContext where{"out/a.ply", {}, {}, {}, "w2"};
+  EXPECT_EQ(noted(InvalidArgument("bad", where, "fix it")),
+            std::make_pair(2, std::string("out/a.ply, worker w2: bad; in step 'x' (fix it)")));
+  EXPECT_EQ(noted(IoError("gone", where)).first, 3);
+  EXPECT_EQ(noted(FormatError("odd")), std::make_pair(4, std::string("odd; in step 'x'")));
+  EXPECT_EQ(noted(DataError("nan")).first, 5);
+  EXPECT_EQ(noted(Error("plain")), std::make_pair(1, std::string("plain; in step 'x'")));
+  EXPECT_EQ(noted(Cancelled()), std::make_pair(-130, std::string(Cancelled().what())));
 }
 
 TEST(CancelToken, CopiesShareTheFlag) {

@@ -70,6 +70,10 @@ TEST(WorkflowFailure, PluginErrorStopsTheRunAndKeepsCommittedComponents) {
   EXPECT_NE(failed.command.exit_code, 0);
   EXPECT_NE(failed.command.err.find("refusing box starting at inline "), std::string::npos) << failed.command.err;
   EXPECT_NE(failed.command.err.find("failing"), std::string::npos) << failed.command.err;
+  // The attributes are computed as the extraction reads them: the error names that step, at its
+  // line in the recipe (line 7, column 5, the step's first key).
+  EXPECT_NE(failed.command.err.find("in the recipe's step 'extract' at "), std::string::npos) << failed.command.err;
+  EXPECT_NE(failed.command.err.find(".yaml:7:5"), std::string::npos) << failed.command.err;
   EXPECT_EQ(failed.command.out.find("report:"), std::string::npos) << "a failed run must not report success";
 
   auto store = store::ComponentStore::open(dir.path() / "failed" / "store");
@@ -119,6 +123,7 @@ TEST(WorkflowFailure, PluginErrorInAWorkerKeepsWhatWasCommittedWhole) {
   EXPECT_NE(failed.command.exit_code, 70) << failed.command.err;
   EXPECT_NE(failed.command.err.find("refusing box starting at inline "), std::string::npos) << failed.command.err;
   EXPECT_NE(failed.command.err.find("worker"), std::string::npos) << failed.command.err;
+  EXPECT_NE(failed.command.err.find("in the recipe's step 'extract' at "), std::string::npos) << failed.command.err;
   EXPECT_EQ(failed.command.out.find("report:"), std::string::npos) << "a failed run must not report success";
   auto store = store::ComponentStore::open(dir.path() / "failed" / "store");
   auto reference_store = store::ComponentStore::open(dir.path() / "reference" / "store");

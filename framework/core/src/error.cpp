@@ -29,6 +29,17 @@ Error::Error(std::string message, ErrorContext context, std::string hint)
     : std::runtime_error(format_error(message, context, hint)), message_(std::move(message)),
       context_(std::move(context)), hint_(std::move(hint)) {}
 
+void throw_with_note(const Error& e, const std::string& note) {
+  std::string message = e.message();
+  message.append(note);
+  if (dynamic_cast<const Cancelled*>(&e)) throw Cancelled();
+  if (dynamic_cast<const InvalidArgument*>(&e)) throw InvalidArgument(message, e.context(), e.hint());
+  if (dynamic_cast<const IoError*>(&e)) throw IoError(message, e.context(), e.hint());
+  if (dynamic_cast<const FormatError*>(&e)) throw FormatError(message, e.context(), e.hint());
+  if (dynamic_cast<const DataError*>(&e)) throw DataError(message, e.context(), e.hint());
+  throw Error(message, e.context(), e.hint());
+}
+
 Cancelled::Cancelled() : Error("operation cancelled", {}, "the work done before the cancel is kept") {}
 
 } // namespace geotandem

@@ -124,7 +124,24 @@ public:
   }
 
 private:
+  // An error that does not say where in the recipe it happened gets the step and its line: a run
+  // fails long after the recipe was read, often at one of several steps of the same kind.
   void run_step(const StepSpec& step) {
+    try {
+      run_step_of_kind(step);
+    } catch (const Cancelled&) {
+      throw;
+    } catch (const Error& e) {
+      if (e.context().line) throw;
+      std::string place = "; in the recipe's step '" + step.name + "'";
+      if (step.where.line > 0)
+        place +=
+            " at " + recipe_.path + ":" + std::to_string(step.where.line) + ":" + std::to_string(step.where.column);
+      throw_with_note(e, place);
+    }
+  }
+
+  void run_step_of_kind(const StepSpec& step) {
     const Plugin& plugin = plugins_.get(step.name);
     switch (plugin.kind()) {
     case StepKind::attribute: return; // built lazily in the chain; computed as the extraction reads

@@ -71,6 +71,11 @@ public:
   int exit_code() const noexcept override { return 130; }
 };
 
+// Throws an error of the same kind as `e` (the same exit code), its context and hint kept, with
+// `note` appended to its message: where in a larger task it happened ("in the recipe's step ...").
+// A Cancelled error is thrown again as it is.
+[[noreturn]] void throw_with_note(const Error& e, const std::string& note);
+
 // Composes the text of what(); exposed for messages built elsewhere (logs, reports).
 std::string format_error(const std::string& message, const ErrorContext& context, const std::string& hint);
 

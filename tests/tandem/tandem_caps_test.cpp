@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "blocks_support.hpp"
 #include "geotandem/core/error.hpp"
 #include "geotandem/mesh/caps.hpp"
 #include "geotandem/mesh/measure.hpp"
@@ -217,16 +218,8 @@ TEST(Caps, ABodyTouchingAFaceAtOneSampleIsCutThereInEveryLayout) {
                                       {"j-", {40.0, kRadius, 27.0}, 0x04},
                                       {"k+", {39.0, 35.0, hi[2] - kRadius}, 0x20}};
   for (const Touch& t : touches) {
-    std::vector<float> samples(static_cast<std::size_t>(kShape[0] * kShape[1] * kShape[2]));
-    std::size_t n = 0;
-    for (std::int64_t i = 0; i < kShape[0]; ++i)
-      for (std::int64_t j = 0; j < kShape[1]; ++j)
-        for (std::int64_t k = 0; k < kShape[2]; ++k) {
-          const double x = static_cast<double>(i) - t.centre[0], y = static_cast<double>(j) - t.centre[1],
-                       z = static_cast<double>(k) - t.centre[2];
-          samples[n++] = static_cast<float>(kRadius - std::sqrt(x * x + y * y + z * z)); // 0 exactly at the touch
-        }
-    volume::MemoryVolume v(fixtures::test_geometry(kShape), std::move(samples), t.name);
+    const auto cube = blocks_test::sample(fixtures::sphere(t.centre, kRadius), kShape); // 0 exactly at the touch
+    const volume::Volume& v = *cube;
     const mesh::ComponentStats full =
         mesh::measure_component(extract_surface(v, cube_cells(kShape), McOptions{}), v.geometry());
     ASSERT_EQ(full.cut_faces, t.face) << t.name << ": " << mesh::cut_faces_text(full.cut_faces);

@@ -30,9 +30,9 @@ Error::Error(std::string message, ErrorContext context, std::string hint)
       context_(std::move(context)), hint_(std::move(hint)) {}
 
 void throw_with_note(const Error& e, const std::string& note) {
+  if (dynamic_cast<const Cancelled*>(&e)) throw Cancelled();
   std::string message = e.message();
   message.append(note);
-  if (dynamic_cast<const Cancelled*>(&e)) throw Cancelled();
   if (dynamic_cast<const InvalidArgument*>(&e)) throw InvalidArgument(message, e.context(), e.hint());
   if (dynamic_cast<const IoError*>(&e)) throw IoError(message, e.context(), e.hint());
   if (dynamic_cast<const FormatError*>(&e)) throw FormatError(message, e.context(), e.hint());

@@ -86,9 +86,11 @@ ComponentStats measure_component(const SurfaceMesh& index_surface, const volume:
   std::vector<bool> cap(index_surface.triangles.size(), false);
   for (std::size_t t = 0; t < cap.size(); ++t) {
     const Triangle& corners = index_surface.triangles[t];
-    for (std::uint32_t v : corners)
-      cut |= outer_planes(index_surface.points[v], geometry.shape);
-    cap[t] = cap_face(index_surface, corners, geometry.shape) >= 0;
+    const std::uint8_t a = outer_planes(index_surface.points[corners[0]], geometry.shape),
+                       b = outer_planes(index_surface.points[corners[1]], geometry.shape),
+                       c = outer_planes(index_surface.points[corners[2]], geometry.shape);
+    cut |= static_cast<std::uint8_t>(a | b | c);
+    cap[t] = (a & b & c) != 0 && cap_face(index_surface, corners, geometry.shape) >= 0; // on a plane: a cap?
   }
   stats.closed = closed;
   stats.cut_faces = cut;

@@ -57,12 +57,16 @@ std::unique_ptr<runtime::Launcher> make_launcher(const ExtractSettings& settings
   return runtime::make_scheduler_launcher(o, log);
 }
 
+// The blocks (leaves) of the tree that blocks of `block_size` cells make of the cube.
+std::size_t leaf_count(const volume::Geometry& geometry, std::int64_t block_size) {
+  return tandem::BlockTree(tandem::cube_cells(geometry.shape), std::max<std::int64_t>(block_size, 8)).leaves().size();
+}
+
 } // namespace
 
 std::size_t default_worker_count(const volume::Geometry& geometry, std::int64_t block_size) {
   if (block_size <= 0) return 0;
-  const tandem::BlockTree tree(tandem::cube_cells(geometry.shape), std::max<std::int64_t>(block_size, 8));
-  const std::size_t leaves = tree.leaves().size();
+  const std::size_t leaves = leaf_count(geometry, block_size);
   if (leaves <= 1) return 0;
   return std::min<std::size_t>(leaves, std::max(1u, std::thread::hardware_concurrency()));
 }
@@ -95,8 +99,7 @@ ExtractResult extract_with_workers(const volume::Volume& volume, store::Componen
   r.brute = settings.mode == ExtractMode::brute;
   // One task runs at a time per block: a worker beyond one per block would only start, wait and
   // retire (on a cluster, a job queued for nothing).
-  const std::size_t leaves =
-      tandem::BlockTree(tandem::cube_cells(volume.geometry().shape), r.block_size).leaves().size();
+  const std::size_t leaves = leaf_count(volume.geometry(), r.block_size);
   options.workers = std::min(settings.workers, leaves);
   if (options.workers < settings.workers)
     log.warning("asked for " + std::to_string(settings.workers) + " workers, but blocks of " +

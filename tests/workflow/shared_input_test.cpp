@@ -3,15 +3,22 @@
 // their sections a few at a time, blocks touching the cube's faces and each other), equals the
 // same chain built directly with the attribute library and read as one whole cube, bit for bit;
 // and the input is generated once per read of the result, not once per attribute reading it.
+// Missing samples filled by the recipe (`nan: fill`) are dead samples to the attributes and outside
+// in the result.
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <cstring>
+#include <limits>
 
 #include "geotandem/attributes/catalog.hpp"
 #include "geotandem/builtin/register.hpp"
+#include "geotandem/core/error.hpp"
 #include "geotandem/synth/synthetic.hpp"
+#include "geotandem/volume/io.hpp"
 #include "geotandem/workflow/chain.hpp"
+#include "scratch.hpp"
 #include "shared_input.hpp"
 
 using namespace geotandem;
@@ -148,3 +155,104 @@ TEST_P(SharedInputs, TheInputIsFetchedOncePerReadOfTheResult) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Normalise, SharedInputs, ::testing::Values("percentile", "fixed"));
+
+namespace {
+
+// The facies chain of the quickstart recipe on `file`, extracting `extracted`.
+std::string facies_recipe(const std::string& file, const std::string& nan, const std::string& extracted) {
+  return R"(version: 1
+input: {file: ")" +
+         file + R"(", nan: )" + nan + R"(}
+steps:
+  - {step: chaos, input: input, sigma_t_across: 2}
+  - {step: envelope, input: input, half_length: 8}
+  - {step: normalise, as: bright, input: envelope, method: percentile}
+  - {step: product, as: facies, inputs: [chaos, bright]}
+  - {step: extract, input: )" +
+         extracted + R"(, iso: 0.2}
+output:
+  directory: out
+)";
+}
+
+} // namespace
+
+// A cube whose traces are missing in a corner (NaN, as a survey's outline leaves them) and with one
+// infinite sample, read with `nan: fill`. Oracle: the same chain built with the attribute library
+// on the same cube with zeros there (dead traces). Every sample of the result away from the
+// missing ones equals it bit for bit; every missing one is the lowest float, outside every body.
+// Before, the attributes saw the fill's lowest float: the envelope went to -inf, the normalisation
+// scale was not finite, and the run stopped with advice to use the fill it was using.
+TEST(MissingSamples, FilledTheyAreDeadToTheAttributesAndOutsideInTheResult) {
+  geotandem::testing::ScratchDir dir;
+  PluginRegistry registry;
+  builtin::register_builtins(registry);
+  synth::SeismicOptions o;
+  o.shape = {44, 40, 52};
+  o.seed = 5;
+  o.snr = 3;
+  const auto cube = synth::make_seismic(o);
+  const volume::Geometry geometry = cube->geometry();
+  const volume::Box bounds = geometry.bounds();
+  std::vector<float> holes = cube->read(bounds), dead = holes;
+  std::vector<bool> missing(holes.size(), false);
+  for (std::int64_t i = 0; i < 44; ++i)
+    for (std::int64_t j = 0; j < 40; ++j)
+      for (std::int64_t k = 0; k < 52; ++k) {
+        const auto n = static_cast<std::size_t>((i * 40 + j) * 52 + k);
+        const bool corner = i < 12 && j < 15, spike = i == 30 && j == 20 && k == 25;
+        if (!corner && !spike) continue;
+        missing[n] = true;
+        holes[n] = spike ? std::numeric_limits<float>::infinity() : std::numeric_limits<float>::quiet_NaN();
+        dead[n] = 0.0f;
+      }
+  volume::write_volume(volume::MemoryVolume(geometry, holes), dir.file("holes.raw"));
+  volume::write_volume(volume::MemoryVolume(geometry, dead), dir.file("dead.raw"));
+
+  using attributes::make_attribute;
+  std::shared_ptr<const volume::Volume> zeros = volume::open_volume(dir.file("dead.raw"));
+  auto chaos = make_attribute("chaos", {zeros}, {{"sigma_t_across", 2.0}});
+  auto envelope = make_attribute("envelope", {zeros}, {{"half_length", std::int64_t{8}}});
+  auto bright = make_attribute("normalise", {envelope}, {{"method", std::string("percentile")}});
+  const auto facies = make_attribute("product", {chaos, bright});
+  const std::vector<float> want = facies->read(bounds);
+
+  const Recipe recipe = parse_recipe(facies_recipe(dir.file("holes.raw"), "fill", "facies"), "holes.yaml", registry);
+  const ChainVolumes chain = open_chain(describe_chain(recipe, registry), registry);
+  std::size_t outside = 0, compared = 0;
+  for (const volume::Box& box : slab_boxes(geometry.shape, 16, 5)) {
+    const std::vector<float> got = chain.result->read(box);
+    std::size_t m = 0;
+    for (std::int64_t i = box.lo[0]; i < box.hi[0]; ++i)
+      for (std::int64_t j = box.lo[1]; j < box.hi[1]; ++j)
+        for (std::int64_t k = box.lo[2]; k < box.hi[2]; ++k, ++m) {
+          const auto n = static_cast<std::size_t>((i * 40 + j) * 52 + k);
+          if (missing[n]) {
+            ASSERT_EQ(got[m], std::numeric_limits<float>::lowest()) << i << ", " << j << ", " << k;
+            ++outside;
+          } else {
+            ASSERT_EQ(0, std::memcmp(&got[m], &want[n], sizeof(float)))
+                << i << ", " << j << ", " << k << ": " << got[m] << " against " << want[n];
+            ++compared;
+          }
+        }
+  }
+  EXPECT_GE(outside, 12u * 15u * 52u);
+  EXPECT_GT(compared, outside);
+
+  // Read by the extraction directly, a missing sample is the lowest float, the others as in the file.
+  const Recipe direct = parse_recipe(facies_recipe(dir.file("holes.raw"), "fill", "input"), "direct.yaml", registry);
+  const std::vector<float> input = open_chain(describe_chain(direct, registry), registry).result->read(bounds);
+  for (std::size_t n = 0; n < input.size(); ++n)
+    ASSERT_EQ(input[n], missing[n] ? std::numeric_limits<float>::lowest() : holes[n]) << n;
+
+  // Without the fill, the first missing sample stops the read, naming the file.
+  const Recipe strict = parse_recipe(facies_recipe(dir.file("holes.raw"), "error", "facies"), "strict.yaml", registry);
+  const ChainVolumes stopped = open_chain(describe_chain(strict, registry), registry);
+  try {
+    stopped.result->read(volume::Box{{0, 0, 0}, {8, 8, 52}});
+    FAIL() << "a NaN sample was read without the fill";
+  } catch (const DataError& e) {
+    EXPECT_NE(std::string(e.what()).find("holes.raw"), std::string::npos) << e.what();
+  }
+}

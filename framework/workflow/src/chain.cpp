@@ -5,6 +5,7 @@
 
 #include <cstdio>
 #include <filesystem>
+#include <limits>
 
 #include "geotandem/core/error.hpp"
 #include "geotandem/synth/synthetic.hpp"
@@ -16,7 +17,9 @@ namespace fs = std::filesystem;
 namespace geotandem::workflow {
 namespace {
 
-std::shared_ptr<const volume::Volume> open_input(const nlohmann::json& in) {
+// `missing_as_nan`: under `nan: fill`, the missing samples read as NaN rather than the lowest float
+// (the attributes then see them as dead samples and the result masks them: open_chain).
+std::shared_ptr<const volume::Volume> open_input(const nlohmann::json& in, bool missing_as_nan) {
   if (in.contains("synthetic")) {
     const auto& s = in.at("synthetic");
     const auto shape = s.at("shape").get<std::vector<std::int64_t>>();
@@ -37,6 +40,7 @@ std::shared_ptr<const volume::Volume> open_input(const nlohmann::json& in) {
   }
   volume::OpenOptions options;
   options.nan_policy = volume::parse_nan_policy(in.value("nan", "error"));
+  if (missing_as_nan) options.fill_value = std::numeric_limits<float>::quiet_NaN();
   options.variable = in.value("variable", "");
   if (in.contains("segy"))
     options.segy = {in["segy"].value("inline_byte", options.segy.inline_byte),
@@ -181,18 +185,27 @@ ChainVolumes open_chain(const ChainDescription& description, const PluginRegistr
     results[step.as] = 0;
   }
   ChainVolumes out;
-  out.input = open_input(description.input);
+  // Missing samples filled (`nan: fill`) under attributes: the attributes see dead samples (0), and
+  // the result is the lowest float wherever the input is missing (shared_input.hpp, DeadSamples).
+  // Read directly by the extraction, they are the lowest float from the input itself.
+  const auto& in = description.input;
+  const bool dead_samples = in.contains("file") && in.value("nan", "error") == "fill" &&
+                            description.steps.back().inputs != std::vector<std::string>{"input"};
+  out.input = open_input(in, dead_samples);
   // The attributes read the input through one shared fetch per read of the result (shared_input.hpp).
   auto shared = std::make_shared<const detail::SharedInput>(out.input);
-  std::map<std::string, std::shared_ptr<const volume::Volume>> volumes{{"input", shared}};
+  std::shared_ptr<const volume::Volume> seen = shared;
+  if (dead_samples) seen = std::make_shared<const detail::DeadSamples>(shared);
+  std::map<std::string, std::shared_ptr<const volume::Volume>> volumes{{"input", seen}};
   for (std::size_t n = 0; n < description.steps.size(); ++n) {
     const ChainStep& step = description.steps[n];
     std::vector<std::shared_ptr<const volume::Volume>> inputs;
     for (const auto& name : step.inputs)
       inputs.push_back(volumes.at(name));
     if (n + 1 == description.steps.size())
-      out.result = inputs.front() == shared ? out.input
-                                            : std::make_shared<const detail::PrefetchingResult>(inputs.front(), shared);
+      out.result = inputs.front() == seen
+                       ? out.input
+                       : std::make_shared<const detail::PrefetchingResult>(inputs.front(), shared, dead_samples);
     else
       volumes[step.as] = resolved[n].first->make_attribute(std::move(inputs), resolved[n].second);
   }

@@ -1,5 +1,8 @@
 #include "shared_input.hpp"
 
+#include <cmath>
+#include <limits>
+
 namespace geotandem::workflow::detail {
 
 SharedInput::Fetched& SharedInput::mine() const {
@@ -43,15 +46,28 @@ void SharedInput::read_box(const volume::Box& box, std::span<float> out) const {
   counts_.direct += box.count();
 }
 
+void DeadSamples::read_box(const volume::Box& box, std::span<float> out) const {
+  input_->read(box, out);
+  for (float& v : out)
+    if (!std::isfinite(v)) v = 0.0f;
+}
+
 PrefetchingResult::PrefetchingResult(std::shared_ptr<const volume::Volume> result,
-                                     std::shared_ptr<const SharedInput> input)
-    : result_(std::move(result)), input_(std::move(input)) {}
+                                     std::shared_ptr<const SharedInput> input, bool mask_missing)
+    : result_(std::move(result)), input_(std::move(input)), mask_missing_(mask_missing) {}
 
 void PrefetchingResult::read_box(const volume::Box& box, std::span<float> out) const {
   const volume::Box wanted = box.grown(result_->source_halo()).intersection(geometry().bounds());
   input_->fetch(wanted);
   try {
     result_->read(box, out);
+    if (mask_missing_) {
+      thread_local std::vector<float> in;
+      in.resize(static_cast<std::size_t>(box.count()));
+      input_->read(box, in); // inside the fetched box: a copy
+      for (std::size_t n = 0; n < in.size(); ++n)
+        if (!std::isfinite(in[n])) out[n] = std::numeric_limits<float>::lowest();
+    }
   } catch (...) {
     input_->release();
     throw;

@@ -62,10 +62,34 @@ private:
   mutable Counts counts_;
 };
 
+// The input as a chain's attributes see it when the recipe fills missing samples (`input.nan:
+// fill`): the input is opened with its missing samples (NaN or infinite) read as NaN, and here they
+// read as 0, as a dead trace would. Filled with the lowest float, as the extraction wants them,
+// they would swamp every filter that reaches them: an envelope of -3e38, a normalisation scale of
+// infinity, a product of NaN.
+class DeadSamples final : public volume::Volume {
+public:
+  explicit DeadSamples(std::shared_ptr<const volume::Volume> input) : input_(std::move(input)) {}
+
+  const volume::Geometry& geometry() const override { return input_->geometry(); }
+  std::string format() const override { return input_->format(); }
+  std::string source() const override { return input_->source(); }
+  std::vector<volume::FormatDetail> format_details() const override { return input_->format_details(); }
+
+protected:
+  void read_box(const volume::Box& box, std::span<float> out) const override;
+
+private:
+  std::shared_ptr<const volume::Volume> input_;
+};
+
 class PrefetchingResult final : public volume::Volume {
 public:
-  // `result` is computed from `input` (through the attributes); `halo` is result's source_halo().
-  PrefetchingResult(std::shared_ptr<const volume::Volume> result, std::shared_ptr<const SharedInput> input);
+  // `result` is computed from `input` (through the attributes). With `mask_missing`, a sample whose
+  // input is missing (not finite: see DeadSamples) reads as the lowest float, outside every body,
+  // whatever the attributes made of the dead samples there.
+  PrefetchingResult(std::shared_ptr<const volume::Volume> result, std::shared_ptr<const SharedInput> input,
+                    bool mask_missing = false);
 
   const volume::Geometry& geometry() const override { return result_->geometry(); }
   std::string format() const override { return result_->format(); }
@@ -79,6 +103,7 @@ protected:
 private:
   std::shared_ptr<const volume::Volume> result_;
   std::shared_ptr<const SharedInput> input_;
+  bool mask_missing_;
 };
 
 } // namespace geotandem::workflow::detail

@@ -48,7 +48,9 @@ struct ChainDescription {
 ChainDescription describe_chain(const Recipe& recipe, const PluginRegistry& plugins);
 
 struct ChainVolumes {
-  std::shared_ptr<const volume::Volume> input; // the cube (a synth::SyntheticCube when synthetic)
+  // The cube (a synth::SyntheticCube when synthetic). Under `nan: fill` with attributes, its missing
+  // samples read as NaN: the attributes see them as 0 and the result masks them.
+  std::shared_ptr<const volume::Volume> input;
   // The volume the extraction reads (lazy). When attributes are computed, each read of it fetches
   // the input for the box plus the chain's total halo once, and the attributes share that fetch
   // (src/shared_input.hpp): a synthetic input is generated once per read, not once per attribute.

@@ -87,7 +87,9 @@ void add_extract_command(CLI::App& app, Context& context, Runner& run) {
       ->type_name("MODE");
   cmd->add_flag("--no-extended-time-lag", a->no_extended_time_lag,
                 "freeze only vertices on open block faces (for comparison; degrades seams)");
-  cmd->add_option("--nan", a->nan, "NaN or infinite samples: error, or fill (treated as outside)")
+  cmd->add_option(
+         "--nan", a->nan,
+         "missing samples (NaN, infinite, or the file's declared no-data value): error, or fill (treated as outside)")
       ->capture_default_str();
   cmd->add_option("--variable", a->variable, "the array to read from a multidimensional file with several");
   cmd->add_option("--workers", a->workers,

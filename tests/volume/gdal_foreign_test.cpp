@@ -71,6 +71,51 @@ TEST(GdalMdForeign, NamedDimensionsInAnotherOrderAreTransposed) {
   expect_formula(cube->read({{1, 2, 3}, {3, 5, 8}}), {{1, 2, 3}, {3, 5, 8}});
 }
 
+// netCDF's _FillValue and Zarr's fill_value (what GDAL reports as an array's no-data value, set here
+// through GDAL as other tools set them) mark samples as missing, as NaN samples are.
+TEST(GdalMdForeign, FillValueSamplesAreMissing) {
+  ScratchDir dir;
+  const gv::Index3 missing{1, 4, 2};
+  const double no_data = value_at(missing[0], missing[1], missing[2]);
+  for (const char* driver : {"netCDF", "Zarr"}) {
+    const std::string path = dir.file(std::string(driver) == "Zarr" ? "filled.zarr" : "filled.nc");
+    GDALAllRegister();
+    GDALDriver* gdal_driver = GetGDALDriverManager()->GetDriverByName(driver);
+    ASSERT_NE(gdal_driver, nullptr) << driver;
+    GDALDataset* dataset = gdal_driver->CreateMultiDimensional(path.c_str(), nullptr, nullptr);
+    ASSERT_NE(dataset, nullptr) << driver;
+    {
+      auto root = dataset->GetRootGroup();
+      auto il = root->CreateDimension("iline", "", "", 3);
+      auto xl = root->CreateDimension("xline", "", "", 6);
+      auto tw = root->CreateDimension("twt", "", "", 5);
+      auto array = add_array(*root, "seismic", {il, xl, tw}, GDT_Float32);
+      ASSERT_TRUE(array->SetNoDataValue(no_data)) << driver;
+      fill_array(*array, {0, 1, 2});
+    }
+    GDALClose(GDALDataset::ToHandle(dataset));
+
+    gv::OpenOptions fill;
+    fill.nan_policy = gv::NanPolicy::fill;
+    const auto cube = gv::open_volume(path, fill);
+    const gv::Box all = cube->geometry().bounds();
+    const std::vector<float> samples = cube->read(all);
+    for (std::int64_t i = 0; i < 3; ++i)
+      for (std::int64_t j = 0; j < 6; ++j)
+        for (std::int64_t k = 0; k < 5; ++k)
+          ASSERT_EQ(samples[all.offset({i, j, k})],
+                    (gv::Index3{i, j, k} == missing ? std::numeric_limits<float>::lowest() : value_at(i, j, k)))
+              << driver << " " << i << ", " << j << ", " << k;
+    bool listed = false;
+    for (const auto& d : cube->format_details())
+      listed = listed || d.key == gv::kNoDataDetail;
+    EXPECT_TRUE(listed) << driver;
+    EXPECT_THROW(gv::open_volume(path)->read(all), geotandem::DataError) << driver;
+    // A box without the missing sample reads as it always did.
+    expect_formula(gv::open_volume(path)->read({{0, 0, 0}, {1, 6, 5}}), {{0, 0, 0}, {1, 6, 5}});
+  }
+}
+
 TEST(GdalMdForeign, Hdf5CopyOfANetcdfFileOpensAsHdf5) {
   ScratchDir dir;
   const auto source = make_cube(test_geometry({12, 10, 21}));

@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <array>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -173,3 +174,56 @@ TEST(GdalInlineSlices, UnknownLayoutItemIsAFormatError) {
 }
 
 } // namespace
+
+namespace {
+
+// Samples read back with the NaN policy `policy`: the sample at `missing` reads as `fill`, every
+// other one as the formula.
+void expect_missing_at(const gv::Volume& cube, gv::Index3 missing, float fill) {
+  const gv::Box all = cube.geometry().bounds();
+  const std::vector<float> samples = cube.read(all);
+  for (std::int64_t i = 0; i < all.hi[0]; ++i)
+    for (std::int64_t j = 0; j < all.hi[1]; ++j)
+      for (std::int64_t k = 0; k < all.hi[2]; ++k) {
+        const float want = gv::Index3{i, j, k} == missing ? fill : value_at(i, j, k);
+        ASSERT_EQ(samples[all.offset({i, j, k})], want) << i << ", " << j << ", " << k;
+      }
+}
+
+} // namespace
+
+// A no-data value declared by the file (GeoTIFF's nodata tag, ENVI's "data ignore value", set here
+// through GDAL as other tools set them) marks samples as missing: an error naming the sample and the
+// value by default, outside every body with the fill. Read as a value, -999.25 would be an amplitude.
+TEST(GdalNoData, DeclaredNoDataSamplesAreMissing) {
+  ScratchDir dir;
+  for (const char* driver : {"GTiff", "ENVI"}) {
+    const std::string path =
+        dir.file(std::string("nodata_") + driver + (std::string(driver) == "GTiff" ? ".tif" : ".img"));
+    const gv::Index3 shape{5, 6, 7}, missing{2, 3, 4};
+    write_time_slices(path, driver, shape, nullptr);
+    {
+      GDALDataset* dataset = GDALDataset::Open(path.c_str(), GDAL_OF_RASTER | GDAL_OF_UPDATE);
+      ASSERT_NE(dataset, nullptr);
+      for (int b = 1; b <= dataset->GetRasterCount(); ++b)
+        ASSERT_EQ(dataset->GetRasterBand(b)->SetNoDataValue(value_at(missing[0], missing[1], missing[2])), CE_None);
+      GDALClose(GDALDataset::ToHandle(dataset));
+    }
+    gv::OpenOptions fill;
+    fill.nan_policy = gv::NanPolicy::fill;
+    const auto cube = gv::open_volume(path, fill);
+    bool listed = false;
+    for (const auto& d : cube->format_details())
+      listed = listed || (d.key == gv::kNoDataDetail && d.value.rfind("20304.5 ", 0) == 0);
+    EXPECT_TRUE(listed) << driver << ": the no-data value is not among the format details";
+    expect_missing_at(*cube, missing, std::numeric_limits<float>::lowest());
+    try {
+      gv::open_volume(path)->read(cube->geometry().bounds());
+      FAIL() << driver << ": a no-data sample was read as an amplitude";
+    } catch (const geotandem::DataError& e) {
+      const std::string text = e.what();
+      EXPECT_NE(text.find("(2, 3, 4)"), std::string::npos) << text;
+      EXPECT_NE(text.find("20304.5 as its no-data value"), std::string::npos) << text;
+    }
+  }
+}

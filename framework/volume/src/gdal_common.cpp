@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <limits>
 
 #include "geotandem/core/error.hpp"
 
@@ -168,6 +169,24 @@ void stream_boxes(const Volume& source, const Index3& block, const std::string& 
         progress.update(++done);
       }
   progress.end();
+}
+
+std::optional<float> no_data_of(bool declared, double value) {
+  if (!declared || std::isnan(value)) return std::nullopt;
+  return static_cast<float>(value); // beyond float range: infinite, as the float samples then are
+}
+
+void mark_no_data(std::span<float> samples, std::optional<float> no_data) {
+  if (!no_data) return;
+  const float value = *no_data;
+  for (float& v : samples)
+    if (v == value) v = std::numeric_limits<float>::quiet_NaN();
+}
+
+FormatDetail no_data_detail(float no_data) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.9g", static_cast<double>(no_data));
+  return {kNoDataDetail, std::string(text) + " (samples equal to it are missing: see --nan)"};
 }
 
 } // namespace geotandem::volume::detail::gdal

@@ -2,6 +2,7 @@
 // API. The writer is in gdal_md_write.cpp; array choice and geometry in gdal_md_inspect.cpp.
 
 #include <array>
+#include <optional>
 
 #include "formats.hpp"
 #include "gdal_common.hpp"
@@ -26,9 +27,9 @@ const char* driver_of(Format format) {
 class GdalMdVolume final : public Volume {
 public:
   GdalMdVolume(std::string path, std::string format, gdal::DatasetPtr dataset, std::shared_ptr<GDALGroup> root,
-               std::shared_ptr<GDALMDArray> array, Geometry geometry)
+               std::shared_ptr<GDALMDArray> array, Geometry geometry, std::optional<float> no_data)
       : path_(std::move(path)), format_(std::move(format)), dataset_(std::move(dataset)), root_(std::move(root)),
-        array_(std::move(array)), geometry_(std::move(geometry)) {}
+        array_(std::move(array)), geometry_(std::move(geometry)), no_data_(no_data) {}
 
   ~GdalMdVolume() override {
     // Arrays and groups first: some drivers keep the file open while any handle lives.
@@ -41,6 +42,10 @@ public:
   const Geometry& geometry() const override { return geometry_; }
   std::string format() const override { return format_; }
   std::string source() const override { return path_; }
+  std::vector<FormatDetail> format_details() const override {
+    if (no_data_) return {gdal::no_data_detail(*no_data_)};
+    return {};
+  }
 
 protected:
   void read_box(const Box& box, std::span<float> out) const override {
@@ -60,6 +65,7 @@ protected:
         throw IoError(what, where, "check that the file is still there and readable");
       throw FormatError(what, where, "the file may be truncated or damaged");
     }
+    gdal::mark_no_data(out, no_data_);
   }
 
 private:
@@ -70,6 +76,7 @@ private:
   std::shared_ptr<GDALGroup> root_;
   std::shared_ptr<GDALMDArray> array_;
   Geometry geometry_;
+  std::optional<float> no_data_; // the array's _FillValue, missing_value or fill_value
 };
 
 // What the file really is, from the driver that opened it ("netCDF-4" for the netCDF driver, which
@@ -99,9 +106,11 @@ std::unique_ptr<Volume> volume_of(gdal::DatasetPtr dataset, const std::string& p
   std::shared_ptr<GDALMDArray> cube = gdal::in_cube_order(stored);
   Geometry geometry = gdal::read_geometry(*cube, *stored, path);
   std::string name = format_of(*dataset, format);
+  bool declared = false;
+  const double no_data = stored->GetNoDataValueAsDouble(&declared);
   stored.reset();
   return std::make_unique<GdalMdVolume>(path, std::move(name), std::move(dataset), std::move(root), std::move(cube),
-                                        std::move(geometry));
+                                        std::move(geometry), gdal::no_data_of(declared, no_data));
 }
 
 } // namespace

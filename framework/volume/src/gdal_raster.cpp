@@ -12,6 +12,7 @@
 // The GeoTIFF writer is in gdal_raster_write.cpp.
 
 #include <numeric>
+#include <optional>
 #include <vector>
 
 #include "formats.hpp"
@@ -28,9 +29,10 @@ enum class RasterLayout { time_slices, inline_slices };
 // not thread-safe, so use one GdalRasterVolume per thread.
 class GdalRasterVolume final : public Volume {
 public:
-  GdalRasterVolume(std::string path, Format format, gdal::DatasetPtr dataset, RasterLayout layout, Geometry geometry)
+  GdalRasterVolume(std::string path, Format format, gdal::DatasetPtr dataset, RasterLayout layout, Geometry geometry,
+                   std::optional<float> no_data)
       : path_(std::move(path)), format_(format), dataset_(std::move(dataset)), layout_(layout),
-        geometry_(std::move(geometry)) {}
+        geometry_(std::move(geometry)), no_data_(no_data) {}
 
   ~GdalRasterVolume() override {
     gdal::ErrorCapture quiet;
@@ -41,9 +43,14 @@ public:
   std::string format() const override { return format_name(format_); }
   std::string source() const override { return path_; }
   std::vector<FormatDetail> format_details() const override {
+    std::vector<FormatDetail> details;
     if (layout_ == RasterLayout::inline_slices)
-      return {{"layout", "inline slices (band = inline, raster x = sample, y = crossline; written by geotandem)"}};
-    return {{"layout", "time slices (band = sample, raster x = inline, y = crossline)"}};
+      details.push_back(
+          {"layout", "inline slices (band = inline, raster x = sample, y = crossline; written by geotandem)"});
+    else
+      details.push_back({"layout", "time slices (band = sample, raster x = inline, y = crossline)"});
+    if (no_data_) details.push_back(gdal::no_data_detail(*no_data_));
+    return details;
   }
 
 protected:
@@ -76,6 +83,7 @@ protected:
         throw IoError(what, where, "check that the file is still there and readable");
       throw FormatError(what, where, "the file may be truncated or damaged");
     }
+    gdal::mark_no_data(out, no_data_);
   }
 
 private:
@@ -84,6 +92,7 @@ private:
   gdal::DatasetPtr dataset_;
   RasterLayout layout_;
   Geometry geometry_;
+  std::optional<float> no_data_; // the first band's nodata (GeoTIFF's applies to every band)
 };
 
 // The layout item when present; otherwise inline slices for files with geotandem_* geometry items
@@ -179,7 +188,10 @@ std::unique_ptr<Volume> gdal::open_raster(const std::string& path, Format format
   }
   const RasterLayout layout = layout_of(*dataset, path);
   Geometry geometry = geometry_of(*dataset, layout, path);
-  return std::make_unique<GdalRasterVolume>(path, format, std::move(dataset), layout, std::move(geometry));
+  int declared = FALSE;
+  const double no_data = dataset->GetRasterBand(1)->GetNoDataValue(&declared);
+  return std::make_unique<GdalRasterVolume>(path, format, std::move(dataset), layout, std::move(geometry),
+                                            gdal::no_data_of(declared != FALSE, no_data));
 }
 
 } // namespace geotandem::volume::detail

@@ -29,8 +29,13 @@ protected:
       auto nk = static_cast<std::size_t>(box.size(2)), nj = static_cast<std::size_t>(box.size(1));
       Index3 at{box.lo[0] + static_cast<std::int64_t>(n / (nj * nk)),
                 box.lo[1] + static_cast<std::int64_t>((n / nk) % nj), box.lo[2] + static_cast<std::int64_t>(n % nk)};
+      std::string declared;
+      for (const FormatDetail& d : inner_->format_details())
+        if (d.key == kNoDataDetail)
+          declared = " (the file declares " + d.value.substr(0, d.value.find(' ')) + " as its no-data value)";
       throw DataError(std::string(std::isnan(out[n]) ? "NaN" : "infinite") + " sample at index (" +
-                          std::to_string(at[0]) + ", " + std::to_string(at[1]) + ", " + std::to_string(at[2]) + ")",
+                          std::to_string(at[0]) + ", " + std::to_string(at[1]) + ", " + std::to_string(at[2]) + ")" +
+                          declared,
                       {inner_->source(), {}, {}, "box " + box.to_string(), {}},
                       "pass --nan fill to treat such samples as outside every body, or repair the file");
     }

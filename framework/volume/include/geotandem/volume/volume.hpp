@@ -20,6 +20,8 @@ struct FormatDetail {
   std::string value;
   bool operator==(const FormatDetail&) const = default;
 };
+// The key of the no-data value a file declares: its samples with that value read as NaN (missing).
+inline constexpr const char* kNoDataDetail = "no_data_value";
 
 class Volume {
 public:

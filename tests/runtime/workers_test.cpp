@@ -158,6 +158,14 @@ std::vector<pid_t> workers_of(pid_t manager, double timeout_s) {
 
 TEST(Workers, AWorkerKilledAtARandomMomentChangesNothing) {
   Fixture f;
+  // How long a run lasts once its workers are there, on this machine today: the moments of the
+  // kills are spread over it, so that they land while the run goes on on a fast machine as on a
+  // slow one (fixed moments of up to 420 ms missed most runs once a run took 200 ms).
+  const pid_t timed = spawn_geotandem(f.extract_args("timed", 2), f.dir.file("timed.log"));
+  ASSERT_FALSE(workers_of(timed, 30).empty()) << read_text(f.dir.file("timed.log"));
+  const auto started = std::chrono::steady_clock::now();
+  ASSERT_EQ(wait_exit(timed, 300), 0) << read_text(f.dir.file("timed.log"));
+  const double run_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - started).count();
   std::mt19937 rng(5);
   int killed = 0;
   for (int run = 0; run < 20; ++run) {
@@ -166,12 +174,13 @@ TEST(Workers, AWorkerKilledAtARandomMomentChangesNothing) {
     const std::vector<pid_t> workers = workers_of(manager, 30);
     ASSERT_FALSE(workers.empty()) << read_text(log);
     // Spread the moments over the run: extraction of the first blocks, sends and merges, the end.
-    std::this_thread::sleep_for(std::chrono::milliseconds(20 + rng() % 400));
+    const double fraction = 0.02 + 0.8 * static_cast<double>(rng() % 1000) / 1000.0;
+    std::this_thread::sleep_for(std::chrono::microseconds(static_cast<std::int64_t>(1000.0 * fraction * run_ms)));
     if (kill(workers[rng() % workers.size()], SIGKILL) == 0) ++killed;
     ASSERT_EQ(wait_exit(manager, 300), 0) << read_text(log);
     f.expect_same(out, run % 5 == 0);
   }
-  EXPECT_GT(killed, 10) << "most kills should land while the run is going on";
+  EXPECT_GT(killed, 10) << "most kills should land while the run is going on (a run took " << run_ms << " ms)";
 }
 
 TEST(Workers, AFrozenWorkerIsDetectedByItsHeartbeat) {

@@ -54,6 +54,7 @@ void add_extract_command(CLI::App& app, Context& context, Runner& run) {
                      block_size = default_of("block_size"), mode = default_of("mode");
     bool no_extended_time_lag = false;
     std::optional<std::size_t> workers;
+    std::optional<double> no_data;
     bool fresh = false;
     volume::SegyOptions segy;
   };
@@ -91,6 +92,10 @@ void add_extract_command(CLI::App& app, Context& context, Runner& run) {
          "--nan", a->nan,
          "missing samples (NaN, infinite, or the file's declared no-data value): error, or fill (treated as outside)")
       ->capture_default_str();
+  cmd->add_option("--no-data", a->no_data,
+                  "samples of this value are missing too (SEG-Y and raw cubes cannot declare their null, often "
+                  "-999.25); --nan says what becomes of them")
+      ->type_name("VALUE");
   cmd->add_option("--variable", a->variable, "the array to read from a multidimensional file with several");
   cmd->add_option("--workers", a->workers,
                   "local worker processes extracting and merging the blocks (manager/worker runtime); the default is "
@@ -108,6 +113,7 @@ void add_extract_command(CLI::App& app, Context& context, Runner& run) {
     run = [a, &context] {
       volume::OpenOptions open;
       open.nan_policy = volume::parse_nan_policy(a->nan);
+      open.no_data = no_data_option(a->no_data);
       open.variable = a->variable;
       open.segy = a->segy;
       workflow::ParamValues values;
@@ -131,11 +137,12 @@ void add_extract_command(CLI::App& app, Context& context, Runner& run) {
       // extracted in this process); --workers 0 extracts in this process.
       s.workers = a->workers.value_or(workflow::default_worker_count(cube->geometry(), s.block_size));
       if (s.workers > 0) {
-        s.volume_description = describe_cube_file(a->cube, a->nan, a->variable, a->segy);
+        s.volume_description = describe_cube_file(a->cube, a->nan, open.no_data, a->variable, a->segy);
         s.worker_command = worker_command(context);
       }
       if (a->fresh) store::ComponentStore::remove(a->out); // refuses while another process writes it
       s.parameters = {{"command", "geotandem extract"}, {"cube", a->cube}};
+      if (open.no_data) s.parameters["no_data"] = *open.no_data; // other samples missing: another extraction
       auto store = store::ComponentStore::open_or_create(a->out, cube->geometry(), {"geotandem extract", a->cube});
       auto progress = context.progress();
       auto r = workflow::extract_to_store(*cube, store, s, context.log, *progress, context.cancel);

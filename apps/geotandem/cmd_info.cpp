@@ -18,6 +18,7 @@ struct Info {
   std::string options_nan;
   bool json = false;
   bool no_stats = false;
+  std::optional<double> no_data;
   volume::SegyOptions segy;
 };
 
@@ -128,7 +129,8 @@ void print_text(const nlohmann::json& j, const std::vector<volume::FormatDetail>
   if (j.contains("values")) {
     const auto& v = j["values"];
     o << "values:     min " << v["min"] << ", max " << v["max"] << ", mean " << v["mean"] << ", std " << v["std"];
-    if (v["non_finite"].get<std::uint64_t>() > 0) o << ", " << v["non_finite"] << " NaN or infinite samples";
+    if (v["non_finite"].get<std::uint64_t>() > 0)
+      o << ", " << v["non_finite"] << " missing samples (NaN, infinite or no data)";
     o << "\n";
   }
 }
@@ -141,6 +143,10 @@ void add_info_command(CLI::App& app, Context& context, Runner& run) {
   cmd->add_option("file", info->path, "the cube (netCDF, HDF5, Zarr, GeoTIFF, ENVI, SEG-Y, raw+json)")->required();
   cmd->add_flag("--json", info->json, "print JSON for scripts instead of text");
   cmd->add_flag("--no-stats", info->no_stats, "skip the value scan (fast on huge cubes)");
+  cmd->add_option("--no-data", info->no_data,
+                  "samples of this value are missing too, as NaN samples are: counted with them and left out of "
+                  "the statistics (a SEG-Y or raw cube's null, often -999.25)")
+      ->type_name("VALUE");
   cmd->add_option("--inline-byte", info->segy.inline_byte,
                   "SEG-Y: trace header byte (1-based) of the inline numbers (often 9 or 5 in older files)")
       ->capture_default_str();
@@ -153,6 +159,7 @@ void add_info_command(CLI::App& app, Context& context, Runner& run) {
       options.nan_policy = volume::NanPolicy::fill; // info reports non-finite samples instead of failing
       options.fill_value = std::numeric_limits<float>::quiet_NaN();
       options.segy = info->segy;
+      options.no_data = no_data_option(info->no_data);
       auto cube = volume::open_volume(info->path, options);
       std::optional<ValueStats> stats;
       if (!info->no_stats) {

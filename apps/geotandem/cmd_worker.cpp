@@ -5,7 +5,11 @@
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
+#include <cmath>
+#include <cstdio>
 #include <filesystem>
+#include <limits>
+#include <optional>
 
 #include "command.hpp"
 #include "geotandem/core/error.hpp"
@@ -29,14 +33,32 @@ std::vector<std::string> worker_command(const Context& context) {
   return {self_executable(), "--log-level", context.log_level, "worker"};
 }
 
-std::string describe_cube_file(const std::string& path, const std::string& nan, const std::string& variable,
-                               const volume::SegyOptions& segy) {
-  return nlohmann::json{{"kind", "file"},
-                        {"path", std::filesystem::absolute(path).string()},
-                        {"nan", nan},
-                        {"variable", variable},
-                        {"segy", {{"inline_byte", segy.inline_byte}, {"crossline_byte", segy.crossline_byte}}}}
-      .dump();
+std::string describe_cube_file(const std::string& path, const std::string& nan, std::optional<float> no_data,
+                               const std::string& variable, const volume::SegyOptions& segy) {
+  nlohmann::json d{{"kind", "file"},
+                   {"path", std::filesystem::absolute(path).string()},
+                   {"nan", nan},
+                   {"variable", variable},
+                   {"segy", {{"inline_byte", segy.inline_byte}, {"crossline_byte", segy.crossline_byte}}}};
+  if (no_data) d["no_data"] = *no_data;
+  return d.dump();
+}
+
+namespace {
+std::string fmt_value(double value) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%g", value);
+  return text;
+}
+} // namespace
+
+std::optional<float> no_data_option(const std::optional<double>& value) {
+  if (!value) return std::nullopt;
+  const double largest = std::numeric_limits<float>::max();
+  if (!(std::abs(*value) <= largest))
+    throw InvalidArgument("--no-data is " + fmt_value(*value) + ", not a float sample's value", {},
+                          "give the value the file's missing samples hold, such as -999.25");
+  return static_cast<float>(*value);
 }
 
 std::shared_ptr<const volume::Volume> open_described_volume(const std::string& description, Logger& log) {
@@ -48,6 +70,7 @@ std::shared_ptr<const volume::Volume> open_described_volume(const std::string& d
       volume::OpenOptions open;
       open.nan_policy = volume::parse_nan_policy(d.at("nan").get<std::string>());
       open.variable = d.at("variable").get<std::string>();
+      if (d.contains("no_data")) open.no_data = d.at("no_data").get<float>();
       if (d.contains("segy")) {
         open.segy.inline_byte = d["segy"].at("inline_byte").get<int>();
         open.segy.crossline_byte = d["segy"].at("crossline_byte").get<int>();

@@ -201,6 +201,26 @@ TEST(BadInput, NanAndInfiniteSamplesFollowThePolicy) {
     expected[all.offset({5, 6, 7})] = -999.0f;
     EXPECT_EQ(filled, expected);
   }
+  // A null given when opening (a SEG-Y or raw cube cannot declare one) is missing as NaN is.
+  for (const std::string name : {"holes.raw", "holes.sgy"}) {
+    const std::string path = dir.file(name);
+    OpenOptions given;
+    given.no_data = geotandem::volume::testing::formula(1, 2, 3);
+    auto strict = open_volume(path, given);
+    const std::string message = message_of<DataError>([&] { strict->read(Box{{0, 0, 0}, {2, 9, 50}}); });
+    EXPECT_TRUE(contains(message, "no-data sample at index (1, 2, 3)")) << message;
+    EXPECT_TRUE(contains(message, "the no-data value given")) << message;
+    bool listed = false;
+    for (const auto& d : strict->format_details())
+      listed = listed || d.key == "no_data_given";
+    EXPECT_TRUE(listed) << name;
+    given.nan_policy = NanPolicy::fill;
+    auto filled = open_volume(path, given)->read(all);
+    std::vector<float> expected = formula_samples(all);
+    for (const Index3 at : {Index3{1, 2, 3}, Index3{2, 3, 4}, Index3{5, 6, 7}})
+      expected[all.offset(at)] = std::numeric_limits<float>::lowest();
+    EXPECT_EQ(filled, expected) << name;
+  }
   EXPECT_EQ(parse_nan_policy("fill"), NanPolicy::fill);
   EXPECT_EQ(parse_nan_policy("error"), NanPolicy::error);
   EXPECT_THROW(parse_nan_policy("ignore"), InvalidArgument);

@@ -240,6 +240,29 @@ TEST_F(Recipes, SegyHeaderBytesComeFromTheInputSection) {
   EXPECT_NE(range.find("crossline_byte"), std::string::npos) << range;
 }
 
+// input.no_data: the null of a file that cannot declare one, a float sample's value, for files only.
+TEST_F(Recipes, NoDataValueComesFromTheInputSection) {
+  const std::string file_input =
+      replaced("  synthetic: {kind: seismic, shape: [64, 48, 80], seed: 3}", "  file: f3.sgy\n  no_data: -999.25");
+  Recipe r = parse_recipe(file_input, "dir/recipe.yaml", registry);
+  ASSERT_TRUE(r.input.no_data.has_value());
+  EXPECT_EQ(*r.input.no_data, -999.25);
+  EXPECT_EQ(r.canonical["input"]["no_data"], -999.25);
+  Recipe none = parse_recipe(replaced("  synthetic: {kind: seismic, shape: [64, 48, 80], seed: 3}", "  file: a.sgy"),
+                             "dir/recipe.yaml", registry);
+  EXPECT_FALSE(none.input.no_data.has_value());
+  EXPECT_FALSE(none.canonical["input"].contains("no_data")) << "a recipe without it keeps its old identity";
+
+  std::string range = error_of(file_input, {"input.no_data=1e39"});
+  EXPECT_NE(range.find("no_data"), std::string::npos) << range;
+  EXPECT_NE(range.find("out of range"), std::string::npos) << range;
+  std::string text = error_of(file_input, {"input.no_data=dead"});
+  EXPECT_NE(text.find("not a number"), std::string::npos) << text;
+  std::string synthetic = error_of(replaced("seed: 3}", "seed: 3}\n  no_data: 0"));
+  EXPECT_NE(synthetic.find("dir/recipe.yaml:4:"), std::string::npos) << synthetic;
+  EXPECT_NE(synthetic.find("file input"), std::string::npos) << synthetic;
+}
+
 TEST_F(Recipes, AttributeFileOfUnknownFormatIsRefusedAtValidation) {
   // Caught before any work, not after the extraction when the cube is written.
   std::string e = error_of(replaced("  directory: out\n", "  directory: out\n  attribute: smooth.xyz\n"));

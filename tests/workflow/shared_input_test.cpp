@@ -159,10 +159,11 @@ INSTANTIATE_TEST_SUITE_P(Normalise, SharedInputs, ::testing::Values("percentile"
 namespace {
 
 // The facies chain of the quickstart recipe on `file`, extracting `extracted`.
-std::string facies_recipe(const std::string& file, const std::string& nan, const std::string& extracted) {
+std::string facies_recipe(const std::string& file, const std::string& nan, const std::string& extracted,
+                          const std::string& more_input = "") {
   return R"(version: 1
 input: {file: ")" +
-         file + R"(", nan: )" + nan + R"(}
+         file + R"(", nan: )" + nan + more_input + R"(}
 steps:
   - {step: chaos, input: input, sigma_t_across: 2}
   - {step: envelope, input: input, half_length: 8}
@@ -206,7 +207,11 @@ TEST(MissingSamples, FilledTheyAreDeadToTheAttributesAndOutsideInTheResult) {
         holes[n] = spike ? std::numeric_limits<float>::infinity() : std::numeric_limits<float>::quiet_NaN();
         dead[n] = 0.0f;
       }
+  std::vector<float> nulls = holes;
+  for (std::size_t n = 0; n < nulls.size(); ++n)
+    if (missing[n] && std::isnan(nulls[n])) nulls[n] = -999.25f;
   volume::write_volume(volume::MemoryVolume(geometry, holes), dir.file("holes.raw"));
+  volume::write_volume(volume::MemoryVolume(geometry, nulls), dir.file("nulls.raw"));
   volume::write_volume(volume::MemoryVolume(geometry, dead), dir.file("dead.raw"));
 
   using attributes::make_attribute;
@@ -239,6 +244,15 @@ TEST(MissingSamples, FilledTheyAreDeadToTheAttributesAndOutsideInTheResult) {
   }
   EXPECT_GE(outside, 12u * 15u * 52u);
   EXPECT_GT(compared, outside);
+
+  // The same traces holding a null value that input.no_data names: the same result, bit for bit.
+  const Recipe nulled = parse_recipe(facies_recipe(dir.file("nulls.raw"), "fill", "facies", ", no_data: -999.25"),
+                                     "nulls.yaml", registry);
+  const ChainVolumes with_nulls = open_chain(describe_chain(nulled, registry), registry);
+  for (const volume::Box& box : slab_boxes(geometry.shape, 16, 5)) {
+    const std::vector<float> a = chain.result->read(box), b = with_nulls.result->read(box);
+    ASSERT_EQ(0, std::memcmp(a.data(), b.data(), a.size() * sizeof(float))) << box.to_string();
+  }
 
   // Read by the extraction directly, a missing sample is the lowest float, the others as in the file.
   const Recipe direct = parse_recipe(facies_recipe(dir.file("holes.raw"), "fill", "input"), "direct.yaml", registry);

@@ -41,6 +41,7 @@ std::shared_ptr<const volume::Volume> open_input(const nlohmann::json& in, bool 
   volume::OpenOptions options;
   options.nan_policy = volume::parse_nan_policy(in.value("nan", "error"));
   if (missing_as_nan) options.fill_value = std::numeric_limits<float>::quiet_NaN();
+  if (in.contains("no_data")) options.no_data = static_cast<float>(in.at("no_data").get<double>());
   options.variable = in.value("variable", "");
   if (in.contains("segy"))
     options.segy = {in["segy"].value("inline_byte", options.segy.inline_byte),
@@ -76,6 +77,7 @@ ChainDescription ChainDescription::from_json(const nlohmann::json& j) {
   const auto& in = j["input"];
   if (in.contains("file") == in.contains("synthetic")) bad("the input needs exactly one of 'file' or 'synthetic'");
   if (in.contains("file") && !in["file"].is_string()) bad("input.file is not a string");
+  if (in.contains("no_data") && !in["no_data"].is_number()) bad("input.no_data is not a number");
   if (in.contains("synthetic")) {
     const auto& s = in["synthetic"];
     if (!s.is_object() || !s.contains("kind") || !s.contains("shape") || !s.contains("seed") || !s.contains("snr") ||

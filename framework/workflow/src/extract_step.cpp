@@ -132,6 +132,8 @@ nlohmann::json extract_run_parameters(const volume::Volume& volume, const Extrac
                                                               : volume::input_fingerprint(volume.source())},
       {"chain", settings.parameters.is_object() && settings.parameters.contains("chain") ? settings.parameters["chain"]
                                                                                          : nlohmann::json::object()}};
+  if (settings.parameters.is_object() && settings.parameters.contains("no_data"))
+    parameters["identity"]["no_data"] = settings.parameters["no_data"];
 
   return parameters;
 }

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <set>
 
 #include "geotandem/core/error.hpp"
@@ -35,6 +36,13 @@ void parse_input(MapReader& m, InputSpec& in) {
   in.nan = m.text("nan", "error");
   if (in.nan != "error" && in.nan != "fill")
     throw error_at(m.source(), m.node("nan"), "'nan' is '" + in.nan + "'", "use 'error' or 'fill'");
+  if (m.has("no_data") && has_synth)
+    throw error_at(m.source(), m.node("no_data"), "'no_data' applies to a file input",
+                   "a synthetic cube has no missing samples");
+  if (m.has("no_data")) {
+    const double largest = std::numeric_limits<float>::max();
+    in.no_data = m.real("no_data", 0.0, -largest, largest); // a float sample's value
+  }
   in.variable = m.text("variable", "");
   if (m.has("segy")) {
     MapReader s(m.source(), m.node("segy"), "input.segy");
@@ -77,7 +85,7 @@ void parse_input(MapReader& m, InputSpec& in) {
     in.snr = s.real("snr", 4.0, 1e-3, 1e6);
     s.finish({"kind", "shape", "seed", "snr"});
   }
-  m.finish({"file", "synthetic", "nan", "variable", "segy"});
+  m.finish({"file", "synthetic", "nan", "no_data", "variable", "segy"});
 }
 
 ParamValues parse_params(MapReader& m, const std::vector<ParamSpec>& specs, const std::string& what) {
@@ -311,6 +319,7 @@ nlohmann::json to_json(const Recipe& r) {
   else
     in["file"] = r.input.file;
   in["nan"] = r.input.nan;
+  if (r.input.no_data) in["no_data"] = *r.input.no_data;
   if (!r.input.variable.empty()) in["variable"] = r.input.variable;
   if (r.input.segy_inline_byte != 189 || r.input.segy_crossline_byte != 193)
     in["segy"] = {{"inline_byte", r.input.segy_inline_byte}, {"crossline_byte", r.input.segy_crossline_byte}};

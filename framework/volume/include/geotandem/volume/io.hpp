@@ -13,6 +13,7 @@
 #include <functional>
 #include <limits>
 #include <memory>
+#include <optional>
 #include <string>
 
 #include "geotandem/core/cancel.hpp"
@@ -41,6 +42,10 @@ struct SegyOptions {
 struct OpenOptions {
   NanPolicy nan_policy = NanPolicy::error;
   float fill_value = std::numeric_limits<float>::lowest();
+  // Samples equal to this value are missing too, as NaN samples and those equal to the no-data value
+  // a GDAL file declares are (the policy above applies): the null of a SEG-Y or raw cube, which
+  // cannot declare one (-999.25 is common).
+  std::optional<float> no_data;
   // For multidimensional files with several 3D arrays: the array's name (empty: the only 3D one).
   std::string variable;
   SegyOptions segy;

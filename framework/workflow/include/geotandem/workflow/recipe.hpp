@@ -5,6 +5,7 @@
 // The full schema is in docs/recipe-schema.md.
 
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -25,6 +26,9 @@ struct InputSpec {
   std::string file;     // relative paths are relative to the recipe's directory
   std::string variable; // for multidimensional files with several arrays
   std::string nan = "error";
+  // input.no_data: samples equal to it are missing, as NaN samples are (SEG-Y and raw cubes cannot
+  // declare their null; -999.25 is common).
+  std::optional<double> no_data;
   // SEG-Y trace header bytes (1-based) of the line numbers: input.segy.{inline,crossline}_byte.
   int segy_inline_byte = 189;
   int segy_crossline_byte = 193;

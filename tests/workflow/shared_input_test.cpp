@@ -223,6 +223,9 @@ TEST(MissingSamples, FilledTheyAreDeadToTheAttributesAndOutsideInTheResult) {
   const std::vector<float> want = facies->read(bounds);
 
   const Recipe recipe = parse_recipe(facies_recipe(dir.file("holes.raw"), "fill", "facies"), "holes.yaml", registry);
+  // The description says so: a store extracted when the attributes saw the fill's lowest float has
+  // another fingerprint and is not reused.
+  EXPECT_EQ(describe_chain(recipe, registry).input.value("missing", ""), "dead samples");
   const ChainVolumes chain = open_chain(describe_chain(recipe, registry), registry);
   std::size_t outside = 0, compared = 0;
   for (const volume::Box& box : slab_boxes(geometry.shape, 16, 5)) {
@@ -256,12 +259,14 @@ TEST(MissingSamples, FilledTheyAreDeadToTheAttributesAndOutsideInTheResult) {
 
   // Read by the extraction directly, a missing sample is the lowest float, the others as in the file.
   const Recipe direct = parse_recipe(facies_recipe(dir.file("holes.raw"), "fill", "input"), "direct.yaml", registry);
+  EXPECT_FALSE(describe_chain(direct, registry).input.contains("missing"));
   const std::vector<float> input = open_chain(describe_chain(direct, registry), registry).result->read(bounds);
   for (std::size_t n = 0; n < input.size(); ++n)
     ASSERT_EQ(input[n], missing[n] ? std::numeric_limits<float>::lowest() : holes[n]) << n;
 
   // Without the fill, the first missing sample stops the read, naming the file.
   const Recipe strict = parse_recipe(facies_recipe(dir.file("holes.raw"), "error", "facies"), "strict.yaml", registry);
+  EXPECT_FALSE(describe_chain(strict, registry).input.contains("missing"));
   const ChainVolumes stopped = open_chain(describe_chain(strict, registry), registry);
   try {
     stopped.result->read(volume::Box{{0, 0, 0}, {8, 8, 52}});

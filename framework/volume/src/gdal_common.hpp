@@ -73,7 +73,7 @@ std::optional<float> no_data_of(bool declared, double value);
 // by default, outside every body with a fill. Read as values, -999.25 or -3.4e38 would pass into
 // the attributes and the isovalue tests as seismic amplitudes.
 void mark_no_data(std::span<float> samples, std::optional<float> no_data);
-// How `geotandem info` and the NaN policy's error name the declared value (key "no-data value").
+// How `geotandem info` and the NaN policy's error name the declared value (key kNoDataDetail).
 FormatDetail no_data_detail(float no_data);
 
 // Geometry storage. Numbers are stored under these keys (as Float64 attributes in netCDF/Zarr, as

@@ -49,6 +49,13 @@ std::shared_ptr<const volume::Volume> open_input(const nlohmann::json& in, bool 
   return std::shared_ptr<const volume::Volume>(volume::open_volume(in.at("file").get<std::string>(), options));
 }
 
+// Whether the attributes of a chain see the input's missing samples as dead samples (0) and its
+// result masks them (open_chain): a file read with `nan: fill` under attributes.
+bool dead_samples(const nlohmann::json& input, const std::vector<ChainStep>& steps) {
+  return input.contains("file") && input.value("nan", "error") == "fill" && !steps.empty() &&
+         steps.back().inputs != std::vector<std::string>{"input"};
+}
+
 [[noreturn]] void bad(const std::string& what) {
   throw FormatError("chain description: " + what, {},
                     "write it with ChainDescription::to_json (docs/chain-description.md)");
@@ -131,6 +138,9 @@ ChainDescription describe_chain(const Recipe& recipe, const PluginRegistry& plug
   }
   if (d.steps.empty() || plugins.get(d.steps.back().step).kind() != StepKind::extract)
     throw InvalidArgument("the recipe's chain has no extract step", {recipe.path});
+  // Said in the description, so that its fingerprint differs from that of the same recipe before
+  // the attributes saw dead samples (they saw the fill's lowest float): such a store is not reused.
+  if (dead_samples(d.input, d.steps)) d.input["missing"] = "dead samples";
   return d;
 }
 
@@ -190,14 +200,12 @@ ChainVolumes open_chain(const ChainDescription& description, const PluginRegistr
   // Missing samples filled (`nan: fill`) under attributes: the attributes see dead samples (0), and
   // the result is the lowest float wherever the input is missing (shared_input.hpp, DeadSamples).
   // Read directly by the extraction, they are the lowest float from the input itself.
-  const auto& in = description.input;
-  const bool dead_samples = in.contains("file") && in.value("nan", "error") == "fill" &&
-                            description.steps.back().inputs != std::vector<std::string>{"input"};
-  out.input = open_input(in, dead_samples);
+  const bool dead = dead_samples(description.input, description.steps);
+  out.input = open_input(description.input, dead);
   // The attributes read the input through one shared fetch per read of the result (shared_input.hpp).
   auto shared = std::make_shared<const detail::SharedInput>(out.input);
   std::shared_ptr<const volume::Volume> seen = shared;
-  if (dead_samples) seen = std::make_shared<const detail::DeadSamples>(shared);
+  if (dead) seen = std::make_shared<const detail::DeadSamples>(shared);
   std::map<std::string, std::shared_ptr<const volume::Volume>> volumes{{"input", seen}};
   for (std::size_t n = 0; n < description.steps.size(); ++n) {
     const ChainStep& step = description.steps[n];
@@ -207,7 +215,7 @@ ChainVolumes open_chain(const ChainDescription& description, const PluginRegistr
     if (n + 1 == description.steps.size())
       out.result = inputs.front() == seen
                        ? out.input
-                       : std::make_shared<const detail::PrefetchingResult>(inputs.front(), shared, dead_samples);
+                       : std::make_shared<const detail::PrefetchingResult>(inputs.front(), shared, dead);
     else
       volumes[step.as] = resolved[n].first->make_attribute(std::move(inputs), resolved[n].second);
   }

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <iomanip>
 #include <iostream>
 #include <limits>
@@ -27,6 +28,10 @@ struct ValueStats {
   double max = -std::numeric_limits<double>::infinity();
   double sum = 0.0, sum2 = 0.0;
   std::uint64_t count = 0, non_finite = 0;
+  std::uint64_t at_min = 0, at_max = 0; // samples holding the minimum, the maximum
+  // The nearest values beyond them: a null lies far outside the amplitudes (-999.25 against +-5).
+  double next_min = std::numeric_limits<double>::infinity();
+  double next_max = -std::numeric_limits<double>::infinity();
 };
 
 // Scans the cube by slabs of inlines so that memory stays bounded for any cube size.
@@ -46,8 +51,22 @@ ValueStats scan_values(const volume::Volume& cube, Progress& progress, const Can
         ++s.non_finite;
         continue;
       }
-      s.min = std::min<double>(s.min, v);
-      s.max = std::max<double>(s.max, v);
+      if (v < s.min) {
+        s.next_min = s.min;
+        s.min = v;
+        s.at_min = 0;
+      } else if (v > s.min && v < s.next_min) {
+        s.next_min = v;
+      }
+      if (v > s.max) {
+        s.next_max = s.max;
+        s.max = v;
+        s.at_max = 0;
+      } else if (v < s.max && v > s.next_max) {
+        s.next_max = v;
+      }
+      s.at_min += v == s.min;
+      s.at_max += v == s.max;
       s.sum += v;
       s.sum2 += static_cast<double>(v) * v;
       ++s.count;
@@ -98,7 +117,19 @@ nlohmann::json describe(const volume::Volume& cube, const ValueStats* stats) {
                    {"max", stats->count ? stats->max : 0.0},
                    {"mean", mean},
                    {"std", std::sqrt(var)},
-                   {"non_finite", stats->non_finite}};
+                   {"non_finite", stats->non_finite},
+                   {"at_min", stats->at_min},
+                   {"at_max", stats->at_max}};
+    // Many samples at an extreme far outside the others' spread: most likely a null value.
+    nlohmann::json nulls = nlohmann::json::array();
+    const auto lone = [&](double end, double next, double other_end, std::uint64_t at) {
+      return std::isfinite(next) && at >= 2 && at * 200 >= stats->count && std::abs(next - end) > other_end - next;
+    };
+    if (lone(stats->min, stats->next_min, stats->max, stats->at_min))
+      nulls.push_back({{"value", stats->min}, {"samples", stats->at_min}});
+    if (lone(-stats->max, -stats->next_max, -stats->min, stats->at_max))
+      nulls.push_back({{"value", stats->max}, {"samples", stats->at_max}});
+    j["values"]["suspected_nulls"] = nulls;
   }
   return j;
 }
@@ -132,6 +163,17 @@ void print_text(const nlohmann::json& j, const std::vector<volume::FormatDetail>
     if (v["non_finite"].get<std::uint64_t>() > 0)
       o << ", " << v["non_finite"] << " missing samples (NaN, infinite or no data)";
     o << "\n";
+    // A null value that a SEG-Y or raw file cannot declare is read as an amplitude: say so.
+    const auto count = j["samples"].get<std::uint64_t>() - v["non_finite"].get<std::uint64_t>();
+    for (const auto& null : v["suspected_nulls"]) {
+      const auto at = null["samples"].get<std::uint64_t>();
+      char value[32];
+      std::snprintf(value, sizeof value, "%.9g", null["value"].get<double>());
+      o << "note:       " << at << " samples (" << std::fixed << std::setprecision(1)
+        << 100.0 * double(at) / double(count) << std::defaultfloat << " %) hold " << value
+        << ", far outside the other values: a null? If they mark missing data, pass --no-data " << value
+        << " (input.no_data in a recipe)\n";
+    }
   }
 }
 

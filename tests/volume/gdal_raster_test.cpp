@@ -177,8 +177,7 @@ TEST(GdalInlineSlices, UnknownLayoutItemIsAFormatError) {
 
 namespace {
 
-// Samples read back with the NaN policy `policy`: the sample at `missing` reads as `fill`, every
-// other one as the formula.
+// The whole cube read back: the sample at `missing` reads as `fill`, every other one as the formula.
 void expect_missing_at(const gv::Volume& cube, gv::Index3 missing, float fill) {
   const gv::Box all = cube.geometry().bounds();
   const std::vector<float> samples = cube.read(all);

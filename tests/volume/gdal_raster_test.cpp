@@ -7,6 +7,7 @@
 
 #include <array>
 #include <limits>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -22,7 +23,8 @@ using namespace gdal_fixtures;
 // A time-slice stack of `shape` = (inlines = raster width, crosslines = raster height, samples =
 // bands) holding value_at(i, j, k) at pixel (i, j) of band k + 1, with `transform` unless null.
 void write_time_slices(const std::string& path, const char* driver_name, gv::Index3 shape,
-                       const std::array<double, 6>* transform, GDALDataType type = GDT_Float32) {
+                       const std::array<double, 6>* transform, GDALDataType type = GDT_Float32,
+                       std::optional<double> no_data = std::nullopt) {
   GDALAllRegister();
   GDALDriver* driver = GetGDALDriverManager()->GetDriverByName(driver_name);
   ASSERT_NE(driver, nullptr);
@@ -35,6 +37,9 @@ void write_time_slices(const std::string& path, const char* driver_name, gv::Ind
   }
   std::vector<float> slice(static_cast<std::size_t>(nx * ny));
   for (int b = 1; b <= bands; ++b) {
+    if (no_data) {
+      ASSERT_EQ(dataset->GetRasterBand(b)->SetNoDataValue(*no_data), CE_None);
+    }
     for (int y = 0; y < ny; ++y)
       for (int x = 0; x < nx; ++x)
         slice[static_cast<std::size_t>(y * nx + x)] = value_at(x, y, b - 1);
@@ -200,14 +205,10 @@ TEST(GdalNoData, DeclaredNoDataSamplesAreMissing) {
     const std::string path =
         dir.file(std::string("nodata_") + driver + (std::string(driver) == "GTiff" ? ".tif" : ".img"));
     const gv::Index3 shape{5, 6, 7}, missing{2, 3, 4};
-    write_time_slices(path, driver, shape, nullptr);
-    {
-      GDALDataset* dataset = GDALDataset::Open(path.c_str(), GDAL_OF_RASTER | GDAL_OF_UPDATE);
-      ASSERT_NE(dataset, nullptr);
-      for (int b = 1; b <= dataset->GetRasterCount(); ++b)
-        ASSERT_EQ(dataset->GetRasterBand(b)->SetNoDataValue(value_at(missing[0], missing[1], missing[2])), CE_None);
-      GDALClose(GDALDataset::ToHandle(dataset));
-    }
+    // Declared when the file is made. (Opening it again in update mode to set the value, as
+    // gdal_edit does, made LeakSanitizer's tracer crash at this test's exit under the address
+    // sanitizer, after the test had passed.)
+    write_time_slices(path, driver, shape, nullptr, GDT_Float32, value_at(missing[0], missing[1], missing[2]));
     gv::OpenOptions fill;
     fill.nan_policy = gv::NanPolicy::fill;
     const auto cube = gv::open_volume(path, fill);

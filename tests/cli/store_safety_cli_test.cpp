@@ -260,6 +260,8 @@ TEST(StoreSafetyCli, ARunWithoutComponentsWarns) {
   auto r = run_geotandem("extract " + q(cube) + " --iso 1e9 --out " + q(store));
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_NE(r.err.find("warning: no component was extracted"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("'geotandem info' on the cube shows it"), std::string::npos) << r.err;
+  EXPECT_EQ(r.err.find("--stats"), std::string::npos) << "info has no --stats option: " << r.err;
   auto runs = run_geotandem("store runs --json " + q(store));
   ASSERT_EQ(runs.exit_code, 0);
   auto list = nlohmann::json::parse(runs.out);
@@ -276,6 +278,19 @@ TEST(StoreSafetyCli, ARunWithoutComponentsWarns) {
   ASSERT_EQ(w.exit_code, 0) << w.err;
   EXPECT_NE(w.err.find("no component was extracted"), std::string::npos) << w.err;
   EXPECT_NE(file_text(dir.file("w-out/report.html")).find("WARNING: no component was extracted"), std::string::npos);
+
+  // Extracting an attribute, the hint is about the attribute's range, not the cube's.
+  {
+    std::ofstream recipe(dir.file("a.yaml"));
+    recipe << "version: 1\ninput:\n  file: cube.raw\nsteps:\n  - step: envelope\n    input: input\n"
+           << "  - step: extract\n    input: envelope\n    iso: 1e9\noutput:\n  directory: " << dir.file("a-out")
+           << "\n";
+  }
+  auto a = run_geotandem("-q run-workflow " + q(dir.file("a.yaml")));
+  ASSERT_EQ(a.exit_code, 0) << a.err;
+  EXPECT_NE(a.err.find("inside the attribute's value range? (write the attribute with output.attribute"),
+            std::string::npos)
+      << a.err;
 }
 
 TEST(StoreSafetyCli, AStoreThisUserCannotWriteIsListedCheckedAndExported) {

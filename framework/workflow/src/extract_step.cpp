@@ -141,8 +141,16 @@ nlohmann::json extract_run_parameters(const volume::Volume& volume, const Extrac
 void warn_if_empty(ExtractResult& result, const ExtractSettings& settings, Logger& log) {
   // An empty result is almost always an isovalue outside the data: say so.
   if (result.components == 0 && result.duplicates == 0) {
-    const std::string warning = "no component was extracted: is the isovalue " + iso_text(settings.iso) +
-                                " inside the cube's value range? ('geotandem info --stats' shows it)";
+    // A recipe's chain that ends in an attribute: the input's range says nothing about it.
+    const auto& p = settings.parameters;
+    const bool attribute =
+        p.is_object() && p.contains("chain") && p["chain"].contains("steps") && !p["chain"]["steps"].empty() &&
+        p["chain"]["steps"].back().value("inputs", nlohmann::json::array()) != nlohmann::json::array({"input"});
+    const std::string warning =
+        "no component was extracted: is the isovalue " + iso_text(settings.iso) +
+        (attribute ? " inside the attribute's value range? (write the attribute with output.attribute in the recipe "
+                     "and see its range with 'geotandem info' on that file)"
+                   : " inside the cube's value range? ('geotandem info' on the cube shows it)");
     log.warning(warning);
     result.statistics["warnings"] = {warning};
   }

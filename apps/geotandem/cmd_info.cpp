@@ -2,13 +2,13 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 #include <iomanip>
 #include <iostream>
 #include <limits>
 #include <nlohmann/json.hpp>
 
 #include "command.hpp"
+#include "geotandem/core/params.hpp"
 #include "geotandem/volume/io.hpp"
 
 namespace geotandem::app {
@@ -167,8 +167,7 @@ void print_text(const nlohmann::json& j, const std::vector<volume::FormatDetail>
     const auto count = j["samples"].get<std::uint64_t>() - v["non_finite"].get<std::uint64_t>();
     for (const auto& null : v["suspected_nulls"]) {
       const auto at = null["samples"].get<std::uint64_t>();
-      char value[32];
-      std::snprintf(value, sizeof value, "%.9g", null["value"].get<double>());
+      const std::string value = number_text(null["value"].get<float>()); // a sample's value
       o << "note:       " << at << " samples (" << std::fixed << std::setprecision(1)
         << 100.0 * double(at) / double(count) << std::defaultfloat << " %) hold " << value
         << ", far outside the other values: a null? If they mark missing data, pass --no-data " << value

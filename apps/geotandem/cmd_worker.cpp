@@ -5,10 +5,7 @@
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
-#include <cmath>
-#include <cstdio>
 #include <filesystem>
-#include <limits>
 #include <optional>
 
 #include "command.hpp"
@@ -42,23 +39,6 @@ std::string describe_cube_file(const std::string& path, const std::string& nan, 
                    {"segy", {{"inline_byte", segy.inline_byte}, {"crossline_byte", segy.crossline_byte}}}};
   if (no_data) d["no_data"] = *no_data;
   return d.dump();
-}
-
-namespace {
-std::string fmt_value(double value) {
-  char text[32];
-  std::snprintf(text, sizeof text, "%g", value);
-  return text;
-}
-} // namespace
-
-std::optional<float> no_data_option(const std::optional<double>& value) {
-  if (!value) return std::nullopt;
-  const double largest = std::numeric_limits<float>::max();
-  if (!(std::abs(*value) <= largest))
-    throw InvalidArgument("--no-data is " + fmt_value(*value) + ", not a float sample's value", {},
-                          "give the value the file's missing samples hold, such as -999.25");
-  return static_cast<float>(*value);
 }
 
 std::shared_ptr<const volume::Volume> open_described_volume(const std::string& description, Logger& log) {

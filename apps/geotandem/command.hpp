@@ -50,14 +50,14 @@ const CLI::Validator& not_negative();
 const CLI::Validator& not_nan();
 // A real number > 0, not NaN (infinity passes).
 const CLI::Validator& positive();
+// The value of a --no-data option as a float sample's value; throws InvalidArgument when it is not a
+// finite number within float range.
+std::optional<float> no_data_option(const std::optional<double>& value);
 
 // cmd_worker.cpp: how workers rebuild the input volume. The description of a cube file (JSON
 // text), and the volume a description names (the runtime's VolumeFactory).
 std::string describe_cube_file(const std::string& path, const std::string& nan, std::optional<float> no_data,
                                const std::string& variable, const volume::SegyOptions& segy);
-// The value of a --no-data option as a float sample's value; throws InvalidArgument when it is not a
-// finite number within float range.
-std::optional<float> no_data_option(const std::optional<double>& value);
 std::shared_ptr<const volume::Volume> open_described_volume(const std::string& description, Logger& log);
 // This executable's path, for the command line of local workers.
 std::string self_executable();

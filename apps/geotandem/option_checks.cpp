@@ -2,10 +2,13 @@
 
 #include <cmath>
 #include <cstdlib>
+#include <limits>
 #include <optional>
 #include <string>
 
 #include "command.hpp"
+#include "geotandem/core/error.hpp"
+#include "geotandem/core/params.hpp"
 
 namespace geotandem::app {
 namespace {
@@ -45,6 +48,15 @@ const CLI::Validator& not_nan() {
     return value && std::isnan(*value) ? "'" + text + "' is not a number; give a real number" : "";
   });
   return check;
+}
+
+std::optional<float> no_data_option(const std::optional<double>& value) {
+  if (!value) return std::nullopt;
+  const double largest = std::numeric_limits<float>::max();
+  if (!(std::abs(*value) <= largest))
+    throw InvalidArgument("--no-data is " + number_text(*value) + ", not a float sample's value", {},
+                          "give the value the file's missing samples hold, such as -999.25");
+  return static_cast<float>(*value);
 }
 
 const CLI::Validator& positive() {

@@ -87,6 +87,13 @@ std::string number_text(double value) {
   return std::string(buffer, result.ptr);
 }
 
+std::string number_text(float value) {
+  if (std::isinf(value)) return value > 0 ? "inf" : "-inf";
+  char buffer[32];
+  auto result = std::to_chars(buffer, buffer + sizeof buffer, value);
+  return std::string(buffer, result.ptr);
+}
+
 bool ParamSpec::in_range(double value) const {
   if (std::isnan(value)) return false;
   bool above = !min_value || (min_open ? value > *min_value : value >= *min_value);

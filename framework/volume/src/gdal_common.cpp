@@ -6,9 +6,9 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
-#include <limits>
 
 #include "geotandem/core/error.hpp"
+#include "geotandem/core/params.hpp"
 
 namespace geotandem::volume::detail::gdal {
 
@@ -176,17 +176,8 @@ std::optional<float> no_data_of(bool declared, double value) {
   return static_cast<float>(value); // beyond float range: infinite, as the float samples then are
 }
 
-void mark_no_data(std::span<float> samples, std::optional<float> no_data) {
-  if (!no_data) return;
-  const float value = *no_data;
-  for (float& v : samples)
-    if (v == value) v = std::numeric_limits<float>::quiet_NaN();
-}
-
 FormatDetail no_data_detail(float no_data) {
-  char text[32];
-  std::snprintf(text, sizeof text, "%.9g", static_cast<double>(no_data));
-  return {kNoDataDetail, std::string(text) + " (samples equal to it are missing: see --nan)"};
+  return {kNoDataDetail, number_text(no_data) + " (samples equal to it are missing: see --nan)"};
 }
 
 } // namespace geotandem::volume::detail::gdal

@@ -67,13 +67,12 @@ void close_written(DatasetPtr dataset, const std::string& path);
 
 // A no-data value the file declares (GeoTIFF's nodata, ENVI's data ignore value, netCDF's
 // _FillValue or missing_value, Zarr's fill_value), as the float samples hold it: nullopt when none
-// is declared, or when it is NaN (NaN samples are missing anyway).
+// is declared, or when it is NaN (NaN samples are missing anyway). The readers report it
+// (Volume::declared_no_data) and the NaN policy treats such samples as missing (volume/io.hpp):
+// read as values, -999.25 or -3.4e38 would pass into the attributes and the isovalue tests as
+// seismic amplitudes.
 std::optional<float> no_data_of(bool declared, double value);
-// Samples equal to `no_data` become NaN, so that the NaN policy decides (volume/io.hpp): an error
-// by default, outside every body with a fill. Read as values, -999.25 or -3.4e38 would pass into
-// the attributes and the isovalue tests as seismic amplitudes.
-void mark_no_data(std::span<float> samples, std::optional<float> no_data);
-// How `geotandem info` and the NaN policy's error name the declared value (key kNoDataDetail).
+// How `geotandem info` shows the declared value (key kNoDataDetail).
 FormatDetail no_data_detail(float no_data);
 
 // Geometry storage. Numbers are stored under these keys (as Float64 attributes in netCDF/Zarr, as

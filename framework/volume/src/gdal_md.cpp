@@ -46,6 +46,7 @@ public:
     if (no_data_) return {gdal::no_data_detail(*no_data_)};
     return {};
   }
+  std::optional<float> declared_no_data() const override { return no_data_; }
 
 protected:
   void read_box(const Box& box, std::span<float> out) const override {
@@ -65,7 +66,6 @@ protected:
         throw IoError(what, where, "check that the file is still there and readable");
       throw FormatError(what, where, "the file may be truncated or damaged");
     }
-    gdal::mark_no_data(out, no_data_);
   }
 
 private:

@@ -51,9 +51,8 @@ std::shared_ptr<const volume::Volume> open_input(const nlohmann::json& in, bool 
 
 // Whether the attributes of a chain see the input's missing samples as dead samples (0) and its
 // result masks them (open_chain): a file read with `nan: fill` under attributes.
-bool dead_samples(const nlohmann::json& input, const std::vector<ChainStep>& steps) {
-  return input.contains("file") && input.value("nan", "error") == "fill" && !steps.empty() &&
-         steps.back().inputs != std::vector<std::string>{"input"};
+bool dead_samples(const ChainDescription& chain) {
+  return chain.input.contains("file") && chain.input.value("nan", "error") == "fill" && chain.reads_attribute();
 }
 
 [[noreturn]] void bad(const std::string& what) {
@@ -140,7 +139,7 @@ ChainDescription describe_chain(const Recipe& recipe, const PluginRegistry& plug
     throw InvalidArgument("the recipe's chain has no extract step", {recipe.path});
   // Said in the description, so that its fingerprint differs from that of the same recipe before
   // the attributes saw dead samples (they saw the fill's lowest float): such a store is not reused.
-  if (dead_samples(d.input, d.steps)) d.input["missing"] = "dead samples";
+  if (dead_samples(d)) d.input["missing"] = "dead samples";
   return d;
 }
 
@@ -200,7 +199,7 @@ ChainVolumes open_chain(const ChainDescription& description, const PluginRegistr
   // Missing samples filled (`nan: fill`) under attributes: the attributes see dead samples (0), and
   // the result is the lowest float wherever the input is missing (shared_input.hpp, DeadSamples).
   // Read directly by the extraction, they are the lowest float from the input itself.
-  const bool dead = dead_samples(description.input, description.steps);
+  const bool dead = dead_samples(description);
   out.input = open_input(description.input, dead);
   // The attributes read the input through one shared fetch per read of the result (shared_input.hpp).
   auto shared = std::make_shared<const detail::SharedInput>(out.input);

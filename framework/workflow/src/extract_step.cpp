@@ -1,6 +1,5 @@
 #include "geotandem/workflow/extract_step.hpp"
 
-#include <charconv>
 #include <chrono>
 #include <cstdlib>
 #include <fstream>
@@ -12,6 +11,7 @@
 #include "geotandem/tandem/marching_cubes.hpp"
 #include "geotandem/tandem/tandem.hpp"
 #include "geotandem/volume/fingerprint.hpp"
+#include "geotandem/workflow/chain.hpp"
 #include "param_builder.hpp"
 
 namespace geotandem::workflow {
@@ -40,12 +40,6 @@ int parse_axis(const std::string& text) {
 }
 
 namespace {
-
-// The float's shortest text, so that 0.6 reads 0.6 in messages and identities.
-std::string iso_text(float iso) {
-  char buffer[32];
-  return std::string(buffer, std::to_chars(buffer, buffer + sizeof buffer, iso).ptr);
-}
 
 std::vector<ParamSpec> make_extract_params() {
   const ExtractSettings d;
@@ -121,7 +115,7 @@ nlohmann::json extract_run_parameters(const volume::Volume& volume, const Extrac
   // What decides the components. The store refuses a run of another identity (it would mix
   // two extractions); a rerun of the same one resumes.
   parameters["identity"] = {
-      {"iso", std::strtod(iso_text(settings.iso).c_str(), nullptr)},
+      {"iso", std::strtod(number_text(settings.iso).c_str(), nullptr)}, // 0.6f recorded as 0.6
       {"max_error", settings.max_error},
       {"isotropy", settings.isotropy},
       {"axis", parameters["axis"]},
@@ -144,10 +138,9 @@ void warn_if_empty(ExtractResult& result, const ExtractSettings& settings, Logge
     // A recipe's chain that ends in an attribute: the input's range says nothing about it.
     const auto& p = settings.parameters;
     const bool attribute =
-        p.is_object() && p.contains("chain") && p["chain"].contains("steps") && !p["chain"]["steps"].empty() &&
-        p["chain"]["steps"].back().value("inputs", nlohmann::json::array()) != nlohmann::json::array({"input"});
+        p.is_object() && p.contains("chain") && ChainDescription::from_json(p["chain"]).reads_attribute();
     const std::string warning =
-        "no component was extracted: is the isovalue " + iso_text(settings.iso) +
+        "no component was extracted: is the isovalue " + number_text(settings.iso) +
         (attribute ? " inside the attribute's value range? (write the attribute with output.attribute in the recipe "
                      "and see its range with 'geotandem info' on that file)"
                    : " inside the cube's value range? ('geotandem info' on the cube shows it)");

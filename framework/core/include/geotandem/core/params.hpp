@@ -73,6 +73,8 @@ using ParamValues = std::map<std::string, ParamValue, std::less<>>;
 
 // The shortest text that reads back to `value` ("2", "0.5", "1e+30", "inf").
 std::string number_text(double value);
+// The same for a float, such as a sample's value: -999.25, 1.1 (not the double 1.100000023841858).
+std::string number_text(float value);
 // "name=value, name=value" in the map's order, for messages and descriptions.
 std::string to_string(const ParamValues& values);
 

@@ -4,6 +4,7 @@
 // box on demand.
 
 #include <memory>
+#include <optional>
 #include <span>
 #include <string>
 #include <vector>
@@ -44,6 +45,10 @@ public:
   // Format-specific facts in display order (SEG-Y: sample format, byte order, header bytes);
   // empty for formats with nothing to add.
   virtual std::vector<FormatDetail> format_details() const { return {}; }
+  // A value the file declares as no data (GeoTIFF's nodata, netCDF's _FillValue, ...), as its float
+  // samples hold it. Reading does not change such samples; open_volume's NaN policy treats them as
+  // missing, as it does NaN samples.
+  virtual std::optional<float> declared_no_data() const { return std::nullopt; }
   // Samples a read of a box reaches beyond it, per axis and side, in the data this volume is
   // computed from (down to the stored or generated cube): 0 for stored data; an attribute chain
   // says its total halo. A hint for caches that fetch a box's sources at once (a volume that does

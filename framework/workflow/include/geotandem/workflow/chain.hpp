@@ -28,13 +28,16 @@ struct ChainStep {
 
 struct ChainDescription {
   static constexpr int format = 1; // of the JSON form
-  // The input: {"file": ABSOLUTE PATH, "nan": "error"|"fill", "variable": NAME?} or
-  // {"synthetic": {"kind", "shape", "seed", "snr"}, "nan": ...}.
+  // The input: {"file": ABSOLUTE PATH, "nan": "error"|"fill", "no_data": NUMBER?, "variable": NAME?,
+  // "missing": "dead samples"?} or {"synthetic": {"kind", "shape", "seed", "snr"}, "nan": ...}
+  // (docs/chain-description.md).
   nlohmann::json input;
   // The attribute steps the extraction reads, in chain order, then the extract step (last).
   std::vector<ChainStep> steps;
 
   const ChainStep& extract_step() const { return steps.back(); }
+  // The extraction reads an attribute, not the input itself.
+  bool reads_attribute() const { return !steps.empty() && extract_step().inputs != std::vector<std::string>{"input"}; }
 
   // Canonical JSON: keys sorted, parameters as text; equal chains give equal text.
   nlohmann::json to_json() const;

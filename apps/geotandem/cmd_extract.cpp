@@ -96,7 +96,8 @@ void add_extract_command(CLI::App& app, Context& context, Runner& run) {
                   "samples of this value are missing too (SEG-Y and raw cubes cannot declare their null, often "
                   "-999.25); --nan says what becomes of them")
       ->type_name("VALUE");
-  cmd->add_option("--variable", a->variable, "the array to read from a multidimensional file with several");
+  cmd->add_option("--variable", a->variable,
+                  "the array to read from a multidimensional file (netCDF, Zarr, HDF5) that holds several");
   cmd->add_option("--workers", a->workers,
                   "local worker processes extracting and merging the blocks (manager/worker runtime); the default is "
                   "one per core, at most one per block (a cube of one block is extracted in this process); 0: "
@@ -142,7 +143,12 @@ void add_extract_command(CLI::App& app, Context& context, Runner& run) {
       }
       if (a->fresh) store::ComponentStore::remove(a->out); // refuses while another process writes it
       s.parameters = {{"command", "geotandem extract"}, {"cube", a->cube}};
-      if (open.no_data) s.parameters["no_data"] = *open.no_data; // other samples missing: another extraction
+      // How the file is read decides the samples as much as its content: another array of a netCDF
+      // file, other SEG-Y header bytes or other missing samples make another extraction.
+      if (open.no_data) s.parameters["no_data"] = *open.no_data;
+      if (!a->variable.empty()) s.parameters["variable"] = a->variable;
+      if (!(a->segy == volume::SegyOptions{}))
+        s.parameters["segy"] = {{"inline_byte", a->segy.inline_byte}, {"crossline_byte", a->segy.crossline_byte}};
       auto store = store::ComponentStore::open_or_create(a->out, cube->geometry(), {"geotandem extract", a->cube});
       auto progress = context.progress();
       auto r = workflow::extract_to_store(*cube, store, s, context.log, *progress, context.cancel);

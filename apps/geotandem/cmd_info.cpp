@@ -20,6 +20,7 @@ struct Info {
   bool json = false;
   bool no_stats = false;
   std::optional<double> no_data;
+  std::string variable;
   volume::SegyOptions segy;
 };
 
@@ -188,6 +189,8 @@ void add_info_command(CLI::App& app, Context& context, Runner& run) {
                   "samples of this value are missing too, as NaN samples are: counted with them and left out of "
                   "the statistics (a SEG-Y or raw cube's null, often -999.25)")
       ->type_name("VALUE");
+  cmd->add_option("--variable", info->variable,
+                  "the array to describe in a multidimensional file (netCDF, Zarr, HDF5) that holds several");
   cmd->add_option("--inline-byte", info->segy.inline_byte,
                   "SEG-Y: trace header byte (1-based) of the inline numbers (often 9 or 5 in older files)")
       ->capture_default_str();
@@ -200,6 +203,7 @@ void add_info_command(CLI::App& app, Context& context, Runner& run) {
       options.nan_policy = volume::NanPolicy::fill; // info reports non-finite samples instead of failing
       options.fill_value = std::numeric_limits<float>::quiet_NaN();
       options.segy = info->segy;
+      options.variable = info->variable;
       options.no_data = no_data_option(info->no_data);
       auto cube = volume::open_volume(info->path, options);
       std::optional<ValueStats> stats;

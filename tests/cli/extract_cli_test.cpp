@@ -12,6 +12,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "gdal_fixtures.hpp"
 #include "scratch.hpp"
 
 namespace geotandem {
@@ -144,6 +145,65 @@ TEST(ExtractCli, QuietLeavesNoInfoLinesFromTheManagerOrItsWorkers) {
   auto asked = run_geotandem("-q --log-level info " + extract + "'" + dir.file("asked") + "'");
   ASSERT_EQ(asked.exit_code, 0) << asked.err;
   EXPECT_NE(asked.err.find("info:"), std::string::npos) << asked.err;
+}
+
+// A netCDF file that holds two cubes, written through GDAL as another tool would: `ball` has one
+// body, `balls` two, on the same grid.
+void write_two_cubes(const std::string& path) {
+  using gdal_fixtures::add_array;
+  gdal_fixtures::write_foreign(path, "netCDF", [](GDALGroup& root) {
+    const int n = 32;
+    const std::array dims{root.CreateDimension("iline", "", "", n), root.CreateDimension("xline", "", "", n),
+                          root.CreateDimension("twt", "", "", n)};
+    const std::vector<std::shared_ptr<GDALDimension>> cube(dims.begin(), dims.end());
+    for (const char* name : {"ball", "balls"}) {
+      std::vector<float> values;
+      for (int i = 0; i < n; ++i)
+        for (int j = 0; j < n; ++j)
+          for (int k = 0; k < n; ++k) {
+            auto ball = [&](double c, double r) { return r - std::hypot(i - c, j - c, k - c); };
+            values.push_back(
+                static_cast<float>(name == std::string("ball") ? ball(16, 7) : std::max(ball(8, 5), ball(23, 5))));
+          }
+      const GUInt64 start[3] = {0, 0, 0};
+      const std::size_t count[3] = {n, n, n};
+      ASSERT_TRUE(
+          add_array(root, name, cube, GDT_Float32)
+              ->Write(start, count, nullptr, nullptr, GDALExtendedDataType::Create(GDT_Float32), values.data()));
+    }
+  });
+}
+
+// Another array of the same file is another extraction: `info` and `extract` take --variable, and
+// a store made from one array refuses to resume with the other (it resumed, reporting the first
+// array's bodies as the second's, with workers; it mixed both without).
+TEST(ExtractCli, AnotherArrayOfTheFileIsAnotherExtraction) {
+  ScratchDir dir;
+  const std::string cube = dir.file("two.nc");
+  write_two_cubes(cube);
+  auto several = run_geotandem("-q info '" + cube + "'");
+  EXPECT_NE(several.exit_code, 0);
+  EXPECT_NE(several.err.find("--variable"), std::string::npos) << several.err;
+  auto info = run_geotandem("-q info --json --no-stats --variable balls '" + cube + "'");
+  ASSERT_EQ(info.exit_code, 0) << info.err;
+  EXPECT_EQ(nlohmann::json::parse(info.out)["details"]["array"], "/balls") << info.out;
+
+  const std::string store = dir.file("store");
+  const std::string extract = "-q extract '" + cube + "' --iso 0 --block-size 8 --out '" + store + "'";
+  auto one = run_geotandem(extract + " --variable ball --workers 2");
+  ASSERT_EQ(one.exit_code, 0) << one.err;
+  ASSERT_EQ(volumes_in(store).size(), 1u);
+  for (const char* workers : {"2", "0"}) {
+    auto other = run_geotandem(extract + " --variable balls --workers " + workers);
+    EXPECT_EQ(other.exit_code, 2) << other.err;
+    EXPECT_NE(other.err.find("variable: ball in the store, balls now"), std::string::npos) << other.err;
+    EXPECT_EQ(volumes_in(store).size(), 1u) << "nothing of the other array went in";
+  }
+  auto resumed = run_geotandem(extract + " --variable ball --workers 2");
+  EXPECT_EQ(resumed.exit_code, 0) << "the same array resumes\n" << resumed.err;
+  auto fresh = run_geotandem(extract + " --variable balls --workers 2 --fresh");
+  ASSERT_EQ(fresh.exit_code, 0) << fresh.err;
+  EXPECT_EQ(volumes_in(store).size(), 2u);
 }
 
 } // namespace

@@ -68,5 +68,37 @@ TEST(SegyCli, ExtractTakesTheHeaderBytes) {
   EXPECT_NE(bad.err.find("221"), std::string::npos) << bad.err;
 }
 
+// Header bytes that read the same file as another cube (here the line numbers swapped on a square
+// survey without coordinates: the same geometry, the samples transposed) make another extraction:
+// the store refuses to resume with them instead of mixing the two cubes' bodies.
+TEST(SegyCli, OtherHeaderBytesDoNotResumeAStore) {
+  ScratchDir dir;
+  const std::string cube = dir.file("square.sgy");
+  volume::testing::SegySpec s;
+  s.ni = s.nj = 12;
+  s.ns = 20;
+  s.il0 = s.xl0 = 100;
+  s.il_step = s.xl_step = 1;
+  s.coordinates = false;
+  volume::testing::write_with_segyio(cube, s);
+  const std::string store = dir.file("store");
+  const std::string extract = "-q extract '" + cube + "' --iso 900.5 --block-size 8 --workers 2 --out '" + store + "'";
+  auto first = run_geotandem(extract);
+  ASSERT_EQ(first.exit_code, 0) << first.err;
+  auto swapped = run_geotandem(extract + " --inline-byte 193 --crossline-byte 189");
+  EXPECT_EQ(swapped.exit_code, 2) << swapped.err;
+  EXPECT_NE(swapped.err.find("segy: (not recorded) in the store, {\"crossline_byte\":189,\"inline_byte\":193} now"),
+            std::string::npos)
+      << swapped.err;
+  auto again = run_geotandem(extract);
+  EXPECT_EQ(again.exit_code, 0) << "the same bytes resume\n" << again.err;
+  auto fresh = run_geotandem(extract + " --inline-byte 193 --crossline-byte 189 --fresh");
+  ASSERT_EQ(fresh.exit_code, 0) << fresh.err;
+  auto runs = run_geotandem("store runs --json '" + store + "'");
+  ASSERT_EQ(runs.exit_code, 0) << runs.err;
+  const auto last = nlohmann::json::parse(runs.out).back();
+  EXPECT_EQ(last["parameters"]["identity"]["segy"]["inline_byte"], 193) << runs.out;
+}
+
 } // namespace
 } // namespace geotandem

@@ -27,9 +27,11 @@ const char* driver_of(Format format) {
 class GdalMdVolume final : public Volume {
 public:
   GdalMdVolume(std::string path, std::string format, gdal::DatasetPtr dataset, std::shared_ptr<GDALGroup> root,
-               std::shared_ptr<GDALMDArray> array, Geometry geometry, std::optional<float> no_data)
+               std::shared_ptr<GDALMDArray> array, std::string array_name, Geometry geometry,
+               std::optional<float> no_data)
       : path_(std::move(path)), format_(std::move(format)), dataset_(std::move(dataset)), root_(std::move(root)),
-        array_(std::move(array)), geometry_(std::move(geometry)), no_data_(no_data) {}
+        array_(std::move(array)), array_name_(std::move(array_name)), geometry_(std::move(geometry)),
+        no_data_(no_data) {}
 
   ~GdalMdVolume() override {
     // Arrays and groups first: some drivers keep the file open while any handle lives.
@@ -43,8 +45,9 @@ public:
   std::string format() const override { return format_; }
   std::string source() const override { return path_; }
   std::vector<FormatDetail> format_details() const override {
-    if (no_data_) return {gdal::no_data_detail(*no_data_)};
-    return {};
+    std::vector<FormatDetail> details{{"array", array_name_}}; // which of the file's arrays is read
+    if (no_data_) details.push_back(gdal::no_data_detail(*no_data_));
+    return details;
   }
   std::optional<float> declared_no_data() const override { return no_data_; }
 
@@ -75,6 +78,7 @@ private:
   gdal::DatasetPtr dataset_;
   std::shared_ptr<GDALGroup> root_;
   std::shared_ptr<GDALMDArray> array_;
+  std::string array_name_; // the stored array's full name, "/chaos"
   Geometry geometry_;
   std::optional<float> no_data_; // the array's _FillValue, missing_value or fill_value
 };
@@ -108,9 +112,11 @@ std::unique_ptr<Volume> volume_of(gdal::DatasetPtr dataset, const std::string& p
   std::string name = format_of(*dataset, format);
   bool declared = false;
   const double no_data = stored->GetNoDataValueAsDouble(&declared);
+  std::string array_name = stored->GetFullName();
   stored.reset();
   return std::make_unique<GdalMdVolume>(path, std::move(name), std::move(dataset), std::move(root), std::move(cube),
-                                        std::move(geometry), gdal::no_data_of(declared, no_data));
+                                        std::move(array_name), std::move(geometry),
+                                        gdal::no_data_of(declared, no_data));
 }
 
 } // namespace

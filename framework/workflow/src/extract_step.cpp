@@ -126,8 +126,11 @@ nlohmann::json extract_run_parameters(const volume::Volume& volume, const Extrac
                                                               : volume::input_fingerprint(volume.source())},
       {"chain", settings.parameters.is_object() && settings.parameters.contains("chain") ? settings.parameters["chain"]
                                                                                          : nlohmann::json::object()}};
-  if (settings.parameters.is_object() && settings.parameters.contains("no_data"))
-    parameters["identity"]["no_data"] = settings.parameters["no_data"];
+  // How a command reads its file (a recipe's chain records it): recorded only when given, so that
+  // stores made before these keys existed still resume.
+  for (const char* key : {"no_data", "variable", "segy"})
+    if (settings.parameters.is_object() && settings.parameters.contains(key))
+      parameters["identity"][key] = settings.parameters[key];
 
   return parameters;
 }

@@ -143,7 +143,7 @@ std::shared_ptr<GDALMDArray> choose_array(GDALGroup& root, const std::string& re
     throw FormatError("the file has no 3-D Float32 or Float64 array; arrays found: " + list(arrays, false), {path},
                       "a cube is a 3-D floating-point array (inline, crossline, sample); convert it to Float32");
   throw FormatError("the file has several 3-D floating-point arrays: " + list(arrays, true), {path},
-                    "choose one with the variable option (--variable NAME)");
+                    "choose one with the variable option (--variable NAME, or input.variable in a recipe)");
 }
 
 std::shared_ptr<GDALMDArray> in_cube_order(const std::shared_ptr<GDALMDArray>& array) {

@@ -5,6 +5,12 @@
 
 #include <nlohmann/json.hpp>
 
+#include <cmath>
+#include <limits>
+#include <map>
+
+#include "geotandem/volume/io.hpp"
+#include "geotandem/volume/volume.hpp"
 #include "scratch.hpp"
 #include "segy_fixtures.hpp"
 
@@ -98,6 +104,75 @@ TEST(SegyCli, OtherHeaderBytesDoNotResumeAStore) {
   ASSERT_EQ(runs.exit_code, 0) << runs.err;
   const auto last = nlohmann::json::parse(runs.out).back();
   EXPECT_EQ(last["parameters"]["identity"]["segy"]["inline_byte"], 193) << runs.out;
+}
+
+// key -> volume of every component of a store.
+std::map<std::int64_t, double> volumes_in(const std::string& store) {
+  auto r = run_geotandem("store ls --json '" + store + "'");
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  std::map<std::int64_t, double> out;
+  for (const auto& row : nlohmann::json::parse(r.out))
+    out[row["key"].get<std::int64_t>()] = row["volume"].get<double>();
+  return out;
+}
+
+// An irregular survey (a corner cut off and a hole inside the body) as delivered: refused by
+// default, naming the missing traces; with --nan fill, in local workers, its bodies are those of
+// the same samples with NaN where the traces are missing, written as a raw cube (another reader).
+TEST(SegyCli, AnIrregularSurveyIsExtractedWithItsMissingTracesOutside) {
+  ScratchDir dir;
+  volume::testing::SegySpec s = delivered();
+  s.format = SEGY_IEEE_FLOAT_4_BYTE; // samples 100 i + j + k / 64 - 300: inside from inline index 12 on
+  s.ni = 16;
+  s.nj = 12;
+  s.ns = 30;
+  auto missing = [](int i, int j) { return i + j < 4 || (i >= 12 && i <= 14 && j >= 4 && j <= 6); };
+  for (int i = 0; i < s.ni; ++i)
+    for (int j = 0; j < s.nj; ++j)
+      if (missing(i, j)) s.missing.push_back({i, j});
+  const auto present = std::to_string(s.ni * s.nj - static_cast<int>(s.missing.size()));
+  const std::string cube = dir.file("outline.sgy");
+  volume::testing::write_with_segyio(cube, s);
+  const std::string bytes = " --inline-byte 9 --crossline-byte 21";
+
+  auto refused = run_geotandem("-q extract '" + cube + "' --iso 900.5" + bytes + " --out '" + dir.file("a") + "'");
+  EXPECT_EQ(refused.exit_code, 4) << refused.err;
+  EXPECT_NE(refused.err.find(present + " of 192 traces (16 inlines x 12 crosslines)"), std::string::npos)
+      << refused.err;
+  EXPECT_NE(refused.err.find("--nan fill"), std::string::npos) << refused.err;
+  EXPECT_FALSE(std::filesystem::exists(dir.file("a")));
+
+  auto info = run_geotandem("-q info --json" + bytes + " '" + cube + "'");
+  ASSERT_EQ(info.exit_code, 0) << info.err;
+  const auto j = nlohmann::json::parse(info.out);
+  EXPECT_EQ(j["values"]["non_finite"], s.missing.size() * 30) << "the missing traces are missing samples";
+  EXPECT_NE(j["details"]["traces"].get<std::string>().find("irregular"), std::string::npos) << info.out;
+
+  // The oracle: the samples segyio was given, NaN in the missing bins, on the geometry info reports.
+  const auto opened = volume::open_volume(cube, {.nan_policy = volume::NanPolicy::fill, .segy = {9, 21}});
+  const volume::Geometry g = opened->geometry();
+  std::vector<float> samples;
+  for (int i = 0; i < s.ni; ++i)
+    for (int jj = 0; jj < s.nj; ++jj)
+      for (int k = 0; k < s.ns; ++k)
+        samples.push_back(missing(i, jj) ? std::numeric_limits<float>::quiet_NaN()
+                                         : volume::testing::expected_sample(s.format, i, jj, k));
+  const std::string raw = dir.file("oracle.raw");
+  volume::write_volume(volume::MemoryVolume(g, samples), raw);
+
+  const std::string iso = " --iso 900.5 --nan fill --block-size 8 --workers 2 --out '";
+  auto extracted = run_geotandem("-q extract '" + cube + "'" + bytes + iso + dir.file("segy") + "'");
+  ASSERT_EQ(extracted.exit_code, 0) << extracted.err;
+  auto oracle = run_geotandem("-q extract '" + raw + "'" + iso + dir.file("raw") + "'");
+  ASSERT_EQ(oracle.exit_code, 0) << oracle.err;
+  const auto a = volumes_in(dir.file("raw"));
+  const auto b = volumes_in(dir.file("segy"));
+  ASSERT_GT(a.size(), 0u);
+  ASSERT_EQ(a.size(), b.size());
+  for (const auto& [key, volume] : a) {
+    ASSERT_TRUE(b.count(key)) << "component " << key;
+    EXPECT_NEAR(b.at(key), volume, 0.005 * std::abs(volume)) << "component " << key;
+  }
 }
 
 } // namespace

@@ -19,15 +19,21 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   const std::string& path = scratch.str();
   std::ofstream(path, std::ios::binary | std::ios::trunc)
       .write(reinterpret_cast<const char*>(data), static_cast<std::streamsize>(size));
-  try {
-    auto volume = volume::open_volume(path);
-    const auto& shape = volume->geometry().shape;
-    volume::Box box{{0, 0, 0},
-                    {std::min<std::int64_t>(shape[0], 2), std::min<std::int64_t>(shape[1], 2),
-                     std::min<std::int64_t>(shape[2], 8)}};
-    std::vector<float> samples(box.count());
-    volume->read(box, samples);
-  } catch (const Error&) {
+  // Strict first (an irregular survey is refused, naming what it lacks), then with missing samples
+  // read (an irregular survey opens, its missing traces read as missing samples).
+  for (auto policy : {volume::NanPolicy::error, volume::NanPolicy::fill}) {
+    try {
+      auto volume = volume::open_volume(path, {.nan_policy = policy});
+      const auto& shape = volume->geometry().shape;
+      volume::Box box{{0, 0, 0},
+                      {std::min<std::int64_t>(shape[0], 2), std::min<std::int64_t>(shape[1], 2),
+                       std::min<std::int64_t>(shape[2], 8)}};
+      std::vector<float> samples(box.count());
+      volume->read(box, samples);
+      volume->format_details();
+      return 0;
+    } catch (const Error&) {
+    }
   }
   return 0;
 }

@@ -14,3 +14,10 @@ cp "$root"/tests/fuzz/regressions/raw_sidecar_*.json "$seeds/raw_sidecar/"
 "$geotandem" -q synth --kind analytic --shape 40 40 40 --out "$seeds/cube.segy" >/dev/null
 cp "$seeds/cube.segy" "$seeds/segy_header/whole.segy"
 head -c 8000 "$seeds/cube.segy" >"$seeds/segy_header/headers.segy"
+# An irregular survey: the same file without its first trace and its 101st (400 bytes each after the
+# 3600 bytes of file headers), read only under the NaN fill policy.
+{
+  head -c 3600 "$seeds/cube.segy"
+  dd if="$seeds/cube.segy" bs=400 skip=10 count=99 status=none # 4000 bytes = 10 blocks of 400
+  tail -c +$((3600 + 101 * 400 + 1)) "$seeds/cube.segy"
+} >"$seeds/segy_header/irregular.segy"

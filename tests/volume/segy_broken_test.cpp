@@ -9,6 +9,7 @@
 #include <cmath>
 #include <filesystem>
 #include <functional>
+#include <limits>
 #include <memory>
 #include <random>
 #include <string>
@@ -56,15 +57,33 @@ TEST(SegyBroken, TruncatedFileNamesTheFileAndBothSizes) {
   EXPECT_NE(cut.find(path), std::string::npos) << cut;
 }
 
-TEST(SegyBroken, UnevenLineNumbersAreNamed) {
+// A whole inline missing (numbers 100, 102, 104, 108, ...): named by the jump in the numbers; with
+// the fill policy the cube has the missing inline, all of it missing samples.
+TEST(SegyBroken, AMissingLineIsNamedByTheJumpInItsNumbers) {
   ScratchDir dir;
   SegySpec s;
-  s.gap_in_inlines = true; // 100, 102, 104, 108, ...
+  s.gap_in_inlines = true;
   const std::string path = dir.file("gap.sgy");
   write_with_segyio(path, s);
   const std::string message = message_of<FormatError>([&] { open_volume(path); });
-  EXPECT_NE(message.find("104 then 108"), std::string::npos) << message;
+  EXPECT_NE(message.find("no trace on inline 106: the inline numbers go 104 then 108 where the step is 2"),
+            std::string::npos)
+      << message;
   EXPECT_NE(message.find(path), std::string::npos) << message;
+  const auto cube =
+      open_volume(path, {.nan_policy = NanPolicy::fill, .fill_value = std::numeric_limits<float>::quiet_NaN()});
+  ASSERT_EQ(cube->geometry().shape, (Index3{8, 9, 50}));
+  const auto samples = cube->read(cube->geometry().bounds());
+  const Box all = cube->geometry().bounds();
+  for (std::int64_t i = 0; i < 8; ++i)
+    for (std::int64_t j = 0; j < 9; ++j) {
+      const float v = samples[all.offset({i, j, 7})];
+      // Inline index 3 (number 106) is the missing one; index i >= 4 holds the file's inline i - 1.
+      if (i == 3)
+        EXPECT_TRUE(std::isnan(v)) << i << ", " << j;
+      else
+        EXPECT_EQ(v, formula(i < 3 ? i : i - 1, j, 7)) << i << ", " << j;
+    }
 }
 
 TEST(SegyBroken, PreStackFileIsRefusedWithTheOffsetCount) {
@@ -79,17 +98,70 @@ TEST(SegyBroken, PreStackFileIsRefusedWithTheOffsetCount) {
   EXPECT_NE(message.find(path), std::string::npos) << message;
 }
 
-TEST(SegyBroken, MissingTracesAreRefused) {
+// An irregular survey (sorted traces, some bins of the line-number rectangle without one, here a
+// corner and an inner trace): refused by default, naming the missing trace and the way out; with
+// the fill policy read as the full survey with missing samples where the traces are missing. The
+// oracle is the same survey written with every trace, read by the regular path.
+TEST(SegyBroken, MissingTracesAreMissingSamples) {
   ScratchDir dir;
   for (bool crossline_sorted : {false, true}) {
     SegySpec s;
     s.crossline_sorted = crossline_sorted;
-    s.missing = {{3, 4}};
+    const std::string full_path = dir.file(crossline_sorted ? "xl_full.sgy" : "il_full.sgy");
+    write_with_segyio(full_path, s);
+    s.missing = {{0, 0}, {3, 4}};
     const std::string path = dir.file(crossline_sorted ? "xl.sgy" : "il.sgy");
     write_with_segyio(path, s);
     const std::string message = message_of<FormatError>([&] { open_volume(path); });
     EXPECT_NE(message.find(path), std::string::npos) << message;
+    EXPECT_NE(message.find("irregular survey at bytes 189/193: 61 of 63 traces (7 inlines x 9 crosslines)"),
+              std::string::npos)
+        << message;
+    EXPECT_NE(message.find("the first missing: inline 100, crossline 300"), std::string::npos) << message;
+    EXPECT_NE(message.find("--nan fill"), std::string::npos) << message;
     EXPECT_NE(message.find("pad"), std::string::npos) << message;
+
+    const auto full = open_volume(full_path);
+    const auto irregular =
+        open_volume(path, {.nan_policy = NanPolicy::fill, .fill_value = std::numeric_limits<float>::quiet_NaN()});
+    const Geometry& g = irregular->geometry();
+    const Geometry& want = full->geometry();
+    EXPECT_EQ(g.shape, want.shape);
+    EXPECT_EQ(g.inline0, want.inline0);
+    EXPECT_EQ(g.inline_step, want.inline_step);
+    EXPECT_EQ(g.crossline0, want.crossline0);
+    EXPECT_EQ(g.crossline_step, want.crossline_step);
+    EXPECT_EQ(g.z0, want.z0);
+    EXPECT_EQ(g.dz, want.dz);
+    // The affine fitted to every trace present (the corner (0, 0) is missing) against the one from
+    // the full file's corners: the same within the coordinates' rounding (scalar -100: 0.01 m).
+    for (auto [i, j] : {std::array<double, 2>{0, 0}, {6, 0}, {0, 8}, {6, 8}})
+      for (int axis = 0; axis < 2; ++axis)
+        EXPECT_NEAR(g.affine.apply(i, j)[static_cast<std::size_t>(axis)],
+                    want.affine.apply(i, j)[static_cast<std::size_t>(axis)], 0.02)
+            << "(" << i << ", " << j << ")";
+    for (const Box& box : probe_boxes(g.shape)) {
+      const auto got = irregular->read(box);
+      const auto expected = full->read(box);
+      for (std::int64_t i = box.lo[0]; i < box.hi[0]; ++i)
+        for (std::int64_t j = box.lo[1]; j < box.hi[1]; ++j)
+          for (std::int64_t k = box.lo[2]; k < box.hi[2]; ++k) {
+            const bool missing = (i == 0 && j == 0) || (i == 3 && j == 4);
+            const float v = got[box.offset({i, j, k})];
+            if (missing)
+              ASSERT_TRUE(std::isnan(v)) << "(" << i << ", " << j << ", " << k << ") of box " << box.to_string();
+            else
+              ASSERT_EQ(v, expected[box.offset({i, j, k})])
+                  << "(" << i << ", " << j << ", " << k << ") of box " << box.to_string();
+          }
+    }
+    bool said = false;
+    for (const auto& d : irregular->format_details())
+      if (d.key == "traces") {
+        said = true;
+        EXPECT_NE(d.value.find("61 of 63 traces"), std::string::npos) << d.value;
+      }
+    EXPECT_TRUE(said);
   }
 }
 

@@ -255,9 +255,14 @@ TEST(SegyHeaderBytes, BrokenGridStillSaysWhatIsWrongWhenNoPositionHelps) {
   const std::string path = dir.file("missing.sgy");
   write_with_segyio(path, s);
   const std::string message = message_of<FormatError>([&] { open_volume(path); });
-  EXPECT_NE(message.find("irregular survey: 62 traces"), std::string::npos) << message;
+  EXPECT_NE(message.find("irregular survey at bytes 189/193: 62 of 63 traces"), std::string::npos) << message;
   EXPECT_NE(message.find("pad"), std::string::npos) << message;
-  EXPECT_NE(message.find("do not describe a regular grid either"), std::string::npos) << message;
+  EXPECT_NE(message.find("--nan fill"), std::string::npos) << message;
+  // Header bytes that give no grid at all still get the advice on other positions.
+  OpenOptions elsewhere;
+  elsewhere.segy = {73, 77}; // source coordinates: no line numbers
+  const std::string other = message_of<FormatError>([&] { open_volume(path, elsewhere); });
+  EXPECT_NE(other.find("do not describe a regular grid either"), std::string::npos) << other;
 }
 
 TEST(SegyHeaderBytes, ASingleLineIsNoAdviceForACube) {

@@ -4,11 +4,13 @@
 // reads the traces of the box and nothing else. The binary header is read in segy_layout.cpp, the
 // grid of line numbers in segy_grid.cpp.
 
+#include <algorithm>
 #include <array>
 #include <cerrno>
 #include <cmath>
 #include <cstdint>
 #include <cstring>
+#include <limits>
 #include <mutex>
 #include <vector>
 
@@ -49,7 +51,10 @@ public:
             {"byte_order", segy::byte_order_name(layout_.little_endian)},
             {"inline_byte", std::to_string(grid_.bytes.inline_byte)},
             {"crossline_byte", std::to_string(grid_.bytes.crossline_byte)},
-            {"sorting", grid_.sorting()}};
+            {"sorting", grid_.sorting()},
+            {"traces", grid_.irregular() ? "an irregular survey, whose missing traces read as missing samples: " +
+                                               segy::missing_text(grid_)
+                                         : std::to_string(grid_.ni * grid_.nj) + ", every bin of the grid"}};
   }
 
 protected:
@@ -71,6 +76,10 @@ protected:
 private:
   void read_trace(const Box& box, std::int64_t i, std::int64_t j, float* out) const {
     const int trace = grid_.trace_of(i, j);
+    if (trace < 0) { // a bin of an irregular survey without a trace: missing samples
+      std::fill_n(out, box.size(2), std::numeric_limits<float>::quiet_NaN());
+      return;
+    }
     segy::check_position(segy::read_header(file_.get(), layout_, trace, path_), grid_, i, j, trace, path_);
     const auto start = static_cast<int>(box.lo[2]), stop = static_cast<int>(box.hi[2]);
     const int count = stop - start;
@@ -143,6 +152,66 @@ SurveyAffine fit_affine(const std::array<double, 2>& origin, const std::array<do
   return a;
 }
 
+// The affine of an irregular survey, whose corners may be missing: the least-squares fit of
+// x = x0 + xi i + xj j (and y likewise) over every trace present, from (i, j) centred on their mean
+// so that the sums keep their precision. Files without coordinates (all zero) get the default grid.
+SurveyAffine fit_affine_everywhere(segy_file* file, const Layout& layout, const Grid& grid, const std::string& path) {
+  struct Sample {
+    double i, j, x, y;
+  };
+  std::vector<Sample> samples;
+  double mi = 0.0, mj = 0.0, mx = 0.0, my = 0.0;
+  bool any = false;
+  for (int i = 0; i < grid.ni; ++i)
+    for (int j = 0; j < grid.nj; ++j)
+      if (const int trace = grid.trace_of(i, j); trace >= 0) {
+        const auto xy = cdp_xy(segy::read_header(file, layout, trace, path));
+        any = any || xy[0] != 0.0 || xy[1] != 0.0;
+        samples.push_back({double(i), double(j), xy[0], xy[1]});
+        mi += i;
+        mj += j;
+        mx += xy[0];
+        my += xy[1];
+      }
+  const double n = static_cast<double>(samples.size());
+  mi /= n;
+  mj /= n;
+  mx /= n;
+  my /= n;
+  double sii = 0.0, sij = 0.0, sjj = 0.0, six = 0.0, sjx = 0.0, siy = 0.0, sjy = 0.0;
+  for (const auto& s : samples) {
+    const double di = s.i - mi, dj = s.j - mj, dx = s.x - mx, dy = s.y - my;
+    sii += di * di;
+    sij += di * dj;
+    sjj += dj * dj;
+    six += di * dx;
+    sjx += dj * dx;
+    siy += di * dy;
+    sjy += dj * dy;
+  }
+  const double det = sii * sjj - sij * sij;
+  SurveyAffine a;
+  if (!any || !(std::abs(det) > 0.0)) { // no coordinates, or every trace on one line: the default grid
+    a.x0 = any ? samples.front().x : 0.0;
+    a.y0 = any ? samples.front().y : 0.0;
+    return a;
+  }
+  a.xi = (six * sjj - sjx * sij) / det;
+  a.xj = (sjx * sii - six * sij) / det;
+  a.yi = (siy * sjj - sjy * sij) / det;
+  a.yj = (sjy * sii - siy * sij) / det;
+  a.x0 = mx - a.xi * mi - a.xj * mj;
+  a.y0 = my - a.yi * mi - a.yj * mj;
+  const double area = a.xi * a.yj - a.xj * a.yi;
+  if (!(std::abs(area) > 0.0) || !std::isfinite(area)) {
+    SurveyAffine fallback;
+    fallback.x0 = a.x0;
+    fallback.y0 = a.y0;
+    return fallback;
+  }
+  return a;
+}
+
 // Our own textual header says when the sample axis is depth; other files are taken as time.
 bool written_as_depth(segy_file* file) {
   std::array<char, SEGY_TEXT_HEADER_SIZE + 1> text{};
@@ -165,14 +234,13 @@ std::unique_ptr<Volume> open_segy(const std::string& path, const OpenOptions& op
   // a file truncated by another process while mapped raises SIGBUS on access. When mapping fails
   // segyio keeps using stdio.
   segy_mmap(file.get());
-  const Grid grid = segy::find_grid(file.get(), layout, options.segy, path);
+  const Grid grid = segy::find_grid(file.get(), layout, options.segy, options.nan_policy == NanPolicy::fill, path);
 
-  // The corners fix the affine (find_grid checked their line numbers).
   const int ni = grid.ni, nj = grid.nj;
   auto corner = [&](int i, int j) { return segy::read_header(file.get(), layout, grid.trace_of(i, j), path); };
-  const TraceHeader origin = corner(0, 0);
-  const TraceHeader last_inline = corner(ni - 1, 0);
-  const TraceHeader last_crossline = corner(0, nj - 1);
+  // The first trace of the file gives the sample axis; a regular grid's corners fix the affine
+  // (find_grid checked their line numbers), an irregular one's is fitted to every trace.
+  const TraceHeader origin = grid.irregular() ? segy::read_header(file.get(), layout, 0, path) : corner(0, 0);
 
   if (layout.interval == 0)
     throw FormatError("no sample interval: binary header byte 3217 and trace header byte 117 are both 0", {path},
@@ -190,7 +258,9 @@ std::unique_ptr<Volume> open_segy(const std::string& path, const OpenOptions& op
   const double time_scalar = segy::field(origin, SEGY_TR_SCALAR_TRACE_HEADER);
   const double delay = segy::field(origin, SEGY_TR_DELAY_REC_TIME);
   g.z0 = time_scalar == 0 ? delay : time_scalar > 0 ? delay * time_scalar : delay / -time_scalar;
-  g.affine = fit_affine(cdp_xy(origin), cdp_xy(last_inline), cdp_xy(last_crossline), ni, nj);
+  g.affine = grid.irregular()
+                 ? fit_affine_everywhere(file.get(), layout, grid, path)
+                 : fit_affine(cdp_xy(origin), cdp_xy(corner(ni - 1, 0)), cdp_xy(corner(0, nj - 1)), ni, nj);
   return std::make_unique<SegyVolume>(path, std::move(file), layout, grid, g);
 }
 

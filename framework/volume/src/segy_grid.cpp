@@ -2,6 +2,9 @@
 
 #include "segy_grid.hpp"
 
+#include <algorithm>
+#include <limits>
+#include <numeric>
 #include <optional>
 #include <vector>
 
@@ -14,10 +17,12 @@ namespace {
 // ensemble (9/21), trace number in file and CDP (5/21), source and energy source point (17/13).
 constexpr std::array<SegyOptions, 4> kCommonBytes{{{189, 193}, {9, 21}, {5, 21}, {17, 13}}};
 
-// Why a choice of positions does not give a regular grid.
+// Why a choice of positions does not give a regular grid; `scan`: reading every trace header may
+// still find a sorted survey with traces missing.
 struct Problem {
   std::string message;
   std::string hint;
+  bool scan = false;
 };
 
 struct Probe {
@@ -43,7 +48,8 @@ Problem misplaced(const TraceHeader& header, const Grid& g, std::int64_t i, std:
               std::to_string(g.ni) + " x " + std::to_string(g.nj) + " traces has inline " +
               std::to_string(g.inline_of(i)) + ", crossline " + std::to_string(g.crossline_of(j)),
           "the traces are not a regular grid: sort them by inline then crossline and pad missing traces before "
-          "reading the file with geotandem"};
+          "reading the file with geotandem",
+          true};
 }
 
 // Evenly spaced line numbers give the step; anything else is described.
@@ -53,7 +59,7 @@ std::optional<Problem> regular_step(const std::vector<int>& numbers, const char*
     if (step == 0 || numbers[n] - numbers[n - 1] != step)
       return Problem{std::string(what) + " numbers are not evenly spaced: " + std::to_string(numbers[n - 1]) +
                          " then " + std::to_string(numbers[n]) + " after a step of " + std::to_string(step),
-                     "geotandem needs a regular grid: pad the missing lines with dead traces"};
+                     "geotandem needs a regular grid: pad the missing lines with dead traces", true};
   return std::nullopt;
 }
 
@@ -76,7 +82,7 @@ Probe probe(segy_file* file, const Layout& layout, const SegyOptions& bytes, con
     return {std::nullopt,
             {"the traces are sorted neither by inline (byte " + std::to_string(il) + ") nor by crossline (byte " +
                  std::to_string(xl) + ")",
-             "geotandem reads post-stack 3D cubes; sort the traces by inline then crossline"}};
+             "geotandem reads post-stack 3D cubes; sort the traces by inline then crossline", true}};
   g.inline_sorted = sorting == SEGY_INLINE_SORTING;
 
   int offsets = 1;
@@ -96,14 +102,15 @@ Probe probe(segy_file* file, const Layout& layout, const SegyOptions& bytes, con
                  std::to_string(inlines) + " inlines x " + std::to_string(crosslines) + " crosslines (bytes " +
                  pair_text(bytes) + "); traces are missing, lines differ in length, or the file was cut short",
              "pad the cube to a full rectangle of traces, with dead traces where data is missing, before reading "
-             "it"}};
+             "it",
+             true}};
   g.ni = inlines;
   g.nj = crosslines;
 
   std::vector<int> il_numbers(static_cast<std::size_t>(inlines)), xl_numbers(static_cast<std::size_t>(crosslines));
   if (segy_inline_indices(file, il, sorting, inlines, crosslines, offsets, il_numbers.data(), t0, tb) != SEGY_OK ||
       segy_crossline_indices(file, xl, sorting, inlines, crosslines, offsets, xl_numbers.data(), t0, tb) != SEGY_OK)
-    return {std::nullopt, {"cannot read the inline and crossline numbers at bytes " + pair_text(bytes), ""}};
+    return {std::nullopt, {"cannot read the inline and crossline numbers at bytes " + pair_text(bytes), "", true}};
   g.il0 = il_numbers.front();
   g.xl0 = xl_numbers.front();
   if (auto p = regular_step(il_numbers, "inline", g.il_step)) return {std::nullopt, *p};
@@ -120,7 +127,122 @@ Probe probe(segy_file* file, const Layout& layout, const SegyOptions& bytes, con
   return {g, {}};
 }
 
+// Whether the traces run through the file line after line: the line numbers of `outer` never turn
+// back, and within a line those of `inner` go one way without repeating.
+template <class Outer, class Inner>
+bool sorted_by(const std::vector<std::array<int, 2>>& bins, Outer outer, Inner inner) {
+  int outer_way = 0, inner_way = 0;
+  for (std::size_t n = 1; n < bins.size(); ++n) {
+    const int a = outer(bins[n - 1]), b = outer(bins[n]);
+    if (a != b) {
+      const int way = b > a ? 1 : -1;
+      if (outer_way != 0 && way != outer_way) return false;
+      outer_way = way;
+      inner_way = 0;
+      continue;
+    }
+    const int x = inner(bins[n - 1]), y = inner(bins[n]);
+    if (x == y) return false;
+    const int way = y > x ? 1 : -1;
+    if (inner_way != 0 && way != inner_way) return false;
+    inner_way = way;
+  }
+  return true;
+}
+
+// The step of a set of line numbers: the greatest common divisor of their differences (1 for one
+// line). Sorts and deduplicates `numbers`.
+std::int64_t line_step(std::vector<int>& numbers) {
+  std::sort(numbers.begin(), numbers.end());
+  numbers.erase(std::unique(numbers.begin(), numbers.end()), numbers.end());
+  std::int64_t step = 0;
+  for (std::size_t n = 1; n < numbers.size(); ++n)
+    step = std::gcd(step, std::int64_t{numbers[n]} - numbers[n - 1]);
+  return step == 0 ? 1 : step;
+}
+
+// Every trace header read: a survey whose sorted traces leave bins of its rectangle empty. The
+// rectangle is spanned by the smallest and largest line numbers at the common step; a rectangle
+// more than ten times the traces is not taken for a survey (wrong header bytes, most likely).
+Probe scan(segy_file* file, const Layout& layout, const SegyOptions& bytes, const std::string& path) {
+  std::vector<std::array<int, 2>> bins(static_cast<std::size_t>(layout.traces));
+  for (int t = 0; t < layout.traces; ++t) {
+    const TraceHeader header = read_header(file, layout, t, path);
+    bins[static_cast<std::size_t>(t)] = {field(header, bytes.inline_byte), field(header, bytes.crossline_byte)};
+  }
+  Grid g;
+  g.bytes = bytes;
+  const auto il_of = [](const std::array<int, 2>& b) { return b[0]; };
+  const auto xl_of = [](const std::array<int, 2>& b) { return b[1]; };
+  g.inline_sorted = sorted_by(bins, il_of, xl_of);
+  if (!g.inline_sorted && !sorted_by(bins, xl_of, il_of))
+    return {std::nullopt,
+            {"reading every trace header: the traces are not sorted line after line (or several share a bin)", ""}};
+  std::vector<int> il_numbers(bins.size()), xl_numbers(bins.size());
+  std::transform(bins.begin(), bins.end(), il_numbers.begin(), il_of);
+  std::transform(bins.begin(), bins.end(), xl_numbers.begin(), xl_of);
+  const std::int64_t il_step = line_step(il_numbers), xl_step = line_step(xl_numbers);
+  const std::int64_t ni = (std::int64_t{il_numbers.back()} - il_numbers.front()) / il_step + 1;
+  const std::int64_t nj = (std::int64_t{xl_numbers.back()} - xl_numbers.front()) / xl_step + 1;
+  // Within int range: every line number of the rectangle lies between two numbers of the file.
+  if (ni * nj > 10 * static_cast<std::int64_t>(layout.traces) || ni * nj > std::numeric_limits<std::int32_t>::max())
+    return {std::nullopt,
+            {"reading every trace header: the line numbers at bytes " + pair_text(bytes) + " span " +
+                 std::to_string(ni) + " inlines x " + std::to_string(nj) + " crosslines for " +
+                 std::to_string(layout.traces) + " traces, too few to be a survey",
+             ""}};
+  g.il0 = il_numbers.front();
+  g.xl0 = xl_numbers.front();
+  g.il_step = static_cast<int>(il_step); // at most the span of two ints that passed the test above
+  g.xl_step = static_cast<int>(xl_step);
+  g.ni = static_cast<int>(ni);
+  g.nj = static_cast<int>(nj);
+  g.traces.assign(static_cast<std::size_t>(ni * nj), -1);
+  for (int t = 0; t < layout.traces; ++t) {
+    const auto [il, xl] = bins[static_cast<std::size_t>(t)];
+    const std::int64_t i = (std::int64_t{il} - g.il0) / g.il_step, j = (std::int64_t{xl} - g.xl0) / g.xl_step;
+    g.traces[static_cast<std::size_t>(i * nj + j)] = t; // sorted: no bin twice
+  }
+  return {g, {}};
+}
+
 } // namespace
+
+std::string missing_text(const Grid& grid) {
+  if (!grid.irregular()) return {};
+  const auto present = std::count_if(grid.traces.begin(), grid.traces.end(), [](std::int32_t t) { return t >= 0; });
+  std::string text = std::to_string(present) + " of " + std::to_string(grid.traces.size()) + " traces (" +
+                     std::to_string(grid.ni) + " inlines x " + std::to_string(grid.nj) + " crosslines)";
+  // A whole line missing reads best as the jump in the line numbers.
+  std::vector<bool> inline_has(static_cast<std::size_t>(grid.ni)), crossline_has(static_cast<std::size_t>(grid.nj));
+  for (int i = 0; i < grid.ni; ++i)
+    for (int j = 0; j < grid.nj; ++j)
+      if (grid.trace_of(i, j) >= 0)
+        inline_has[static_cast<std::size_t>(i)] = crossline_has[static_cast<std::size_t>(j)] = true;
+  struct Axis {
+    const std::vector<bool>& has;
+    const char* name;
+    int first, step;
+  };
+  for (const Axis& axis :
+       {Axis{inline_has, "inline", grid.il0, grid.il_step}, Axis{crossline_has, "crossline", grid.xl0, grid.xl_step}}) {
+    const auto gap = std::find(axis.has.begin(), axis.has.end(), false);
+    if (gap == axis.has.end()) continue;
+    // The first and the last line hold traces (they span the rectangle): the gap has both sides.
+    const auto at = static_cast<int>(gap - axis.has.begin());
+    const auto after = static_cast<int>(std::find(gap, axis.has.end(), true) - axis.has.begin());
+    const std::string name = axis.name;
+    return text + "; no trace on " + name + " " + std::to_string(axis.first + at * axis.step) + ": the " + name +
+           " numbers go " + std::to_string(axis.first + (at - 1) * axis.step) + " then " +
+           std::to_string(axis.first + after * axis.step) + " where the step is " + std::to_string(axis.step);
+  }
+  for (int i = 0; i < grid.ni; ++i)
+    for (int j = 0; j < grid.nj; ++j)
+      if (grid.trace_of(i, j) < 0)
+        return text + "; the first missing: inline " + std::to_string(grid.inline_of(i)) + ", crossline " +
+               std::to_string(grid.crossline_of(j));
+  return text;
+}
 
 int field(const TraceHeader& header, int position) {
   std::int32_t value = 0;
@@ -159,7 +281,8 @@ void check_header_bytes(const SegyOptions& bytes, const std::string& path) {
                           {path}, "give two different positions, for example 189 and 193");
 }
 
-Grid find_grid(segy_file* file, const Layout& layout, const SegyOptions& bytes, const std::string& path) {
+Grid find_grid(segy_file* file, const Layout& layout, const SegyOptions& bytes, bool read_missing,
+               const std::string& path) {
   check_header_bytes(bytes, path);
   Probe asked = probe(file, layout, bytes, path);
   if (asked.grid) return *asked.grid;
@@ -183,8 +306,19 @@ Grid find_grid(segy_file* file, const Layout& layout, const SegyOptions& bytes, 
   also += " do not describe a regular grid either; if the line numbers are elsewhere, pass their positions with "
           "--inline-byte and --crossline-byte, or segy: {inline_byte: N, crossline_byte: M} in the recipe's input "
           "section";
-  throw FormatError(asked.problem.message, {path},
-                    asked.problem.hint.empty() ? also : asked.problem.hint + "; " + also);
+  const std::string hint = asked.problem.hint.empty() ? also : asked.problem.hint + "; " + also;
+  // No positions give a full grid: the traces at the asked ones may be a survey with some missing,
+  // read when missing samples are (the NaN fill policy), refused otherwise.
+  if (!asked.problem.scan) throw FormatError(asked.problem.message, {path}, hint);
+  Probe scanned = scan(file, layout, bytes, path);
+  if (!scanned.grid) throw FormatError(asked.problem.message + "; " + scanned.problem.message, {path}, hint);
+  if (read_missing) return *scanned.grid;
+  throw FormatError("irregular survey at bytes " + pair_text(bytes) + ": " + missing_text(*scanned.grid) +
+                        " (traces are missing where the survey has none, or the file was cut short)",
+                    {path},
+                    "read the missing traces as missing samples with --nan fill (input.nan: fill in a recipe): "
+                    "outside every body, dead traces under attributes; or pad the cube to a full rectangle of "
+                    "traces with dead traces");
 }
 
 } // namespace geotandem::volume::detail::segy

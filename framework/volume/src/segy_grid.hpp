@@ -6,6 +6,7 @@
 #include <array>
 #include <cstdint>
 #include <string>
+#include <vector>
 
 #include "geotandem/volume/io.hpp"
 #include "segy_layout.hpp"
@@ -20,8 +21,15 @@ struct Grid {
   int ni = 0, nj = 0;
   // Line numbers: inline of index i is il0 + i * il_step (likewise crosslines).
   int il0 = 0, il_step = 1, xl0 = 0, xl_step = 1;
+  // An irregular survey (traces missing from the rectangle of its line numbers): the file's trace
+  // at (i, j), row-major, -1 where the file has none. Empty for a full grid, whose traces follow
+  // from the sorting.
+  std::vector<std::int32_t> traces;
 
+  bool irregular() const { return !traces.empty(); }
+  // The file's trace at (i, j); -1 when the survey has no trace there.
   int trace_of(std::int64_t i, std::int64_t j) const {
+    if (irregular()) return traces[static_cast<std::size_t>(i * nj + j)];
     return static_cast<int>(inline_sorted ? i * nj + j : j * ni + i);
   }
   int inline_of(std::int64_t i) const { return static_cast<int>(il0 + i * il_step); }
@@ -44,9 +52,17 @@ void check_position(const TraceHeader& header, const Grid& grid, std::int64_t i,
 // Throws InvalidArgument unless both positions start a trace header field segyio can read.
 void check_header_bytes(const SegyOptions& bytes, const std::string& path);
 
-// Finds the grid at the positions in `bytes`; refuses pre-stack, unsorted and irregular files
-// with a FormatError that names the common positions (9/21, 5/21, 17/13, 189/193) that would
-// describe a regular grid, and how to pass them.
-Grid find_grid(segy_file* file, const Layout& layout, const SegyOptions& bytes, const std::string& path);
+// Finds the grid at the positions in `bytes`. A full sorted grid is found from its first lines and
+// corners. Otherwise, when no other common positions (9/21, 5/21, 17/13, 189/193) describe a full
+// grid, every trace header is read: sorted traces with some missing give an irregular grid
+// (Grid::traces), returned when `read_missing` (missing samples are read, not refused) and refused
+// otherwise, naming what is missing. Pre-stack, unsorted and unreadable files are refused with a
+// FormatError that names the positions that would work, and how to pass them.
+Grid find_grid(segy_file* file, const Layout& layout, const SegyOptions& bytes, bool read_missing,
+               const std::string& path);
+
+// What an irregular grid lacks, for messages: "62 of 63 traces (7 inlines x 9 crosslines); the
+// first missing: inline 106, crossline 300". Empty for a full grid.
+std::string missing_text(const Grid& grid);
 
 } // namespace geotandem::volume::detail::segy

@@ -55,10 +55,11 @@ inline std::string quickstart() {
 
 // The quickstart recipe on a 96x96x64 cube in leaves of 8 cells (several seconds of work for two
 // workers, so that a job can be cancelled while the run goes on), into `out`.
-inline std::vector<std::string> cluster_args(const std::string& out, const std::string& scheduler, int workers) {
+inline std::vector<std::string> cluster_args(const std::string& out, const std::string& scheduler, int workers,
+                                             const std::string& shape = "[96,96,64]") {
   return {"--log-level",  "info",
           "run-workflow", quickstart(),
-          "--set",        "input.synthetic.shape=[96,96,64]",
+          "--set",        "input.synthetic.shape=" + shape,
           "--set",        "steps.extract.block_size=8",
           "--set",        "output.directory=" + out,
           "--set",        "execution.workers=" + std::to_string(workers),

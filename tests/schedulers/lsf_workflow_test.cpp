@@ -55,18 +55,27 @@ TEST_F(LsfRun, ABkilledWorkerJobIsReplacedAndTheRunCompletes) {
 }
 
 // Worker jobs with a short walltime (execution.resources.walltime, which the launcher exports to
-// them as GEOTANDEM_WALLTIME_SECONDS) and a margin of 3 s retire soon after they start: each hands
-// its surface to another worker and a replacement job is submitted as it retires; the run ends with
-// the components of the in-process run. A job's working time is 2 s plus the whole reference run's
-// time, so that the largest single task (the last merges) fits in one job on a slow or loaded
-// machine too; with a fixed 2 s, every job retired before finishing the last merge, forever.
+// them as GEOTANDEM_WALLTIME_SECONDS) and a margin of 3 s retire before the run ends: each hands its
+// surface to another worker and a replacement job is submitted as it retires; the run ends with the
+// components of the in-process run. The cube is twice as long along the sweep as the others', so
+// that the run takes about twice as long while its largest tasks (the last merges, whose seams are
+// cross-sections) do not grow; a job works 2 s plus half the in-process run's time: long enough for
+// the last merges on a slow or loaded machine (with a fixed 2 s every job retired before finishing
+// them, forever), short enough that the two jobs retire before the run ends on a fast one (with the
+// whole in-process time they did not, and the test had nothing to check).
 TEST_F(LsfRun, WorkerJobsNearTheirWalltimeHandBackTheirSurfacesAndAreReplaced) {
+  const std::string shape = "[192,96,64]", long_reference = dir.file("local-long");
+  const auto t0 = std::chrono::steady_clock::now();
+  const auto in_process = run_geotandem("-q" + shell_args(cluster_args(long_reference, "local", 1, shape)));
+  const double long_reference_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  ASSERT_EQ(in_process.exit_code, 0) << in_process.err;
+
   EnvGuard margin{"GEOTANDEM_WALLTIME_MARGIN_SECONDS", "3"};
   const std::string out = dir.file("walltime");
-  const int walltime_s = 3 + 2 + static_cast<int>(std::ceil(reference_s));
+  const int walltime_s = 3 + 2 + static_cast<int>(std::ceil(long_reference_s / 2));
   char walltime[32];
   std::snprintf(walltime, sizeof walltime, "%02d:%02d:%02d", walltime_s / 3600, walltime_s / 60 % 60, walltime_s % 60);
-  auto args = cluster_args(out, "lsf", 2);
+  auto args = cluster_args(out, "lsf", 2, shape);
   args.insert(args.end(), {"--set", std::string("execution.resources.walltime=") + walltime});
   const auto r = run_geotandem(shell_args(args));
   ASSERT_EQ(r.exit_code, 0) << r.err;
@@ -74,7 +83,7 @@ TEST_F(LsfRun, WorkerJobsNearTheirWalltimeHandBackTheirSurfacesAndAreReplaced) {
     GTEST_SKIP() << "the run finished before a worker reached its walltime (a very fast machine):\n" << r.err;
   EXPECT_NE(r.err.find(" hands its surface of "), std::string::npos) << r.err;
   EXPECT_GE(submitted_jobs(r.err).size(), 3u) << "a replacement job should have been submitted:\n" << r.err;
-  expect_same_components(reference + "/store", out + "/store");
+  expect_same_components(long_reference + "/store", out + "/store");
 }
 
 // Every worker job killed as soon as it is submitted: three are replaced, the fourth ends the run

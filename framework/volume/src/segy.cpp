@@ -153,55 +153,51 @@ SurveyAffine fit_affine(const std::array<double, 2>& origin, const std::array<do
 }
 
 // The affine of an irregular survey, whose corners may be missing: the least-squares fit of
-// x = x0 + xi i + xj j (and y likewise) over every trace present, from (i, j) centred on their mean
-// so that the sums keep their precision. Files without coordinates (all zero) get the default grid.
+// x = x0 + xi i + xj j (and y likewise) over every trace present, in one pass over their headers.
+// Indices are taken from the grid's centre and coordinates from the first trace's, so that the sums
+// of products keep their precision. Files without coordinates (all zero) get the default grid.
 SurveyAffine fit_affine_everywhere(segy_file* file, const Layout& layout, const Grid& grid, const std::string& path) {
-  struct Sample {
-    double i, j, x, y;
-  };
-  std::vector<Sample> samples;
-  double mi = 0.0, mj = 0.0, mx = 0.0, my = 0.0;
-  bool any = false;
+  const std::array<double, 2> first = cdp_xy(segy::read_header(file, layout, 0, path));
+  const double ci = 0.5 * (grid.ni - 1), cj = 0.5 * (grid.nj - 1);
+  // Sums of 1, di, dj, di di, di dj, dj dj, and of dx, dy times 1, di, dj.
+  double n = 0.0, si = 0.0, sj = 0.0, sii = 0.0, sij = 0.0, sjj = 0.0;
+  std::array<double, 3> sx{}, sy{};
+  bool any = first[0] != 0.0 || first[1] != 0.0;
   for (int i = 0; i < grid.ni; ++i)
     for (int j = 0; j < grid.nj; ++j)
       if (const int trace = grid.trace_of(i, j); trace >= 0) {
         const auto xy = cdp_xy(segy::read_header(file, layout, trace, path));
         any = any || xy[0] != 0.0 || xy[1] != 0.0;
-        samples.push_back({double(i), double(j), xy[0], xy[1]});
-        mi += i;
-        mj += j;
-        mx += xy[0];
-        my += xy[1];
+        const double di = i - ci, dj = j - cj, dx = xy[0] - first[0], dy = xy[1] - first[1];
+        n += 1.0;
+        si += di;
+        sj += dj;
+        sii += di * di;
+        sij += di * dj;
+        sjj += dj * dj;
+        sx = {sx[0] + dx, sx[1] + di * dx, sx[2] + dj * dx};
+        sy = {sy[0] + dy, sy[1] + di * dy, sy[2] + dj * dy};
       }
-  const double n = static_cast<double>(samples.size());
-  mi /= n;
-  mj /= n;
-  mx /= n;
-  my /= n;
-  double sii = 0.0, sij = 0.0, sjj = 0.0, six = 0.0, sjx = 0.0, siy = 0.0, sjy = 0.0;
-  for (const auto& s : samples) {
-    const double di = s.i - mi, dj = s.j - mj, dx = s.x - mx, dy = s.y - my;
-    sii += di * di;
-    sij += di * dj;
-    sjj += dj * dj;
-    six += di * dx;
-    sjx += dj * dx;
-    siy += di * dy;
-    sjy += dj * dy;
-  }
-  const double det = sii * sjj - sij * sij;
+  // Centred on the means: the slopes from the 2 x 2 system, the offset from the means.
+  const double mi = si / n, mj = sj / n;
+  const double vii = sii - n * mi * mi, vij = sij - n * mi * mj, vjj = sjj - n * mj * mj;
+  const double det = vii * vjj - vij * vij;
   SurveyAffine a;
-  if (!any || !(std::abs(det) > 0.0)) { // no coordinates, or every trace on one line: the default grid
-    a.x0 = any ? samples.front().x : 0.0;
-    a.y0 = any ? samples.front().y : 0.0;
+  if (!any || !(det > 1e-9 * (vii * vjj))) { // no coordinates, or every trace on one line
+    a.x0 = first[0];
+    a.y0 = first[1];
     return a;
   }
-  a.xi = (six * sjj - sjx * sij) / det;
-  a.xj = (sjx * sii - six * sij) / det;
-  a.yi = (siy * sjj - sjy * sij) / det;
-  a.yj = (sjy * sii - siy * sij) / det;
-  a.x0 = mx - a.xi * mi - a.xj * mj;
-  a.y0 = my - a.yi * mi - a.yj * mj;
+  auto slopes = [&](const std::array<double, 3>& s, double& along_i, double& along_j) {
+    const double mean = s[0] / n, ci_cov = s[1] - n * mi * mean, cj_cov = s[2] - n * mj * mean;
+    along_i = (ci_cov * vjj - cj_cov * vij) / det;
+    along_j = (cj_cov * vii - ci_cov * vij) / det;
+    return mean;
+  };
+  const double mx = slopes(sx, a.xi, a.xj), my = slopes(sy, a.yi, a.yj);
+  // x at index (0, 0): the mean minus the slopes times the means' offset from (0, 0).
+  a.x0 = first[0] + mx - a.xi * (mi + ci) - a.xj * (mj + cj);
+  a.y0 = first[1] + my - a.yi * (mi + ci) - a.yj * (mj + cj);
   const double area = a.xi * a.yj - a.xj * a.yi;
   if (!(std::abs(area) > 0.0) || !std::isfinite(area)) {
     SurveyAffine fallback;

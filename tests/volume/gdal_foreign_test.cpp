@@ -53,6 +53,66 @@ TEST(GdalMdForeign, CoordinateVariablesGiveGeometryWithoutAttributes) {
   expect_formula(cube->read(g.bounds()), g.bounds());
 }
 
+// Writes `values` as the coordinate variable of `dim`, in `type` (Float32 as some tools store them).
+void write_values(GDALGroup& root, const std::shared_ptr<GDALDimension>& dim, const std::vector<double>& values,
+                  GDALDataType type, const char* unit) {
+  auto variable = add_array(root, dim->GetName(), {dim}, type);
+  const GUInt64 start = 0;
+  const std::size_t count = values.size();
+  ASSERT_TRUE(
+      variable->Write(&start, &count, nullptr, nullptr, GDALExtendedDataType::Create(GDT_Float64), values.data()));
+  if (unit) variable->CreateAttribute("units", {}, GDALExtendedDataType::CreateString())->Write(unit);
+}
+
+// A cube is a regular grid going down the trace: coordinates that are not evenly spaced (a gap in
+// the line numbers, irregular sampling) or a sample axis that decreases are refused, naming the
+// dimension and the values, instead of placing every sample after the first step wrongly. Float32
+// seconds at 4 ms steps, whose rounding reaches a few parts in ten thousand of a step, still read.
+TEST(GdalMdForeign, UnevenOrDecreasingCoordinatesAreRefused) {
+  ScratchDir dir;
+  auto write = [&](const std::string& name, std::vector<double> inlines, std::vector<double> times, GDALDataType type) {
+    const std::string path = dir.file(name);
+    write_foreign(path, "netCDF", [&](GDALGroup& root) {
+      auto il = root.CreateDimension("iline", "", "", inlines.size());
+      auto xl = root.CreateDimension("xline", "", "", 3);
+      auto tw = root.CreateDimension("twt", "", "", times.size());
+      write_values(root, il, inlines, type, nullptr);
+      write_values(root, tw, times, type, "s");
+      fill_array(*add_array(root, "seismic", {il, xl, tw}, GDT_Float32), {0, 1, 2});
+    });
+    return path;
+  };
+  std::vector<double> times;
+  for (int k = 0; k < 2000; ++k)
+    times.push_back(0.004 * k);
+  const std::vector<double> inlines{500, 502, 504, 506};
+
+  const auto fine = gv::open_volume(write("float32.nc", inlines, times, GDT_Float32));
+  EXPECT_NEAR(fine->geometry().dz, 4.0, 1e-4);
+  EXPECT_EQ(fine->geometry().inline_step, 2);
+
+  const std::string gap = message_of([&] {
+    gv::open_volume(write("gap.nc", {500, 502, 504, 508}, times, GDT_Float64));
+  });
+  EXPECT_NE(gap.find("dimension 'iline' is not evenly spaced: 504 then 508 after a step of 2"), std::string::npos)
+      << gap;
+  EXPECT_NE(gap.find("gap.nc"), std::string::npos) << gap;
+
+  std::vector<double> uneven = times;
+  uneven[1000] += 0.001;
+  const std::string sampling = message_of([&] { gv::open_volume(write("uneven.nc", inlines, uneven, GDT_Float64)); });
+  EXPECT_NE(sampling.find("dimension 'twt' is not evenly spaced"), std::string::npos) << sampling;
+
+  std::vector<double> up(times.rbegin(), times.rend());
+  const std::string reversed = message_of([&] { gv::open_volume(write("reversed.nc", inlines, up, GDT_Float64)); });
+  EXPECT_NE(reversed.find("the sample axis 'twt' decreases: 7996 then 7992"), std::string::npos) << reversed;
+
+  // Decreasing line numbers are a negative step, as in SEG-Y.
+  const auto down = gv::open_volume(write("down.nc", {506, 504, 502, 500}, times, GDT_Float64));
+  EXPECT_EQ(down->geometry().inline0, 506);
+  EXPECT_EQ(down->geometry().inline_step, -2);
+}
+
 TEST(GdalMdForeign, NamedDimensionsInAnotherOrderAreTransposed) {
   ScratchDir dir;
   const std::string path = dir.file("transposed.nc");

@@ -3,10 +3,12 @@
 #include <algorithm>
 #include <array>
 #include <cctype>
+#include <cmath>
 #include <vector>
 
 #include "gdal_common.hpp"
 #include "geotandem/core/error.hpp"
+#include "geotandem/core/params.hpp"
 
 namespace geotandem::volume::detail::gdal {
 namespace {
@@ -105,9 +107,32 @@ std::string unit_of(const GDALDimension& dimension) {
   return lower(unit);
 }
 
+// A cube is a regular grid: a coordinate variable must go in even steps, or it would place every
+// sample after the first step wrongly. The tolerance lets coordinates stored as Float32 (seconds
+// at 4 ms steps lose a few parts in ten thousand of a step by 8 s) through. Constant values (a
+// placeholder some tools write) say nothing and are taken as no coordinates.
+void check_even_steps(const std::vector<double>& values, const GDALDimension& dimension, const std::string& path) {
+  if (values.size() < 3 || std::all_of(values.begin(), values.end(), [&](double v) { return v == values[0]; })) return;
+  const double step = values[1] - values[0];
+  double largest = 0.0;
+  for (double v : values)
+    largest = std::max(largest, std::abs(v));
+  const double tolerance = 1e-3 * std::abs(step) + 1e-6 * largest;
+  for (std::size_t n = 2; n < values.size(); ++n)
+    if (!(std::abs(values[n] - values[n - 1] - step) <= tolerance))
+      throw FormatError("the coordinate variable of dimension '" + dimension.GetName() + "' is not evenly spaced: " +
+                            number_text(values[n - 1]) + " then " + number_text(values[n]) + " after a step of " +
+                            number_text(step) + " (index " + std::to_string(n) + ")",
+                        {path},
+                        "geotandem reads regular grids; resample the cube onto even steps (a gap of missing "
+                        "lines: write them as missing samples, NaN)");
+}
+
 // First value and increment of a coordinate variable (increment kept at `step` for a single value).
-void take_line_numbers(const std::vector<double>& values, double& first, double& step) {
+void take_line_numbers(const std::vector<double>& values, const GDALDimension& dimension, const std::string& path,
+                       double& first, double& step) {
   if (values.empty()) return;
+  check_even_steps(values, dimension, path);
   first = values[0];
   if (values.size() > 1 && values[1] != values[0]) step = values[1] - values[0];
 }
@@ -167,8 +192,8 @@ Geometry read_geometry(const GDALMDArray& array, const GDALMDArray& attributes_o
   // Without better knowledge the indices are the line numbers.
   g.inline0 = 0.0;
   g.crossline0 = 0.0;
-  take_line_numbers(coordinates_of(*dims[0]), g.inline0, g.inline_step);
-  take_line_numbers(coordinates_of(*dims[1]), g.crossline0, g.crossline_step);
+  take_line_numbers(coordinates_of(*dims[0]), *dims[0], path, g.inline0, g.inline_step);
+  take_line_numbers(coordinates_of(*dims[1]), *dims[1], path, g.crossline0, g.crossline_step);
 
   const GDALDimension& z = *dims[2];
   const std::string unit = unit_of(z);
@@ -179,6 +204,15 @@ Geometry read_geometry(const GDALMDArray& array, const GDALMDArray& attributes_o
   if (unit == "s" || unit == "second" || unit == "seconds")
     for (double& value : zs)
       value *= 1000.0;
+  check_even_steps(zs, z, path);
+  // Samples go down the trace: a sample axis whose coordinates decrease (stored bottom up, or an
+  // elevation) would put every body upside down.
+  if (zs.size() > 1 && zs[1] < zs[0])
+    throw FormatError("the sample axis '" + z.GetName() + "' decreases: " + number_text(zs[0]) + " then " +
+                          number_text(zs[1]) + (unit.empty() ? "" : " " + unit),
+                      {path},
+                      "geotandem reads traces with time or depth increasing from the first sample; reverse that "
+                      "axis of the cube (and make an elevation a depth) before reading it");
   if (!zs.empty()) g.z0 = zs[0];
   if (zs.size() > 1 && zs[1] > zs[0]) g.dz = zs[1] - zs[0];
 

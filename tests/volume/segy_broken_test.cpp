@@ -181,6 +181,26 @@ TEST(SegyBroken, MisplacedTraceIsCaughtWhenRead) {
   EXPECT_EQ(volume->read(Box{{0, 0, 0}, {1, 9, 50}}), formula_samples(Box{{0, 0, 0}, {1, 9, 50}}));
 }
 
+// A trace that starts later than the others (delay recording time): its samples would sit at the
+// wrong times. Refused when read, naming the trace and both start times; other boxes still read.
+TEST(SegyBroken, ATraceStartingAtAnotherTimeIsCaughtWhenRead) {
+  ScratchDir dir;
+  SegySpec s;
+  s.delay_ms = 100;
+  s.late_trace = {3, 4};
+  s.late_by_ms = 20;
+  const std::string path = dir.file("late.sgy");
+  write_with_segyio(path, s);
+  auto volume = open_volume(path);
+  EXPECT_EQ(volume->geometry().z0, 100);
+  const std::string message = message_of<FormatError>([&] { volume->read(volume->geometry().bounds()); });
+  EXPECT_NE(message.find("(inline 106, crossline 304) starts at 120 where the cube's first trace starts at 100"),
+            std::string::npos)
+      << message;
+  EXPECT_NE(message.find(path), std::string::npos) << message;
+  EXPECT_EQ(volume->read(Box{{0, 0, 0}, {1, 9, 50}}), formula_samples(Box{{0, 0, 0}, {1, 9, 50}}));
+}
+
 TEST(SegyBroken, ShuffledTracesAreRefused) {
   ScratchDir dir;
   SegySpec s;

@@ -16,6 +16,7 @@
 
 #include "formats.hpp"
 #include "geotandem/core/error.hpp"
+#include "geotandem/core/params.hpp"
 #include "segy_file.hpp"
 #include "segy_grid.hpp"
 #include "segy_layout.hpp"
@@ -35,6 +36,14 @@ template <class Int> void widen(const char* native, int count, float* out) {
     std::memcpy(&value, native + static_cast<std::size_t>(n) * sizeof(Int), sizeof(Int));
     out[n] = static_cast<float>(value);
   }
+}
+
+// The time (or depth) of a trace's first sample: the delay recording time (byte 109), scaled by
+// byte 215 when that is set (rev 1).
+double trace_start(const TraceHeader& header) {
+  const double scalar = segy::field(header, SEGY_TR_SCALAR_TRACE_HEADER);
+  const double delay = segy::field(header, SEGY_TR_DELAY_REC_TIME);
+  return scalar == 0 ? delay : scalar > 0 ? delay * scalar : delay / -scalar;
 }
 
 class SegyVolume final : public Volume {
@@ -80,7 +89,16 @@ private:
       std::fill_n(out, box.size(2), std::numeric_limits<float>::quiet_NaN());
       return;
     }
-    segy::check_position(segy::read_header(file_.get(), layout_, trace, path_), grid_, i, j, trace, path_);
+    const TraceHeader header = segy::read_header(file_.get(), layout_, trace, path_);
+    segy::check_position(header, grid_, i, j, trace, path_);
+    if (const double start = trace_start(header); start != geometry_.z0)
+      throw FormatError("trace " + std::to_string(trace) + " (inline " + std::to_string(grid_.inline_of(i)) +
+                            ", crossline " + std::to_string(grid_.crossline_of(j)) + ") starts at " +
+                            number_text(start) + " where the cube's first trace starts at " +
+                            number_text(geometry_.z0) + " (delay recording time, trace header bytes 109-110)",
+                        {path_, {}, {}, "box " + box.to_string(), {}},
+                        "geotandem reads cubes whose traces all start at the same time or depth; pad or shift the "
+                        "traces to a common start first");
     const auto start = static_cast<int>(box.lo[2]), stop = static_cast<int>(box.hi[2]);
     const int count = stop - start;
     // 4-byte samples are decoded in place; narrower integers go through a scratch buffer.
@@ -250,10 +268,7 @@ std::unique_ptr<Volume> open_segy(const std::string& path, const OpenOptions& op
   g.crossline_step = grid.xl_step;
   g.z_unit = depth ? SampleUnit::metres : SampleUnit::milliseconds;
   g.dz = layout.interval / 1000.0; // microseconds to ms (or, in our depth files, mm to m)
-  // Delay recording time (byte 109), scaled by byte 215 when that is set (rev 1).
-  const double time_scalar = segy::field(origin, SEGY_TR_SCALAR_TRACE_HEADER);
-  const double delay = segy::field(origin, SEGY_TR_DELAY_REC_TIME);
-  g.z0 = time_scalar == 0 ? delay : time_scalar > 0 ? delay * time_scalar : delay / -time_scalar;
+  g.z0 = trace_start(origin);
   g.affine = grid.irregular()
                  ? fit_affine_everywhere(file.get(), layout, grid, path)
                  : fit_affine(cdp_xy(origin), cdp_xy(corner(ni - 1, 0)), cdp_xy(corner(0, nj - 1)), ni, nj);

@@ -131,6 +131,42 @@ TEST(GdalMdForeign, NamedDimensionsInAnotherOrderAreTransposed) {
   expect_formula(cube->read({{1, 2, 3}, {3, 5, 8}}), {{1, 2, 3}, {3, 5, 8}});
 }
 
+// CF files put time or depth first: stored as [time, y, x], the cube is read with x as the inline
+// and y as the crossline axis (east and north in the default affine). A sample axis named as such
+// but stored first among names that say nothing is refused: read in stored order it made every
+// trace a line.
+TEST(GdalMdForeign, ASampleAxisStoredFirstIsReadByItsName) {
+  ScratchDir dir;
+  const std::string path = dir.file("cf.nc");
+  write_foreign(path, "netCDF", [](GDALGroup& root) {
+    auto t = root.CreateDimension("time", "", "", 9);
+    auto y = root.CreateDimension("y", "", "", 5);
+    auto x = root.CreateDimension("x", "", "", 4);
+    write_coordinate(root, x, 431000, 25, "m");
+    fill_array(*add_array(root, "amplitude", {t, y, x}, GDT_Float32), {2, 1, 0});
+  });
+  const auto cube = gv::open_volume(path);
+  const gv::Geometry& g = cube->geometry();
+  EXPECT_EQ(g.shape, (gv::Index3{4, 5, 9}));
+  EXPECT_EQ(g.inline0, 431000);
+  EXPECT_EQ(g.inline_step, 25);
+  expect_formula(cube->read(g.bounds()), g.bounds());
+
+  const std::string unnamed = dir.file("unnamed.nc");
+  write_foreign(unnamed, "netCDF", [](GDALGroup& root) {
+    auto t = root.CreateDimension("time", "", "", 9);
+    auto a = root.CreateDimension("a", "", "", 5);
+    auto b = root.CreateDimension("b", "", "", 4);
+    fill_array(*add_array(root, "amplitude", {t, a, b}, GDT_Float32), {2, 1, 0});
+  });
+  const std::string message = message_of([&] { gv::open_volume(unnamed); });
+  EXPECT_NE(message.find("dimension 'time' of array /amplitude is the sample axis by its name, stored as axis 1 of 3"),
+            std::string::npos)
+      << message;
+  EXPECT_NE(message.find("(a, b)"), std::string::npos) << message;
+  EXPECT_NE(message.find("unnamed.nc"), std::string::npos) << message;
+}
+
 // netCDF's _FillValue and Zarr's fill_value (what GDAL reports as an array's no-data value, set here
 // through GDAL as other tools set them) mark samples as missing, as NaN samples are.
 TEST(GdalMdForeign, FillValueSamplesAreMissing) {

@@ -107,7 +107,7 @@ std::unique_ptr<Volume> volume_of(gdal::DatasetPtr dataset, const std::string& p
     throw FormatError("the file has no root group" + errors.text(), {path},
                       "the file may be truncated or damaged; check that it was written completely");
   std::shared_ptr<GDALMDArray> stored = gdal::choose_array(*root, options.variable, path);
-  std::shared_ptr<GDALMDArray> cube = gdal::in_cube_order(stored);
+  std::shared_ptr<GDALMDArray> cube = gdal::in_cube_order(stored, path);
   Geometry geometry = gdal::read_geometry(*cube, *stored, path);
   std::string name = format_of(*dataset, format);
   bool declared = false;

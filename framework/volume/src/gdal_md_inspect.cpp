@@ -70,9 +70,11 @@ std::string lower(std::string text) {
 // 0 inline, 1 crossline, 2 sample, -1 not recognised.
 int axis_of(const std::string& dimension_name) {
   const std::string name = lower(dimension_name);
-  for (const char* n : {"iline", "inline", "inlines", "il"})
+  // x and y (eastings and northings) as inline and crossline: the default affine takes the inline
+  // axis east and the crossline axis north, so a map keeps its handedness.
+  for (const char* n : {"iline", "inline", "inlines", "il", "x"})
     if (name == n) return 0;
-  for (const char* n : {"xline", "crossline", "crosslines", "xl"})
+  for (const char* n : {"xline", "crossline", "crosslines", "xl", "y"})
     if (name == n) return 1;
   for (const char* n : {"twt", "time", "depth", "z", "sample", "samples"})
     if (name == n) return 2;
@@ -171,13 +173,31 @@ std::shared_ptr<GDALMDArray> choose_array(GDALGroup& root, const std::string& re
                     "choose one with the variable option (--variable NAME, or input.variable in a recipe)");
 }
 
-std::shared_ptr<GDALMDArray> in_cube_order(const std::shared_ptr<GDALMDArray>& array) {
+std::shared_ptr<GDALMDArray> in_cube_order(const std::shared_ptr<GDALMDArray>& array, const std::string& path) {
   const auto& dims = array->GetDimensions();
   std::array<int, 3> position{-1, -1, -1}; // position[axis] = stored dimension holding that axis
+  bool all_known = true;
   for (int d = 0; d < 3; ++d) {
     int axis = axis_of(dims[static_cast<std::size_t>(d)]->GetName());
-    if (axis < 0 || position[static_cast<std::size_t>(axis)] >= 0) return array; // unknown or ambiguous
+    if (axis < 0 || position[static_cast<std::size_t>(axis)] >= 0) {
+      all_known = false;
+      continue;
+    }
     position[static_cast<std::size_t>(axis)] = d;
+  }
+  if (!all_known) {
+    // The stored order is taken as (inline, crossline, sample), unless a name says otherwise: a
+    // sample axis named as such but stored before the last place (CF files put time or depth
+    // first) would be read as a line of traces, every body in a transposed frame.
+    if (position[2] >= 0 && position[2] != 2)
+      throw FormatError("dimension '" + dims[static_cast<std::size_t>(position[2])]->GetName() + "' of array " +
+                            array->GetFullName() + " is the sample axis by its name, stored as axis " +
+                            std::to_string(position[2] + 1) + " of 3, and the other names (" +
+                            dims[static_cast<std::size_t>(position[2] == 0 ? 1 : 0)]->GetName() + ", " +
+                            dims[static_cast<std::size_t>(position[2] == 2 ? 1 : 2)]->GetName() +
+                            ") do not say which is the inline and which the crossline axis",
+                        {path}, "rename those dimensions iline and xline (or x and y), or store the sample axis last");
+    return array;
   }
   if (position == std::array<int, 3>{0, 1, 2}) return array;
   auto view = array->Transpose({position[0], position[1], position[2]});

@@ -18,9 +18,10 @@ namespace geotandem::volume::detail::gdal {
 std::shared_ptr<GDALMDArray> choose_array(GDALGroup& root, const std::string& requested, const std::string& path);
 
 // The array viewed in (inline, crossline, sample) order. Dimension names decide when all three are
-// recognised (iline/inline/il, xline/crossline/xl, twt/time/depth/z/sample); otherwise the stored
-// order is taken as (inline, crossline, sample), the order geotandem writes.
-std::shared_ptr<GDALMDArray> in_cube_order(const std::shared_ptr<GDALMDArray>& array);
+// recognised (iline/inline/il/x, xline/crossline/xl/y, twt/time/depth/z/sample); otherwise the
+// stored order is taken as (inline, crossline, sample), the order geotandem writes, unless a name
+// contradicts it (a sample axis stored first or second): a FormatError naming `path`.
+std::shared_ptr<GDALMDArray> in_cube_order(const std::shared_ptr<GDALMDArray>& array, const std::string& path);
 
 // The geometry of `array` (already in cube order). Start from the defaults of Geometry with the
 // indices as line numbers, take line numbers and the sample axis from 1-D coordinate variables when

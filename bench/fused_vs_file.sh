@@ -25,12 +25,13 @@ echo "binary: $bin"
 echo "cube:   $shape (synthetic seismic, quickstart recipe)"
 echo "output: $out"
 
-# The progress line "NAME: 100% (...), S s, done" of the phase whose name starts with $2.
+# The progress line "NAME: 100% (...), S s, done" of the phase whose name starts with $2 (a regular
+# expression).
 phase_seconds() {
   python3 - "$1" "$2" <<'PY'
 import re, sys
 text = open(sys.argv[1]).read().replace("\r", "\n")
-hits = [float(m.group(1)) for m in re.finditer(r"^" + re.escape(sys.argv[2]) + r".*?([0-9.]+) s, done$", text, re.M)]
+hits = [float(m.group(1)) for m in re.finditer(r"^" + sys.argv[2] + r".*?([0-9.]+) s, done$", text, re.M)]
 print(hits[-1] if hits else "nan")
 PY
 }
@@ -42,9 +43,10 @@ PY
 "$bin" extract "$out/file/facies.nc" --iso 0.2 --max-error 0.5 --block-size 128 --out "$out/from-file" \
   >"$out/from-file.stdout" 2>"$out/from-file.stderr" || { cat "$out/from-file.stderr" >&2; exit 1; }
 
-fused=$(phase_seconds "$out/fused.stderr" tandem)
+# The extraction's phase: "extraction, N blocks" with workers (the default), "tandem" in one process.
+fused=$(phase_seconds "$out/fused.stderr" '(?:extraction|tandem)')
 write=$(phase_seconds "$out/file.stderr" writing)
-from_file=$(phase_seconds "$out/from-file.stderr" tandem)
+from_file=$(phase_seconds "$out/from-file.stderr" '(?:extraction|tandem)')
 python3 - "$fused" "$write" "$from_file" "$out" <<'PY'
 import json, re, sys
 fused, write, from_file = (float(x) for x in sys.argv[1:4])

@@ -14,22 +14,14 @@
 
 #include "gdal_fixtures.hpp"
 #include "scratch.hpp"
+#include "store_volumes.hpp"
 
 namespace geotandem {
 namespace {
 
 using testing::run_geotandem;
 using testing::ScratchDir;
-
-// key -> volume of every component in a store, through `store ls --json`.
-std::map<std::int64_t, double> volumes_in(const std::string& store) {
-  auto r = run_geotandem("store ls --json '" + store + "'");
-  EXPECT_EQ(r.exit_code, 0) << r.err;
-  std::map<std::int64_t, double> out;
-  for (const auto& row : nlohmann::json::parse(r.out))
-    out[row["key"].get<std::int64_t>()] = row["volume"].get<double>();
-  return out;
-}
+using testing::volumes_in;
 
 TEST(ExtractCli, BlocksGiveTheSameComponentsAsOneBlock) {
   ScratchDir dir;

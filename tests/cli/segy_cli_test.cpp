@@ -13,12 +13,14 @@
 #include "geotandem/volume/volume.hpp"
 #include "scratch.hpp"
 #include "segy_fixtures.hpp"
+#include "store_volumes.hpp"
 
 namespace geotandem {
 namespace {
 
 using testing::run_geotandem;
 using testing::ScratchDir;
+using testing::volumes_in;
 
 volume::testing::SegySpec delivered() {
   volume::testing::SegySpec s;
@@ -104,16 +106,6 @@ TEST(SegyCli, OtherHeaderBytesDoNotResumeAStore) {
   ASSERT_EQ(runs.exit_code, 0) << runs.err;
   const auto last = nlohmann::json::parse(runs.out).back();
   EXPECT_EQ(last["parameters"]["identity"]["segy"]["inline_byte"], 193) << runs.out;
-}
-
-// key -> volume of every component of a store.
-std::map<std::int64_t, double> volumes_in(const std::string& store) {
-  auto r = run_geotandem("store ls --json '" + store + "'");
-  EXPECT_EQ(r.exit_code, 0) << r.err;
-  std::map<std::int64_t, double> out;
-  for (const auto& row : nlohmann::json::parse(r.out))
-    out[row["key"].get<std::int64_t>()] = row["volume"].get<double>();
-  return out;
 }
 
 // An irregular survey (a corner cut off and a hole inside the body) as delivered: refused by

@@ -137,6 +137,17 @@ std::array<double, 2> cdp_xy(const TraceHeader& header) {
   return {segy::field(header, SEGY_TR_CDP_X) * factor, segy::field(header, SEGY_TR_CDP_Y) * factor};
 }
 
+// `a` when it maps the grid onto a plane; otherwise (collinear or missing coordinates) the default
+// 25 m grid at a's origin.
+SurveyAffine usable_or_default(const SurveyAffine& a) {
+  const double det = a.xi * a.yj - a.xj * a.yi;
+  if (std::abs(det) > 0.0 && std::isfinite(det)) return a;
+  SurveyAffine fallback;
+  fallback.x0 = a.x0;
+  fallback.y0 = a.y0;
+  return fallback;
+}
+
 // The affine from three corners: (0,0), (ni-1,0), (0,nj-1). A single line gives only one
 // direction; the other is taken perpendicular with the same spacing (i east when j is north).
 // Files without coordinates (all zero) get the default 25 m grid at the origin.
@@ -160,14 +171,7 @@ SurveyAffine fit_affine(const std::array<double, 2>& origin, const std::array<do
     a.xj = -a.yi;
     a.yj = a.xi;
   }
-  const double det = a.xi * a.yj - a.xj * a.yi;
-  if (!(std::abs(det) > 0.0) || !std::isfinite(det)) {
-    SurveyAffine fallback;
-    fallback.x0 = a.x0;
-    fallback.y0 = a.y0;
-    return fallback;
-  }
-  return a;
+  return usable_or_default(a);
 }
 
 // The affine of an irregular survey, whose corners may be missing: the least-squares fit of
@@ -216,14 +220,7 @@ SurveyAffine fit_affine_everywhere(segy_file* file, const Layout& layout, const 
   // x at index (0, 0): the mean minus the slopes times the means' offset from (0, 0).
   a.x0 = first[0] + mx - a.xi * (mi + ci) - a.xj * (mj + cj);
   a.y0 = first[1] + my - a.yi * (mi + ci) - a.yj * (mj + cj);
-  const double area = a.xi * a.yj - a.xj * a.yi;
-  if (!(std::abs(area) > 0.0) || !std::isfinite(area)) {
-    SurveyAffine fallback;
-    fallback.x0 = a.x0;
-    fallback.y0 = a.y0;
-    return fallback;
-  }
-  return a;
+  return usable_or_default(a);
 }
 
 // Our own textual header says when the sample axis is depth; other files are taken as time.

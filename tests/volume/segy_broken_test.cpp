@@ -182,7 +182,8 @@ TEST(SegyBroken, MisplacedTraceIsCaughtWhenRead) {
 }
 
 // A trace that starts later than the others (delay recording time): its samples would sit at the
-// wrong times. Refused when read, naming the trace and both start times; other boxes still read.
+// wrong times. Refused when read, naming the trace and both start times; other boxes still read,
+// and so does the trace when it is flagged dead.
 TEST(SegyBroken, ATraceStartingAtAnotherTimeIsCaughtWhenRead) {
   ScratchDir dir;
   SegySpec s;
@@ -199,6 +200,14 @@ TEST(SegyBroken, ATraceStartingAtAnotherTimeIsCaughtWhenRead) {
       << message;
   EXPECT_NE(message.find(path), std::string::npos) << message;
   EXPECT_EQ(volume->read(Box{{0, 0, 0}, {1, 9, 50}}), formula_samples(Box{{0, 0, 0}, {1, 9, 50}}));
+
+  // Flagged dead (trace identification code 2), the same trace reads: a padding trace's zeros have
+  // no time to be wrong about.
+  s.late_trace_dead = true;
+  const std::string dead = dir.file("dead.sgy");
+  write_with_segyio(dead, s);
+  auto padded = open_volume(dead);
+  EXPECT_EQ(padded->read(padded->geometry().bounds()), formula_samples(padded->geometry().bounds()));
 }
 
 TEST(SegyBroken, ShuffledTracesAreRefused) {

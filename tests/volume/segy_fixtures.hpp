@@ -46,6 +46,7 @@ struct SegySpec {
   bool record_and_sequence = false;      // field record 1 at byte 9, trace sequence at byte 21 (a 1 x N "grid")
   std::array<int, 2> late_trace{-1, -1}; // (i, j) of a trace whose delay is late_by_ms more than the others'
   int late_by_ms = 0;
+  bool late_trace_dead = false; // that trace flagged dead (trace identification code 2)
 
   long trace0() const { return 3600L + 3200L * extended_headers; }
   int inline_number(int i) const { return il0 + (i + (gap_in_inlines && i >= ni / 2 ? 1 : 0)) * il_step; }
@@ -148,8 +149,9 @@ inline void write_with_segyio(const std::string& path, const SegySpec& s) {
       }
       segy_set_field(h.data(), SEGY_TR_SAMPLE_COUNT, s.ns);
       segy_set_field(h.data(), SEGY_TR_SAMPLE_INTER, s.interval_us);
-      segy_set_field(h.data(), SEGY_TR_DELAY_REC_TIME,
-                     s.delay_ms + (std::array<int, 2>{i, j} == s.late_trace ? s.late_by_ms : 0));
+      const bool late = std::array<int, 2>{i, j} == s.late_trace;
+      segy_set_field(h.data(), SEGY_TR_DELAY_REC_TIME, s.delay_ms + (late ? s.late_by_ms : 0));
+      if (late && s.late_trace_dead) segy_set_field(h.data(), SEGY_TR_TRACE_ID, 2);
       if (s.coordinates) {
         auto xy = s.affine.apply(i, j);
         segy_set_field(h.data(), SEGY_TR_SOURCE_GROUP_SCALAR, s.scalar);

@@ -38,6 +38,9 @@ template <class Int> void widen(const char* native, int count, float* out) {
   }
 }
 
+// Trace identification code (bytes 29-30) of a dead trace.
+constexpr int kDeadTrace = 2;
+
 // The time (or depth) of a trace's first sample: the delay recording time (byte 109), scaled by
 // byte 215 when that is set (rev 1).
 double trace_start(const TraceHeader& header) {
@@ -91,7 +94,9 @@ private:
     }
     const TraceHeader header = segy::read_header(file_.get(), layout_, trace, path_);
     segy::check_position(header, grid_, i, j, trace, path_);
-    if (const double start = trace_start(header); start != geometry_.z0)
+    // A dead trace (identification code 2) holds no signal: where its zeros start does not matter.
+    if (const double start = trace_start(header);
+        start != geometry_.z0 && segy::field(header, SEGY_TR_TRACE_ID) != kDeadTrace)
       throw FormatError("trace " + std::to_string(trace) + " (inline " + std::to_string(grid_.inline_of(i)) +
                             ", crossline " + std::to_string(grid_.crossline_of(j)) + ") starts at " +
                             number_text(start) + " where the cube's first trace starts at " +

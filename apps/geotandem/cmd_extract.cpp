@@ -146,7 +146,11 @@ void add_extract_command(CLI::App& app, Context& context, Runner& run) {
       // How the file is read decides the samples as much as its content: another array of a netCDF
       // file, other SEG-Y header bytes or other missing samples make another extraction.
       if (open.no_data) s.parameters["no_data"] = *open.no_data;
-      if (!a->variable.empty()) s.parameters["variable"] = a->variable;
+      if (!a->variable.empty()) { // as the file names it: "chaos" and "/chaos" are one array
+        s.parameters["variable"] = a->variable;
+        for (const auto& detail : cube->format_details())
+          if (detail.key == "array") s.parameters["variable"] = detail.value;
+      }
       if (!(a->segy == volume::SegyOptions{}))
         s.parameters["segy"] = {{"inline_byte", a->segy.inline_byte}, {"crossline_byte", a->segy.crossline_byte}};
       auto store = store::ComponentStore::open_or_create(a->out, cube->geometry(), {"geotandem extract", a->cube});

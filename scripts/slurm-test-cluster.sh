@@ -34,6 +34,38 @@ alive() {
 
 pid_of() { [ -s "$dir/run/$1.pid" ] && cat "$dir/run/$1.pid" || true; }
 
+# The processes whose parent is $1 (field 2 after the command name in /proc/PID/stat).
+children_of() {
+  local stat rest
+  for stat in /proc/[0-9]*/stat; do
+    rest="$(sed 's/^.*) //' "$stat" 2>/dev/null)" || continue
+    [ "$(echo "$rest" | cut -d' ' -f2)" = "$1" ] || continue
+    stat="${stat#/proc/}"
+    echo "${stat%/stat}"
+  done
+}
+
+kill_tree() {
+  local child
+  for child in $(children_of "$1"); do kill_tree "$child"; done
+  kill -KILL "$1" 2>/dev/null || true
+}
+
+# Job steps outlive slurmd. A step left running (a test run killed half-way) reports its job's end
+# to the next cluster started in this directory, which listens on the same port and numbers its jobs
+# from 1 again: that cluster's job of the same number then ends at once, "completed" (seen once:
+# a test's `sleep 600` job reported done after 3 s). So the steps of this cluster (their working
+# directory is in $dir) go too, with the jobs they run.
+kill_steps() {
+  local proc
+  for proc in /proc/[0-9]*; do
+    [ "$(cat "$proc/comm" 2>/dev/null)" = slurmstepd ] || continue
+    case "$(readlink "$proc/cwd" 2>/dev/null)" in
+    "$dir" | "$dir"/*) kill_tree "${proc#/proc/}" ;;
+    esac
+  done
+}
+
 stop() {
   local name pid i
   for name in "${daemons[@]}"; do
@@ -49,6 +81,7 @@ stop() {
     fi
     rm -f "$dir/run/$name.pid"
   done
+  kill_steps
 }
 
 status() {

@@ -96,8 +96,6 @@ void add_extract_command(CLI::App& app, Context& context, Runner& run) {
                   "samples of this value are missing too (SEG-Y and raw cubes cannot declare their null, often "
                   "-999.25); --nan says what becomes of them")
       ->type_name("VALUE");
-  cmd->add_option("--variable", a->variable,
-                  "the array to read from a multidimensional file (netCDF, Zarr, HDF5) that holds several");
   cmd->add_option("--workers", a->workers,
                   "local worker processes extracting and merging the blocks (manager/worker runtime); the default is "
                   "one per core, at most one per block (a cube of one block is extracted in this process); 0: "
@@ -105,11 +103,7 @@ void add_extract_command(CLI::App& app, Context& context, Runner& run) {
       ->check(CLI::Range(0, 4096));
   // Start afresh instead of resuming (refused while another process writes the store).
   cmd->add_flag("--fresh", a->fresh, "replace the store in --out instead of resuming it");
-  cmd->add_option("--inline-byte", a->segy.inline_byte, "SEG-Y: trace header byte (1-based) of the inline numbers")
-      ->capture_default_str();
-  cmd->add_option("--crossline-byte", a->segy.crossline_byte,
-                  "SEG-Y: trace header byte (1-based) of the crossline numbers")
-      ->capture_default_str();
+  add_cube_reading_options(*cmd, a->variable, a->segy);
   cmd->callback([a, &context, &run] {
     run = [a, &context] {
       volume::OpenOptions open;

@@ -189,14 +189,7 @@ void add_info_command(CLI::App& app, Context& context, Runner& run) {
                   "samples of this value are missing too, as NaN samples are: counted with them and left out of "
                   "the statistics (a SEG-Y or raw cube's null, often -999.25)")
       ->type_name("VALUE");
-  cmd->add_option("--variable", info->variable,
-                  "the array to describe in a multidimensional file (netCDF, Zarr, HDF5) that holds several");
-  cmd->add_option("--inline-byte", info->segy.inline_byte,
-                  "SEG-Y: trace header byte (1-based) of the inline numbers (often 9 or 5 in older files)")
-      ->capture_default_str();
-  cmd->add_option("--crossline-byte", info->segy.crossline_byte,
-                  "SEG-Y: trace header byte (1-based) of the crossline numbers (often 21 or 13)")
-      ->capture_default_str();
+  add_cube_reading_options(*cmd, info->variable, info->segy);
   cmd->callback([info, &context, &run] {
     run = [info, &context] {
       volume::OpenOptions options;

@@ -53,6 +53,9 @@ const CLI::Validator& positive();
 // The value of a --no-data option as a float sample's value; throws InvalidArgument when it is not a
 // finite number within float range.
 std::optional<float> no_data_option(const std::optional<double>& value);
+// The options that say which cube of a file to read and how: --variable (multidimensional files)
+// and --inline-byte / --crossline-byte (SEG-Y), shared by the commands that open a cube.
+void add_cube_reading_options(CLI::App& cmd, std::string& variable, volume::SegyOptions& segy);
 
 // cmd_worker.cpp: how workers rebuild the input volume. The description of a cube file (JSON
 // text), and the volume a description names (the runtime's VolumeFactory).

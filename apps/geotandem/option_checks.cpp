@@ -1,4 +1,5 @@
-// Checks on numeric options (command.hpp): what CLI11's own conversions let through.
+// Checks on numeric options (command.hpp): what CLI11's own conversions let through; and the options
+// that say how a cube file is read, shared by the commands that open one.
 
 #include <cmath>
 #include <cstdlib>
@@ -67,6 +68,17 @@ const CLI::Validator& positive() {
     return "";
   });
   return check;
+}
+
+void add_cube_reading_options(CLI::App& cmd, std::string& variable, volume::SegyOptions& segy) {
+  cmd.add_option("--variable", variable,
+                 "the array to read from a multidimensional file (netCDF, Zarr, HDF5) that holds several");
+  cmd.add_option("--inline-byte", segy.inline_byte,
+                 "SEG-Y: trace header byte (1-based) of the inline numbers (often 9 or 5 in older files)")
+      ->capture_default_str();
+  cmd.add_option("--crossline-byte", segy.crossline_byte,
+                 "SEG-Y: trace header byte (1-based) of the crossline numbers (often 21 or 13)")
+      ->capture_default_str();
 }
 
 } // namespace geotandem::app

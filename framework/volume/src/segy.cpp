@@ -135,13 +135,6 @@ private:
   mutable std::vector<char> scratch_; // guarded by mutex_
 };
 
-// CDP coordinates of a trace header, with the coordinate scalar of byte 71 applied.
-std::array<double, 2> cdp_xy(const TraceHeader& header) {
-  double scalar = segy::field(header, SEGY_TR_SOURCE_GROUP_SCALAR);
-  double factor = scalar == 0 ? 1.0 : scalar > 0 ? scalar : 1.0 / -scalar;
-  return {segy::field(header, SEGY_TR_CDP_X) * factor, segy::field(header, SEGY_TR_CDP_Y) * factor};
-}
-
 // `a` when it maps the grid onto a plane; otherwise (collinear or missing coordinates) the default
 // 25 m grid at a's origin.
 SurveyAffine usable_or_default(const SurveyAffine& a) {
@@ -179,55 +172,6 @@ SurveyAffine fit_affine(const std::array<double, 2>& origin, const std::array<do
   return usable_or_default(a);
 }
 
-// The affine of an irregular survey, whose corners may be missing: the least-squares fit of
-// x = x0 + xi i + xj j (and y likewise) over every trace present, in one pass over their headers.
-// Indices are taken from the grid's centre and coordinates from the first trace's, so that the sums
-// of products keep their precision. Files without coordinates (all zero) get the default grid.
-SurveyAffine fit_affine_everywhere(segy_file* file, const Layout& layout, const Grid& grid, const std::string& path) {
-  const std::array<double, 2> first = cdp_xy(segy::read_header(file, layout, 0, path));
-  const double ci = 0.5 * (grid.ni - 1), cj = 0.5 * (grid.nj - 1);
-  // Sums of 1, di, dj, di di, di dj, dj dj, and of dx, dy times 1, di, dj.
-  double n = 0.0, si = 0.0, sj = 0.0, sii = 0.0, sij = 0.0, sjj = 0.0;
-  std::array<double, 3> sx{}, sy{};
-  bool any = first[0] != 0.0 || first[1] != 0.0;
-  for (int i = 0; i < grid.ni; ++i)
-    for (int j = 0; j < grid.nj; ++j)
-      if (const int trace = grid.trace_of(i, j); trace >= 0) {
-        const auto xy = cdp_xy(segy::read_header(file, layout, trace, path));
-        any = any || xy[0] != 0.0 || xy[1] != 0.0;
-        const double di = i - ci, dj = j - cj, dx = xy[0] - first[0], dy = xy[1] - first[1];
-        n += 1.0;
-        si += di;
-        sj += dj;
-        sii += di * di;
-        sij += di * dj;
-        sjj += dj * dj;
-        sx = {sx[0] + dx, sx[1] + di * dx, sx[2] + dj * dx};
-        sy = {sy[0] + dy, sy[1] + di * dy, sy[2] + dj * dy};
-      }
-  // Centred on the means: the slopes from the 2 x 2 system, the offset from the means.
-  const double mi = si / n, mj = sj / n;
-  const double vii = sii - n * mi * mi, vij = sij - n * mi * mj, vjj = sjj - n * mj * mj;
-  const double det = vii * vjj - vij * vij;
-  SurveyAffine a;
-  if (!any || !(det > 1e-9 * (vii * vjj))) { // no coordinates, or every trace on one line
-    a.x0 = first[0];
-    a.y0 = first[1];
-    return a;
-  }
-  auto slopes = [&](const std::array<double, 3>& s, double& along_i, double& along_j) {
-    const double mean = s[0] / n, ci_cov = s[1] - n * mi * mean, cj_cov = s[2] - n * mj * mean;
-    along_i = (ci_cov * vjj - cj_cov * vij) / det;
-    along_j = (cj_cov * vii - ci_cov * vij) / det;
-    return mean;
-  };
-  const double mx = slopes(sx, a.xi, a.xj), my = slopes(sy, a.yi, a.yj);
-  // x at index (0, 0): the mean minus the slopes times the means' offset from (0, 0).
-  a.x0 = first[0] + mx - a.xi * (mi + ci) - a.xj * (mj + cj);
-  a.y0 = first[1] + my - a.yi * (mi + ci) - a.yj * (mj + cj);
-  return usable_or_default(a);
-}
-
 // Our own textual header says when the sample axis is depth; other files are taken as time.
 bool written_as_depth(segy_file* file) {
   std::array<char, SEGY_TEXT_HEADER_SIZE + 1> text{};
@@ -255,7 +199,8 @@ std::unique_ptr<Volume> open_segy(const std::string& path, const OpenOptions& op
   const int ni = grid.ni, nj = grid.nj;
   auto corner = [&](int i, int j) { return segy::read_header(file.get(), layout, grid.trace_of(i, j), path); };
   // The first trace of the file gives the sample axis; a regular grid's corners fix the affine
-  // (find_grid checked their line numbers), an irregular one's is fitted to every trace.
+  // (find_grid checked their line numbers), an irregular one's was fitted to every trace by
+  // find_grid, as it read them.
   const TraceHeader origin = grid.irregular() ? segy::read_header(file.get(), layout, 0, path) : corner(0, 0);
 
   if (layout.interval == 0)
@@ -271,9 +216,9 @@ std::unique_ptr<Volume> open_segy(const std::string& path, const OpenOptions& op
   g.z_unit = depth ? SampleUnit::metres : SampleUnit::milliseconds;
   g.dz = layout.interval / 1000.0; // microseconds to ms (or, in our depth files, mm to m)
   g.z0 = trace_start(origin);
-  g.affine = grid.irregular()
-                 ? fit_affine_everywhere(file.get(), layout, grid, path)
-                 : fit_affine(cdp_xy(origin), cdp_xy(corner(ni - 1, 0)), cdp_xy(corner(0, nj - 1)), ni, nj);
+  g.affine = grid.irregular() ? usable_or_default(grid.fitted_affine)
+                              : fit_affine(segy::cdp_xy(origin), segy::cdp_xy(corner(ni - 1, 0)),
+                                           segy::cdp_xy(corner(0, nj - 1)), ni, nj);
   return std::make_unique<SegyVolume>(path, std::move(file), layout, grid, g);
 }
 

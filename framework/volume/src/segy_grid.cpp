@@ -161,14 +161,68 @@ std::int64_t line_step(std::vector<int>& numbers) {
   return step == 0 ? 1 : step;
 }
 
+// The least-squares fit of x = a + bu u + bv v (and y likewise) over traces at line-number offsets
+// (u, v) from the first trace, coordinates taken from the first trace's too, so that the sums of
+// products keep their precision.
+class CoordinateFit {
+public:
+  void add(int u, int v, const std::array<double, 2>& xy) {
+    if (n_ == 0) first_ = xy;
+    any_ = any_ || xy[0] != 0.0 || xy[1] != 0.0;
+    const double du = u, dv = v, dx = xy[0] - first_[0], dy = xy[1] - first_[1];
+    n_ += 1.0;
+    su_ += du;
+    sv_ += dv;
+    suu_ += du * du;
+    suv_ += du * dv;
+    svv_ += dv * dv;
+    sx_ = {sx_[0] + dx, sx_[1] + du * dx, sx_[2] + dv * dx};
+    sy_ = {sy_[0] + dy, sy_[1] + du * dy, sy_[2] + dv * dy};
+  }
+
+  // The fit in grid indices: line numbers u = u0 + i u_step, v = v0 + j v_step (offsets from the
+  // first trace's). The default grid at the first trace without coordinates or with every trace on
+  // one line.
+  SurveyAffine in_indices(double u0, double u_step, double v0, double v_step) const {
+    SurveyAffine a;
+    a.x0 = first_[0];
+    a.y0 = first_[1];
+    const double mu = su_ / n_, mv = sv_ / n_;
+    const double vuu = suu_ - n_ * mu * mu, vuv = suv_ - n_ * mu * mv, vvv = svv_ - n_ * mv * mv;
+    const double det = vuu * vvv - vuv * vuv;
+    if (!any_ || !(det > 1e-9 * (vuu * vvv))) return a;
+    // Centred on the means: the slopes from the 2 x 2 system; the value at (u0, v0) from the means.
+    auto fit = [&](const std::array<double, 3>& s, double first, double& x0, double& along_i, double& along_j) {
+      const double mean = s[0] / n_, cu = s[1] - n_ * mu * mean, cv = s[2] - n_ * mv * mean;
+      const double bu = (cu * vvv - cv * vuv) / det, bv = (cv * vuu - cu * vuv) / det;
+      x0 = first + mean + bu * (u0 - mu) + bv * (v0 - mv);
+      along_i = bu * u_step;
+      along_j = bv * v_step;
+    };
+    fit(sx_, first_[0], a.x0, a.xi, a.xj);
+    fit(sy_, first_[1], a.y0, a.yi, a.yj);
+    return a;
+  }
+
+private:
+  std::array<double, 2> first_{};
+  bool any_ = false;
+  double n_ = 0.0, su_ = 0.0, sv_ = 0.0, suu_ = 0.0, suv_ = 0.0, svv_ = 0.0;
+  std::array<double, 3> sx_{}, sy_{};
+};
+
 // Every trace header read: a survey whose sorted traces leave bins of its rectangle empty. The
 // rectangle is spanned by the smallest and largest line numbers at the common step; a rectangle
-// more than ten times the traces is not taken for a survey (wrong header bytes, most likely).
+// more than ten times the traces is not taken for a survey (wrong header bytes, most likely). The
+// same pass fits the affine to the traces' coordinates.
 Probe scan(segy_file* file, const Layout& layout, const SegyOptions& bytes, const std::string& path) {
   std::vector<std::array<int, 2>> bins(static_cast<std::size_t>(layout.traces));
+  CoordinateFit coordinates;
   for (int t = 0; t < layout.traces; ++t) {
     const TraceHeader header = read_header(file, layout, t, path);
-    bins[static_cast<std::size_t>(t)] = {field(header, bytes.inline_byte), field(header, bytes.crossline_byte)};
+    const std::array<int, 2> bin{field(header, bytes.inline_byte), field(header, bytes.crossline_byte)};
+    bins[static_cast<std::size_t>(t)] = bin;
+    coordinates.add(bin[0] - bins[0][0], bin[1] - bins[0][1], cdp_xy(header));
   }
   Grid g;
   g.bytes = bytes;
@@ -197,6 +251,8 @@ Probe scan(segy_file* file, const Layout& layout, const SegyOptions& bytes, cons
   g.xl_step = static_cast<int>(xl_step);
   g.ni = static_cast<int>(ni);
   g.nj = static_cast<int>(nj);
+  g.fitted_affine = coordinates.in_indices(double(g.il0) - bins[0][0], double(g.il_step), double(g.xl0) - bins[0][1],
+                                           double(g.xl_step));
   g.traces.assign(static_cast<std::size_t>(ni * nj), -1);
   for (int t = 0; t < layout.traces; ++t) {
     const auto [il, xl] = bins[static_cast<std::size_t>(t)];
@@ -248,6 +304,12 @@ int field(const TraceHeader& header, int position) {
   std::int32_t value = 0;
   segy_get_field(header.data(), position, &value);
   return value;
+}
+
+std::array<double, 2> cdp_xy(const TraceHeader& header) {
+  double scalar = field(header, SEGY_TR_SOURCE_GROUP_SCALAR);
+  double factor = scalar == 0 ? 1.0 : scalar > 0 ? scalar : 1.0 / -scalar;
+  return {field(header, SEGY_TR_CDP_X) * factor, field(header, SEGY_TR_CDP_Y) * factor};
 }
 
 TraceHeader read_header(segy_file* file, const Layout& layout, int trace, const std::string& path) {

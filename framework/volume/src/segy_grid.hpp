@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "geotandem/volume/geometry.hpp"
 #include "geotandem/volume/io.hpp"
 #include "segy_layout.hpp"
 
@@ -25,6 +26,10 @@ struct Grid {
   // at (i, j), row-major, -1 where the file has none. Empty for a full grid, whose traces follow
   // from the sorting.
   std::vector<std::int32_t> traces;
+  // An irregular survey's affine: the least-squares fit of the CDP coordinates of every trace
+  // present (its corners may be missing), made in the pass over the headers that found the grid.
+  // The default grid at the first trace when the file has no coordinates; may be degenerate.
+  SurveyAffine fitted_affine;
 
   bool irregular() const { return !traces.empty(); }
   // The file's trace at (i, j); -1 when the survey has no trace there.
@@ -39,6 +44,9 @@ struct Grid {
 
 // The 4-byte integer (or 2-byte, for such fields) at 1-based byte `position` of a trace header.
 int field(const TraceHeader& header, int position);
+
+// CDP coordinates of a trace header, with the coordinate scalar of byte 71 applied.
+std::array<double, 2> cdp_xy(const TraceHeader& header);
 
 // Throws IoError naming the trace when its header cannot be read.
 TraceHeader read_header(segy_file* file, const Layout& layout, int trace, const std::string& path);

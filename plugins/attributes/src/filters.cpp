@@ -2,74 +2,98 @@
 #include "geotandem/core/simd.hpp"
 
 #include <cmath>
+#include <cstring>
 #include <numbers>
 #include <stdexcept>
 #include <string>
+#include <utility>
 
 namespace geotandem::attributes::detail {
 namespace {
 
-// One output line along axis 2: `centre` points at the input sample under o[0]; neighbours along
-// the filtered axis are `stride` floats apart. Loops run over k innermost so they vectorise, and
-// each o[k] accumulates its taps in the fixed order t = 1, 2, ..., radius.
-GEOTANDEM_AVX2_CLONES void filter_line(const float* centre, std::ptrdiff_t stride, const Kernel& kernel,
-                                       float* __restrict o, std::size_t n) {
-  const float* w = kernel.half.data();
-  const int radius = kernel.radius();
-  if (kernel.symmetry == Symmetry::even) {
-    const float w0 = w[0];
-    for (std::size_t k = 0; k < n; ++k)
-      o[k] = w0 * centre[k];
-    for (int t = 1; t <= radius; ++t) {
-      const float wt = w[t];
-      if (wt == 0.0f) continue;
-      const float* a = centre + t * stride;
-      const float* b = centre - t * stride;
-      for (std::size_t k = 0; k < n; ++k)
-        o[k] += wt * (a[k] + b[k]);
-    }
-  } else {
-    for (std::size_t k = 0; k < n; ++k)
-      o[k] = 0.0f;
-    for (int t = 1; t <= radius; ++t) {
-      const float wt = w[t];
-      if (wt == 0.0f) continue;
-      const float* a = centre + t * stride;
-      const float* b = centre - t * stride;
-      for (std::size_t k = 0; k < n; ++k)
-        o[k] += wt * (a[k] - b[k]);
+// Eight floats as one value (a GCC/Clang vector extension): one register in the AVX2 clone, two
+// in the default one. Lane by lane the arithmetic is that of plain floats, and neither clone may
+// fuse a multiply with an add (no FMA), so every output has the same bits whichever clone runs.
+using Float8 = float __attribute__((vector_size(32)));
+constexpr std::size_t kLanes = 8;
+
+// Outputs o[k .. k + 8 V): o = w0 c (even) or 0 (odd), then o += w_t (plus_t +- minus_t) for
+// t = 1, 2, ..., radius in that order. The V sums stay in registers over all the taps (one load
+// and one store of o, not one per tap), and V > 1 lets their additions overlap.
+// `neighbours(t)` gives the pointers {plus_t, minus_t} at output 0.
+template <bool Even, int V, class Neighbours>
+[[gnu::always_inline]] inline void filter_block(const float* centre, const Neighbours& neighbours, const float* w,
+                                                int radius, float* o, std::size_t k) {
+  // Loads and stores go through memcpy (unaligned, one instruction each); no function takes or
+  // returns a Float8, whose passing would differ between the clones.
+  Float8 sum[V];
+  for (int v = 0; v < V; ++v) {
+    sum[v] = Float8{};
+    if (Even) {
+      Float8 c;
+      std::memcpy(&c, centre + k + kLanes * v, sizeof c);
+      sum[v] = w[0] * c;
     }
   }
+  for (int t = 1; t <= radius; ++t) {
+    const float wt = w[t];
+    if (wt == 0.0f) continue;
+    const auto [a, b] = neighbours(t);
+    for (int v = 0; v < V; ++v) {
+      Float8 x, y;
+      std::memcpy(&x, a + k + kLanes * v, sizeof x);
+      std::memcpy(&y, b + k + kLanes * v, sizeof y);
+      sum[v] += wt * (Even ? x + y : x - y);
+    }
+  }
+  std::memcpy(o + k, sum, sizeof sum);
+}
+
+// The same sums for all of o[0 .. n): blocks of 32, then of 8, then one output at a time.
+template <bool Even, class Neighbours>
+[[gnu::always_inline]] inline void filter_outputs(const float* centre, const Neighbours& neighbours,
+                                                  const Kernel& kernel, float* o, std::size_t n) {
+  const float* w = kernel.half.data();
+  const int radius = kernel.radius();
+  std::size_t k = 0;
+  for (; k + 4 * kLanes <= n; k += 4 * kLanes)
+    filter_block<Even, 4>(centre, neighbours, w, radius, o, k);
+  for (; k + kLanes <= n; k += kLanes)
+    filter_block<Even, 1>(centre, neighbours, w, radius, o, k);
+  for (; k < n; ++k) {
+    float sum = Even ? w[0] * centre[k] : 0.0f;
+    for (int t = 1; t <= radius; ++t) {
+      const float wt = w[t];
+      if (wt == 0.0f) continue;
+      const auto [a, b] = neighbours(t);
+      sum += wt * (Even ? a[k] + b[k] : a[k] - b[k]);
+    }
+    o[k] = sum;
+  }
+}
+
+// n outputs from the inputs at `centre`, whose neighbours along the filtered axis are `stride`
+// floats apart.
+GEOTANDEM_AVX2_CLONES void filter_line(const float* centre, std::ptrdiff_t stride, const Kernel& kernel,
+                                       float* __restrict o, std::size_t n) {
+  const auto neighbours = [centre, stride](int t) {
+    return std::pair{centre + t * stride, centre - t * stride};
+  };
+  if (kernel.symmetry == Symmetry::even)
+    filter_outputs<true>(centre, neighbours, kernel, o, n);
+  else
+    filter_outputs<false>(centre, neighbours, kernel, o, n);
 }
 
 // filter_line with the neighbours given as pointers (planes[radius +- t]) rather than a stride.
 GEOTANDEM_AVX2_CLONES void filter_across(const float* const* planes, const Kernel& kernel, float* __restrict o,
                                          std::size_t n) {
-  const float* w = kernel.half.data();
   const int radius = kernel.radius();
-  const float* centre = planes[radius];
-  const bool even = kernel.symmetry == Symmetry::even;
-  if (even) {
-    const float w0 = w[0];
-    for (std::size_t k = 0; k < n; ++k)
-      o[k] = w0 * centre[k];
-  } else {
-    for (std::size_t k = 0; k < n; ++k)
-      o[k] = 0.0f;
-  }
-  for (int t = 1; t <= radius; ++t) {
-    const float wt = w[t];
-    if (wt == 0.0f) continue;
-    const float* a = planes[radius + t];
-    const float* b = planes[radius - t];
-    if (even) {
-      for (std::size_t k = 0; k < n; ++k)
-        o[k] += wt * (a[k] + b[k]);
-    } else {
-      for (std::size_t k = 0; k < n; ++k)
-        o[k] += wt * (a[k] - b[k]);
-    }
-  }
+  const auto neighbours = [planes, radius](int t) { return std::pair{planes[radius + t], planes[radius - t]}; };
+  if (kernel.symmetry == Symmetry::even)
+    filter_outputs<true>(planes[radius], neighbours, kernel, o, n);
+  else
+    filter_outputs<false>(planes[radius], neighbours, kernel, o, n);
 }
 
 } // namespace
@@ -157,10 +181,22 @@ volume::Index3 correlate(const float* in, const volume::Index3& in_shape, int ax
   offset[axis] = radius;
   const auto nk = static_cast<std::size_t>(shape[2]);
   float* o = out;
+  if (axis != 2) {
+    // Along axis 0 or 1 the lines keep their length, so the outputs of one plane (axis 1) or of
+    // the whole array (axis 0) are one run of input samples shifted by radius strides: one call
+    // over that run, whose blocks are long.
+    const std::size_t run = axis == 0 ? static_cast<std::size_t>(shape[0] * shape[1]) * nk
+                                      : static_cast<std::size_t>(shape[1]) * nk;
+    const std::int64_t runs = axis == 0 ? 1 : shape[0];
+    for (std::int64_t i = 0; i < runs; ++i) {
+      filter_line(in + (i * in_nj + offset[1]) * in_nk + offset[0] * in_nj * in_nk, stride, kernel, o, run);
+      o += run;
+    }
+    return shape;
+  }
   for (std::int64_t i = 0; i < shape[0]; ++i)
     for (std::int64_t j = 0; j < shape[1]; ++j) {
-      const float* centre = in + ((i + offset[0]) * in_nj + (j + offset[1])) * in_nk + offset[2];
-      filter_line(centre, stride, kernel, o, nk);
+      filter_line(in + (i * in_nj + j) * in_nk + offset[2], stride, kernel, o, nk);
       o += nk;
     }
   return shape;

@@ -47,6 +47,7 @@ struct SegySpec {
   std::array<int, 2> late_trace{-1, -1}; // (i, j) of a trace whose delay is late_by_ms more than the others'
   int late_by_ms = 0;
   bool late_trace_dead = false; // that trace flagged dead (trace identification code 2)
+  int coordinate_units = 0;     // written at byte 89 when not 0 (2: seconds of arc, 3: degrees, 4: DDDMMSS)
 
   long trace0() const { return 3600L + 3200L * extended_headers; }
   int inline_number(int i) const { return il0 + (i + (gap_in_inlines && i >= ni / 2 ? 1 : 0)) * il_step; }
@@ -157,6 +158,7 @@ inline void write_with_segyio(const std::string& path, const SegySpec& s) {
         segy_set_field(h.data(), SEGY_TR_SOURCE_GROUP_SCALAR, s.scalar);
         segy_set_field(h.data(), SEGY_TR_CDP_X, static_cast<int>(std::lround(xy[0] * factor)));
         segy_set_field(h.data(), SEGY_TR_CDP_Y, static_cast<int>(std::lround(xy[1] * factor)));
+        if (s.coordinate_units != 0) segy_set_field(h.data(), SEGY_TR_COORD_UNITS, s.coordinate_units);
       }
       ASSERT_EQ(segy_write_traceheader(fp, trace, h.data(), s.trace0(), bytes), SEGY_OK);
       const std::vector<char> samples = encoded_trace(layout, i, j, s.ns);

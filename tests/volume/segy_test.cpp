@@ -152,6 +152,64 @@ TEST(SegyRead, FilesWithoutCoordinatesGetTheDefaultGrid) {
   EXPECT_EQ(volume->geometry().affine, SurveyAffine{});
 }
 
+// Longitude and latitude (byte 89: 2 seconds of arc, 3 decimal degrees, 4 DDDMMSS) become metres
+// east and north of the first trace, at 5 E, 60 N. Inlines step east in longitude, crosslines north
+// in latitude: 2 and 1 seconds of arc (the same survey in DDDMMSS), or 0.001 and 0.0005 degrees
+// (the 2-byte scalar of byte 71 allows no finer degrees than 1e-4). The figures they must give come
+// from the published WGS84 lengths of a degree at 60 degrees of latitude: 55,799.98 m of longitude
+// and 111,412.24 m of latitude. Lengths (units 1) stay as written, and a survey with missing traces
+// (its affine fitted to every trace) agrees.
+TEST(SegyRead, GeographicCoordinatesBecomeMetresEastAndNorthOfTheFirstTrace) {
+  ScratchDir dir;
+  constexpr double lon_degree = 55799.98, lat_degree = 111412.24;
+  struct Case {
+    int units, scalar;
+    SurveyAffine affine; // in the file's units
+    double east, north;  // metres per inline and per crossline
+    const char* named;
+  };
+  const Case cases[] = {{2, -100, SurveyAffine{18000.0, 2.0, 0.0, 216000.0, 0.0, 1.0}, 2.0 / 3600.0 * lon_degree,
+                         1.0 / 3600.0 * lat_degree, "seconds of arc"},
+                        {3, -10000, SurveyAffine{5.0, 0.001, 0.0, 60.0, 0.0, 0.0005}, 0.001 * lon_degree,
+                         0.0005 * lat_degree, "decimal degrees"},
+                        {4, -100, SurveyAffine{50000.0, 2.0, 0.0, 600000.0, 0.0, 1.0}, 2.0 / 3600.0 * lon_degree,
+                         1.0 / 3600.0 * lat_degree, "degrees, minutes and seconds"}};
+  for (const Case& c : cases)
+    for (bool irregular : {false, true}) {
+      SCOPED_TRACE("units " + std::to_string(c.units) + (irregular ? ", traces missing" : ""));
+      SegySpec s;
+      s.coordinate_units = c.units;
+      s.scalar = c.scalar;
+      s.affine = c.affine;
+      if (irregular) s.missing = {{6, 8}, {3, 4}};
+      const std::string path = dir.file("geographic" + std::to_string(c.units) + (irregular ? "m" : "") + ".sgy");
+      write_with_segyio(path, s);
+      OpenOptions options;
+      options.nan_policy = NanPolicy::fill;
+      auto volume = open_volume(path, options);
+      const SurveyAffine& a = volume->geometry().affine;
+      EXPECT_NEAR(a.x0, 0.0, 0.01);
+      EXPECT_NEAR(a.y0, 0.0, 0.01);
+      EXPECT_NEAR(a.xi, c.east, 0.01);
+      EXPECT_NEAR(a.yi, 0.0, 0.01);
+      EXPECT_NEAR(a.xj, 0.0, 0.01);
+      EXPECT_NEAR(a.yj, c.north, 0.01);
+      std::string said;
+      for (const auto& d : volume->format_details())
+        if (d.key == "coordinates") said = d.value;
+      EXPECT_NE(said.find(c.named), std::string::npos) << said;
+      EXPECT_NE(said.find("longitude 5.000000, latitude 60.000000"), std::string::npos) << said;
+    }
+  SegySpec lengths;
+  lengths.coordinate_units = 1;
+  const std::string path = dir.file("lengths.sgy");
+  write_with_segyio(path, lengths);
+  auto volume = open_volume(path);
+  geotandem::volume::testing::expect_near_affine(volume->geometry().affine, lengths.affine, 1e-6);
+  for (const auto& d : volume->format_details())
+    EXPECT_NE(d.key, "coordinates");
+}
+
 // ---- Our writer ---------------------------------------------------------------------------------
 
 TEST(SegyWrite, RoundTripKeepsGeometryAndSamples) {

@@ -51,22 +51,28 @@ double trace_start(const TraceHeader& header) {
 
 class SegyVolume final : public Volume {
 public:
-  SegyVolume(std::string path, segy::Handle file, Layout layout, Grid grid, Geometry geometry)
-      : path_(std::move(path)), file_(std::move(file)), layout_(layout), grid_(grid), geometry_(std::move(geometry)) {}
+  // `coordinates`: how geographic trace coordinates were taken (TraceCoordinates::description);
+  // empty for lengths.
+  SegyVolume(std::string path, segy::Handle file, Layout layout, Grid grid, Geometry geometry, std::string coordinates)
+      : path_(std::move(path)), file_(std::move(file)), layout_(layout), grid_(grid), geometry_(std::move(geometry)),
+        coordinates_(std::move(coordinates)) {}
 
   const Geometry& geometry() const override { return geometry_; }
   std::string format() const override { return "SEG-Y"; }
   std::string source() const override { return path_; }
   std::vector<FormatDetail> format_details() const override {
-    return {{"sample_format",
-             std::string(segy::sample_format_name(layout_.format)) + " (code " + std::to_string(layout_.format) + ")"},
-            {"byte_order", segy::byte_order_name(layout_.little_endian)},
-            {"inline_byte", std::to_string(grid_.bytes.inline_byte)},
-            {"crossline_byte", std::to_string(grid_.bytes.crossline_byte)},
-            {"sorting", grid_.sorting()},
-            {"traces", grid_.irregular() ? "an irregular survey, whose missing traces read as missing samples: " +
-                                               segy::missing_text(grid_)
-                                         : std::to_string(grid_.ni * grid_.nj) + ", every bin of the grid"}};
+    std::vector<FormatDetail> details{
+        {"sample_format",
+         std::string(segy::sample_format_name(layout_.format)) + " (code " + std::to_string(layout_.format) + ")"},
+        {"byte_order", segy::byte_order_name(layout_.little_endian)},
+        {"inline_byte", std::to_string(grid_.bytes.inline_byte)},
+        {"crossline_byte", std::to_string(grid_.bytes.crossline_byte)},
+        {"sorting", grid_.sorting()},
+        {"traces", grid_.irregular() ? "an irregular survey, whose missing traces read as missing samples: " +
+                                           segy::missing_text(grid_)
+                                     : std::to_string(grid_.ni * grid_.nj) + ", every bin of the grid"}};
+    if (!coordinates_.empty()) details.push_back({"coordinates", coordinates_});
+    return details;
   }
 
 protected:
@@ -131,6 +137,7 @@ private:
   Layout layout_;
   Grid grid_;
   Geometry geometry_;
+  std::string coordinates_;
   mutable std::mutex mutex_;
   mutable std::vector<char> scratch_; // guarded by mutex_
 };
@@ -216,10 +223,13 @@ std::unique_ptr<Volume> open_segy(const std::string& path, const OpenOptions& op
   g.z_unit = depth ? SampleUnit::metres : SampleUnit::milliseconds;
   g.dz = layout.interval / 1000.0; // microseconds to ms (or, in our depth files, mm to m)
   g.z0 = trace_start(origin);
+  // Both the scan and this take the file's first trace (the corner (0, 0) of a regular grid) as the
+  // reference of geographic coordinates.
+  const segy::TraceCoordinates coordinates(origin);
   g.affine = grid.irregular() ? usable_or_default(grid.fitted_affine)
-                              : fit_affine(segy::cdp_xy(origin), segy::cdp_xy(corner(ni - 1, 0)),
-                                           segy::cdp_xy(corner(0, nj - 1)), ni, nj);
-  return std::make_unique<SegyVolume>(path, std::move(file), layout, grid, g);
+                              : fit_affine(coordinates.xy(origin), coordinates.xy(corner(ni - 1, 0)),
+                                           coordinates.xy(corner(0, nj - 1)), ni, nj);
+  return std::make_unique<SegyVolume>(path, std::move(file), layout, grid, g, coordinates.description());
 }
 
 } // namespace geotandem::volume::detail

@@ -45,8 +45,28 @@ struct Grid {
 // The 4-byte integer (or 2-byte, for such fields) at 1-based byte `position` of a trace header.
 int field(const TraceHeader& header, int position);
 
-// CDP coordinates of a trace header, with the coordinate scalar of byte 71 applied.
-std::array<double, 2> cdp_xy(const TraceHeader& header);
+// How the CDP coordinates of a file's traces (bytes 181/185, scaled by byte 71) become x and y,
+// after the coordinate units of its first trace (byte 89). Lengths (1, and 0 for unspecified) are
+// taken as written. Longitude and latitude (2: seconds of arc, 3: decimal degrees, 4: degrees,
+// minutes and seconds written DDDMMSS) are taken as metres east and north of the first trace, by
+// the WGS84 ellipsoid's radii of curvature at its latitude: across a survey of tens of kilometres
+// the scale is off by a few parts in a million, so bin spacing and azimuths are right, but the
+// coordinates are local, not those of a map projection.
+class TraceCoordinates {
+public:
+  explicit TraceCoordinates(const TraceHeader& first);
+  std::array<double, 2> xy(const TraceHeader& header) const;
+  bool geographic() const { return units_ >= 2 && units_ <= 4; }
+  // For geographic units, what they are and how they were taken (a format detail); empty otherwise.
+  std::string description() const;
+
+private:
+  // The coordinates as written, scaled: longitude and latitude in degrees when geographic.
+  std::array<double, 2> scaled(const TraceHeader& header) const;
+  int units_ = 0;
+  std::array<double, 2> origin_{}; // the first trace's longitude and latitude (degrees)
+  double east_per_degree_ = 0.0, north_per_degree_ = 0.0;
+};
 
 // Throws IoError naming the trace when its header cannot be read.
 TraceHeader read_header(segy_file* file, const Layout& layout, int trace, const std::string& path);

@@ -329,6 +329,8 @@ RunOutcome run_workflow(const Recipe& recipe, const PluginRegistry& plugins, con
     throw InvalidArgument(e.message(), {recipe.path}, e.hint());
   }
   log.info("input: " + volumes.input->source());
+  for (const auto& detail : volumes.input->format_details()) // how geographic coordinates were taken
+    if (detail.key == "coordinates") log.warning(volumes.input->source() + ": trace coordinates in " + detail.value);
   if (settings.dry_run) {
     log.info("dry run: the recipe is valid and its chain builds; the extraction would read " +
              volumes.result->source() + "; nothing was written");

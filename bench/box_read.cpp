@@ -24,6 +24,7 @@
 
 #include "geotandem/core/error.hpp"
 #include "geotandem/volume/io.hpp"
+#include "page_cache.hpp"
 
 namespace {
 
@@ -96,32 +97,11 @@ double seconds_since(Clock::time_point start) {
   return std::chrono::duration<double>(Clock::now() - start).count();
 }
 
-std::vector<fs::path> files_of(const fs::path& path) {
-  if (fs::is_regular_file(path)) return {path};
-  std::vector<fs::path> files;
-  for (const auto& entry : fs::recursive_directory_iterator(path))
-    if (entry.is_regular_file()) files.push_back(entry.path());
-  return files;
-}
-
-// Drops the pages of every file of `path` from the page cache; false if the kernel refused.
-bool evict(const fs::path& path) {
-  bool ok = true;
-  for (const fs::path& file : files_of(path)) {
-    int fd = ::open(file.c_str(), O_RDONLY);
-    if (fd < 0) return false;
-    ::fdatasync(fd);
-    ok = ::posix_fadvise(fd, 0, 0, POSIX_FADV_DONTNEED) == 0 && ok;
-    ::close(fd);
-  }
-  return ok;
-}
-
 // Reads every byte of every file of `path`; returns the byte count.
 std::uint64_t read_raw(const fs::path& path) {
   std::vector<char> buffer(8 << 20);
   std::uint64_t total = 0;
-  for (const fs::path& file : files_of(path)) {
+  for (const fs::path& file : geotandem::bench::files_of(path)) {
     int fd = ::open(file.c_str(), O_RDONLY);
     if (fd < 0) throw geotandem::IoError("cannot open", {file.string()});
     for (ssize_t got; (got = ::read(fd, buffer.data(), buffer.size())) > 0;)
@@ -187,13 +167,13 @@ void run(const Options& o, const std::string& extension) {
   const std::string boxes = "boxes " + std::to_string(o.box) + "^3";
   const std::string slabs = "slabs of " + std::to_string(o.chunk) + " inlines";
   for (const auto& [label, edge, depth] : {std::tuple{boxes, o.box, 0}, std::tuple{slabs, 0, o.chunk}}) {
-    bool cold = evict(path);
+    bool cold = geotandem::bench::evict(path);
     double t_cold = read_all(*cube, edge, depth);
     double t_warm = read_all(*cube, edge, depth);
     std::cout << std::left << std::setw(10) << format << std::setw(24) << label << (cold ? "cold " : "evict failed ")
               << rate(bytes, t_cold) << "   warm " << rate(bytes, t_warm) << std::endl;
   }
-  bool cold = evict(path);
+  bool cold = geotandem::bench::evict(path);
   auto start = Clock::now();
   double raw_bytes = static_cast<double>(read_raw(path));
   std::cout << std::left << std::setw(10) << format << std::setw(24) << "raw bytes of the files"

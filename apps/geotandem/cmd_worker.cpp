@@ -31,13 +31,14 @@ std::vector<std::string> worker_command(const Context& context) {
 }
 
 std::string describe_cube_file(const std::string& path, const std::string& nan, std::optional<float> no_data,
-                               const std::string& variable, const volume::SegyOptions& segy) {
+                               const std::string& variable, const volume::SegyOptions& segy, const std::string& hint) {
   nlohmann::json d{{"kind", "file"},
                    {"path", std::filesystem::absolute(path).string()},
                    {"nan", nan},
                    {"variable", variable},
                    {"segy", {{"inline_byte", segy.inline_byte}, {"crossline_byte", segy.crossline_byte}}}};
   if (no_data) d["no_data"] = *no_data;
+  if (!hint.empty()) d["reopen_hint"] = hint;
   return d.dump();
 }
 
@@ -55,6 +56,7 @@ std::shared_ptr<const volume::Volume> open_described_volume(const std::string& d
         open.segy.inline_byte = d["segy"].at("inline_byte").get<int>();
         open.segy.crossline_byte = d["segy"].at("crossline_byte").get<int>();
       }
+      open.reopen_hint = d.value("reopen_hint", "");
       return volume::open_volume(d.at("path").get<std::string>(), open);
     }
     if (kind == "analytic") {

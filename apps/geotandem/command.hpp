@@ -59,8 +59,10 @@ void add_cube_reading_options(CLI::App& cmd, std::string& variable, volume::Segy
 
 // cmd_worker.cpp: how workers rebuild the input volume. The description of a cube file (JSON
 // text), and the volume a description names (the runtime's VolumeFactory).
+// `hint`: what opening the file found, for the workers (volume::Volume::reopen_hint).
 std::string describe_cube_file(const std::string& path, const std::string& nan, std::optional<float> no_data,
-                               const std::string& variable, const volume::SegyOptions& segy);
+                               const std::string& variable, const volume::SegyOptions& segy,
+                               const std::string& hint = {});
 std::shared_ptr<const volume::Volume> open_described_volume(const std::string& description, Logger& log);
 // This executable's path, for the command line of local workers.
 std::string self_executable();

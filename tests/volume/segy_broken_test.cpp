@@ -6,8 +6,11 @@
 
 #include <algorithm>
 #include <array>
+#include <chrono>
 #include <cmath>
+#include <cstdint>
 #include <filesystem>
+#include <fstream>
 #include <functional>
 #include <limits>
 #include <memory>
@@ -162,6 +165,79 @@ TEST(SegyBroken, MissingTracesAreMissingSamples) {
         EXPECT_NE(d.value.find("61 of 63 traces"), std::string::npos) << d.value;
       }
     EXPECT_TRUE(said);
+  }
+}
+
+// An irregular survey's grid takes a pass over every trace header. The volume hands it on
+// (reopen_hint), so that another process opening the file with it (a worker) skips that pass while
+// the file keeps its size and modification time. Shown by changing one trace's coordinates and
+// setting the time back: the hint gives the affine found before, a plain open the new one. Once
+// the time differs, and for a hint that is garbage, for other header bytes or that does not place
+// every trace, the file is read as without a hint. A full grid needs no hint.
+TEST(SegyBroken, AnIrregularGridIsHandedOnAndUsedWhileTheFileIsUnchanged) {
+  ScratchDir dir;
+  for (bool crossline_sorted : {false, true}) {
+    SCOPED_TRACE(crossline_sorted ? "crossline-sorted" : "inline-sorted");
+    SegySpec s;
+    s.crossline_sorted = crossline_sorted;
+    const std::string full_path = dir.file(crossline_sorted ? "xl_full.sgy" : "il_full.sgy");
+    write_with_segyio(full_path, s);
+    EXPECT_EQ(open_volume(full_path)->reopen_hint(), "");
+    s.missing = {{0, 0}, {3, 4}, {6, 2}};
+    const std::string path = dir.file(crossline_sorted ? "xl.sgy" : "il.sgy");
+    write_with_segyio(path, s);
+    const OpenOptions fill{.nan_policy = NanPolicy::fill, .fill_value = std::numeric_limits<float>::quiet_NaN()};
+    const auto first = open_volume(path, fill);
+    const std::string hint = first->reopen_hint();
+    ASSERT_FALSE(hint.empty());
+
+    OpenOptions hinted = fill;
+    hinted.reopen_hint = hint;
+    const auto again = open_volume(path, hinted);
+    EXPECT_EQ(again->geometry(), first->geometry());
+    EXPECT_EQ(again->format_details(), first->format_details());
+    EXPECT_EQ(again->reopen_hint(), hint);
+    const Box all = first->geometry().bounds();
+    const auto want = first->read(all), got = again->read(all);
+    ASSERT_EQ(got.size(), want.size());
+    for (std::size_t n = 0; n < got.size(); ++n)
+      ASSERT_TRUE(got[n] == want[n] || (std::isnan(got[n]) && std::isnan(want[n]))) << n;
+
+    // Trace 20's CDP X moves 1000 m (scalar -100), and the file gets its old time back.
+    const auto before = fs::last_write_time(path);
+    {
+      std::fstream f(path, std::ios::in | std::ios::out | std::ios::binary);
+      const std::streamoff at = s.trace0() + 20L * (SEGY_TRACE_HEADER_SIZE + 4L * s.ns) + SEGY_TR_CDP_X - 1;
+      unsigned char b[4];
+      f.seekg(at);
+      f.read(reinterpret_cast<char*>(b), 4);
+      std::uint32_t v = (std::uint32_t{b[0]} << 24) | (std::uint32_t{b[1]} << 16) | (std::uint32_t{b[2]} << 8) | b[3];
+      v += 100000;
+      for (int k = 0; k < 4; ++k)
+        b[k] = static_cast<unsigned char>(v >> (24 - 8 * k));
+      f.seekp(at);
+      f.write(reinterpret_cast<const char*>(b), 4);
+    }
+    fs::last_write_time(path, before);
+    const SurveyAffine moved = open_volume(path, fill)->geometry().affine;
+    EXPECT_GT(std::abs(moved.x0 - first->geometry().affine.x0), 1.0);
+    EXPECT_EQ(open_volume(path, hinted)->geometry().affine, first->geometry().affine); // no pass over the headers
+
+    fs::last_write_time(path, before + std::chrono::seconds(1));
+    EXPECT_EQ(open_volume(path, hinted)->geometry().affine, moved);
+    // Hints that do not fit are not used either.
+    const std::string fresh_hint = open_volume(path, fill)->reopen_hint();
+    std::string short_runs = fresh_hint;
+    short_runs.replace(short_runs.find("\"runs\":[["), 9, "\"runs\":[[0,0,1],[");
+    for (const std::string& bad : {std::string("not json"), std::string("{\"segy_grid\":{}}"), short_runs}) {
+      OpenOptions o = fill;
+      o.reopen_hint = bad;
+      EXPECT_EQ(open_volume(path, o)->geometry(), open_volume(path, fill)->geometry()) << bad;
+    }
+    OpenOptions other_bytes = fill;
+    other_bytes.reopen_hint = fresh_hint;
+    other_bytes.segy = {9, 21};
+    EXPECT_THROW(open_volume(path, other_bytes), FormatError); // the hint is for 189/193: the file is read at 9/21
   }
 }
 

@@ -27,6 +27,7 @@ public:
     return details;
   }
   std::optional<float> declared_no_data() const override { return inner_->declared_no_data(); }
+  std::string reopen_hint() const override { return inner_->reopen_hint(); }
 
 protected:
   void read_box(const Box& box, std::span<float> out) const override {

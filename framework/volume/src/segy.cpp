@@ -53,13 +53,16 @@ class SegyVolume final : public Volume {
 public:
   // `coordinates`: how geographic trace coordinates were taken (TraceCoordinates::description);
   // empty for lengths.
-  SegyVolume(std::string path, segy::Handle file, Layout layout, Grid grid, Geometry geometry, std::string coordinates)
-      : path_(std::move(path)), file_(std::move(file)), layout_(layout), grid_(grid), geometry_(std::move(geometry)),
-        coordinates_(std::move(coordinates)) {}
+  // `hint`: the irregular grid for other processes (segy::grid_hint); empty for a full grid.
+  SegyVolume(std::string path, segy::Handle file, Layout layout, Grid grid, Geometry geometry, std::string coordinates,
+             std::string hint)
+      : path_(std::move(path)), file_(std::move(file)), layout_(layout), grid_(std::move(grid)),
+        geometry_(std::move(geometry)), coordinates_(std::move(coordinates)), hint_(std::move(hint)) {}
 
   const Geometry& geometry() const override { return geometry_; }
   std::string format() const override { return "SEG-Y"; }
   std::string source() const override { return path_; }
+  std::string reopen_hint() const override { return hint_; }
   std::vector<FormatDetail> format_details() const override {
     std::vector<FormatDetail> details{
         {"sample_format",
@@ -138,6 +141,7 @@ private:
   Grid grid_;
   Geometry geometry_;
   std::string coordinates_;
+  std::string hint_;
   mutable std::mutex mutex_;
   mutable std::vector<char> scratch_; // guarded by mutex_
 };
@@ -201,7 +205,14 @@ std::unique_ptr<Volume> open_segy(const std::string& path, const OpenOptions& op
   // a file truncated by another process while mapped raises SIGBUS on access. When mapping fails
   // segyio keeps using stdio.
   segy_mmap(file.get());
-  const Grid grid = segy::find_grid(file.get(), layout, options.segy, options.nan_policy == NanPolicy::fill, path);
+  // An irregular survey's grid costs a pass over every trace header; a process given the grid by
+  // the one that made that pass (the manager, for its workers) skips it while the file is unchanged.
+  const bool read_missing = options.nan_policy == NanPolicy::fill;
+  const segy::FileStamp stamp = segy::file_stamp(path);
+  std::optional<Grid> hinted;
+  if (read_missing && !options.reopen_hint.empty())
+    hinted = segy::grid_from_hint(options.reopen_hint, stamp, options.segy, layout.traces);
+  const Grid grid = hinted ? std::move(*hinted) : segy::find_grid(file.get(), layout, options.segy, read_missing, path);
 
   const int ni = grid.ni, nj = grid.nj;
   auto corner = [&](int i, int j) { return segy::read_header(file.get(), layout, grid.trace_of(i, j), path); };
@@ -229,7 +240,8 @@ std::unique_ptr<Volume> open_segy(const std::string& path, const OpenOptions& op
   g.affine = grid.irregular() ? usable_or_default(grid.fitted_affine)
                               : fit_affine(coordinates.xy(origin), coordinates.xy(corner(ni - 1, 0)),
                                            coordinates.xy(corner(0, nj - 1)), ni, nj);
-  return std::make_unique<SegyVolume>(path, std::move(file), layout, grid, g, coordinates.description());
+  return std::make_unique<SegyVolume>(path, std::move(file), layout, grid, g, coordinates.description(),
+                                      segy::grid_hint(grid, stamp));
 }
 
 } // namespace geotandem::volume::detail

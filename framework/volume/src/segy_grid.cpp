@@ -2,14 +2,20 @@
 
 #include "segy_grid.hpp"
 
+#include <sys/stat.h>
+
 #include <algorithm>
+#include <cerrno>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 #include <limits>
 #include <numbers>
 #include <numeric>
 #include <optional>
 #include <vector>
+
+#include <nlohmann/json.hpp>
 
 #include "geotandem/core/error.hpp"
 
@@ -423,6 +429,94 @@ Grid find_grid(segy_file* file, const Layout& layout, const SegyOptions& bytes, 
                     "read the missing traces as missing samples with --nan fill (input.nan: fill in a recipe): "
                     "outside every body, dead traces under attributes; or pad the cube to a full rectangle of "
                     "traces with dead traces");
+}
+
+FileStamp file_stamp(const std::string& path) {
+  struct stat st {};
+  if (::stat(path.c_str(), &st) != 0)
+    throw IoError(std::string("cannot examine the file: ") + std::strerror(errno), {path});
+  return {static_cast<std::uintmax_t>(st.st_size),
+          static_cast<std::int64_t>(st.st_mtim.tv_sec) * 1000000000 + st.st_mtim.tv_nsec};
+}
+
+namespace {
+// Bins in the file's order: along the lines the traces are sorted by.
+std::int64_t file_order_bin(const Grid& g, std::int64_t k) {
+  return g.inline_sorted ? k : (k % g.ni) * g.nj + k / g.ni;
+}
+} // namespace
+
+std::string grid_hint(const Grid& g, const FileStamp& stamp) {
+  if (!g.irregular()) return {};
+  nlohmann::json runs = nlohmann::json::array(); // [first bin in file order, first trace, count]
+  const std::int64_t bins = std::int64_t{g.ni} * g.nj;
+  for (std::int64_t k = 0; k < bins;) {
+    const std::int32_t t = g.traces[static_cast<std::size_t>(file_order_bin(g, k))];
+    if (t < 0) {
+      ++k;
+      continue;
+    }
+    std::int64_t n = 1;
+    while (k + n < bins && g.traces[static_cast<std::size_t>(file_order_bin(g, k + n))] == t + n)
+      ++n;
+    runs.push_back({k, t, n});
+    k += n;
+  }
+  const SurveyAffine& a = g.fitted_affine;
+  return nlohmann::json{{"segy_grid",
+                         {{"size", stamp.size},
+                          {"modified_ns", stamp.modified_ns},
+                          {"bytes", {g.bytes.inline_byte, g.bytes.crossline_byte}},
+                          {"inline_sorted", g.inline_sorted},
+                          {"lines", {g.ni, g.nj, g.il0, g.il_step, g.xl0, g.xl_step}},
+                          {"affine", {a.x0, a.xi, a.xj, a.y0, a.yi, a.yj}},
+                          {"runs", std::move(runs)}}}}
+      .dump();
+}
+
+std::optional<Grid> grid_from_hint(const std::string& hint, const FileStamp& stamp, const SegyOptions& bytes,
+                                   int traces) {
+  try {
+    const nlohmann::json h = nlohmann::json::parse(hint).at("segy_grid");
+    if (h.at("size").get<std::uintmax_t>() != stamp.size ||
+        h.at("modified_ns").get<std::int64_t>() != stamp.modified_ns ||
+        h.at("bytes") != nlohmann::json{bytes.inline_byte, bytes.crossline_byte})
+      return std::nullopt;
+    Grid g;
+    g.bytes = bytes;
+    g.inline_sorted = h.at("inline_sorted").get<bool>();
+    const auto lines = h.at("lines").get<std::array<int, 6>>();
+    g.ni = lines[0];
+    g.nj = lines[1];
+    g.il0 = lines[2];
+    g.il_step = lines[3];
+    g.xl0 = lines[4];
+    g.xl_step = lines[5];
+    const auto a = h.at("affine").get<std::array<double, 6>>();
+    g.fitted_affine = {a[0], a[1], a[2], a[3], a[4], a[5]};
+    const std::int64_t bins = std::int64_t{g.ni} * g.nj;
+    if (g.ni < 1 || g.nj < 1 || g.il_step == 0 || g.xl_step == 0 || bins > 10 * std::int64_t{traces} ||
+        bins > std::numeric_limits<std::int32_t>::max())
+      return std::nullopt;
+    g.traces.assign(static_cast<std::size_t>(bins), -1);
+    std::int64_t placed = 0, next_trace = 0;
+    for (const auto& run : h.at("runs")) {
+      const auto [k, t, n] = run.get<std::array<std::int64_t, 3>>();
+      // Runs come in file order and take the traces in turn: each trace once.
+      if (t != next_trace || n < 1 || k < 0 || k + n > bins) return std::nullopt;
+      for (std::int64_t m = 0; m < n; ++m) {
+        std::int32_t& slot = g.traces[static_cast<std::size_t>(file_order_bin(g, k + m))];
+        if (slot >= 0) return std::nullopt;
+        slot = static_cast<std::int32_t>(t + m);
+      }
+      placed += n;
+      next_trace = t + n;
+    }
+    if (placed != traces) return std::nullopt;
+    return g;
+  } catch (const nlohmann::json::exception&) {
+    return std::nullopt;
+  }
 }
 
 } // namespace geotandem::volume::detail::segy

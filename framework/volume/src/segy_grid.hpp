@@ -5,6 +5,7 @@
 
 #include <array>
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -88,6 +89,26 @@ void check_header_bytes(const SegyOptions& bytes, const std::string& path);
 // FormatError that names the positions that would work, and how to pass them.
 Grid find_grid(segy_file* file, const Layout& layout, const SegyOptions& bytes, bool read_missing,
                const std::string& path);
+
+// A file's size and modification time: what says that a grid found earlier still describes it.
+struct FileStamp {
+  std::uintmax_t size = 0;
+  std::int64_t modified_ns = 0;
+  bool operator==(const FileStamp&) const = default;
+};
+// Throws IoError naming the file when it cannot be examined.
+FileStamp file_stamp(const std::string& path);
+
+// An irregular grid as text (Volume::reopen_hint), so that other processes opening the same file
+// skip the pass over every trace header: its numbers, affine and stamp, and its traces as runs of
+// consecutive traces on consecutive bins in the file's order (one run per line of a survey with a
+// ragged outline).
+std::string grid_hint(const Grid& grid, const FileStamp& stamp);
+// The grid of a hint, when the hint is well formed, for this stamp and these header bytes, and
+// places each of the file's `traces` traces once; nothing otherwise (the grid is then found as
+// usual). Reading still checks every trace's line numbers against its place.
+std::optional<Grid> grid_from_hint(const std::string& hint, const FileStamp& stamp, const SegyOptions& bytes,
+                                   int traces);
 
 // What an irregular grid lacks, for messages: "62 of 63 traces (7 inlines x 9 crosslines); the
 // first missing: inline 106, crossline 300". Empty for a full grid.

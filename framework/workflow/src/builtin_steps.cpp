@@ -59,8 +59,11 @@ public:
     settings.parameters = description;
     if (description.contains("workers") && description.contains("chain")) { // manager/worker runtime
       settings.parameters.erase("worker_command");
+      settings.parameters.erase("input_hint");
       settings.workers = description.at("workers").get<std::size_t>();
-      settings.volume_description = nlohmann::json{{"kind", "chain"}, {"chain", description.at("chain")}}.dump();
+      nlohmann::json chain = description.at("chain");
+      if (description.contains("input_hint")) chain["input"]["reopen_hint"] = description.at("input_hint");
+      settings.volume_description = nlohmann::json{{"kind", "chain"}, {"chain", std::move(chain)}}.dump();
       settings.worker_command = description.at("worker_command").get<std::vector<std::string>>();
       settings.scheduler = description.value("scheduler", "local");
       settings.resources = description.value("resources", nlohmann::json::object());

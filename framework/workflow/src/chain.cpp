@@ -46,6 +46,8 @@ std::shared_ptr<const volume::Volume> open_input(const nlohmann::json& in, bool 
   if (in.contains("segy"))
     options.segy = {in["segy"].value("inline_byte", options.segy.inline_byte),
                     in["segy"].value("crossline_byte", options.segy.crossline_byte)};
+  // Not part of the chain's identity: the runner adds it to the workers' copy only.
+  options.reopen_hint = in.value("reopen_hint", "");
   return std::shared_ptr<const volume::Volume>(volume::open_volume(in.at("file").get<std::string>(), options));
 }
 

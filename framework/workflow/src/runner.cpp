@@ -197,6 +197,8 @@ private:
       if (with_workers) {
         description["workers"] = workers; // the extract step hands the chain to that many workers
         description["worker_command"] = settings_.worker_command;
+        // What opening the input found (an irregular SEG-Y survey's grid): the workers skip that work.
+        if (const std::string hint = volumes_.input->reopen_hint(); !hint.empty()) description["input_hint"] = hint;
         description["scheduler"] = ex.scheduler;
         description["bind"] = ex.bind;
         if (ex.relay_memory_mb >= 0) description["relay_memory_mb"] = ex.relay_memory_mb;

@@ -49,6 +49,10 @@ struct OpenOptions {
   // For multidimensional files with several 3D arrays: the array's name (empty: the only 3D one).
   std::string variable;
   SegyOptions segy;
+  // Volume::reopen_hint of the same file opened with the same options, by another process (the
+  // manager, for its workers). Used only while it still describes the file (same size and
+  // modification time, same header bytes); ignored otherwise, and by formats that have none.
+  std::string reopen_hint;
 };
 
 // Opens a cube; throws IoError (missing, unreadable) or FormatError (unknown or broken format),

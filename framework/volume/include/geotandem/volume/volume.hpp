@@ -54,6 +54,11 @@ public:
   // says its total halo. A hint for caches that fetch a box's sources at once (a volume that does
   // not know says 0: a cache then fetches too little, and the rest is read directly).
   virtual Index3 source_halo() const { return {0, 0, 0}; }
+  // What opening this file again needs and opening it found (OpenOptions::reopen_hint): another
+  // process that opens the same file with it skips that work. Empty when there is nothing worth
+  // passing on; only an irregular SEG-Y survey, whose grid took a pass over every trace header,
+  // has one.
+  virtual std::string reopen_hint() const { return {}; }
 
 protected:
   // Called by read() after the box was checked.

@@ -439,28 +439,25 @@ FileStamp file_stamp(const std::string& path) {
           static_cast<std::int64_t>(st.st_mtim.tv_sec) * 1000000000 + st.st_mtim.tv_nsec};
 }
 
-namespace {
-// Bins in the file's order: along the lines the traces are sorted by.
-std::int64_t file_order_bin(const Grid& g, std::int64_t k) {
-  return g.inline_sorted ? k : (k % g.ni) * g.nj + k / g.ni;
-}
-} // namespace
-
 std::string grid_hint(const Grid& g, const FileStamp& stamp) {
   if (!g.irregular()) return {};
-  nlohmann::json runs = nlohmann::json::array(); // [first bin in file order, first trace, count]
-  const std::int64_t bins = std::int64_t{g.ni} * g.nj;
-  for (std::int64_t k = 0; k < bins;) {
-    const std::int32_t t = g.traces[static_cast<std::size_t>(file_order_bin(g, k))];
-    if (t < 0) {
-      ++k;
-      continue;
+  // Each trace's bin (row-major), in file order; then runs of traces whose bins go on by a constant
+  // step: [first trace, its bin, count, step] (step 1 or nj along a line, negative for numbers that
+  // count down).
+  std::vector<std::int64_t> bin_of;
+  for (std::size_t b = 0; b < g.traces.size(); ++b)
+    if (const std::int32_t t = g.traces[b]; t >= 0) {
+      if (bin_of.size() <= static_cast<std::size_t>(t)) bin_of.resize(static_cast<std::size_t>(t) + 1, -1);
+      bin_of[static_cast<std::size_t>(t)] = static_cast<std::int64_t>(b);
     }
-    std::int64_t n = 1;
-    while (k + n < bins && g.traces[static_cast<std::size_t>(file_order_bin(g, k + n))] == t + n)
+  nlohmann::json runs = nlohmann::json::array();
+  for (std::size_t t = 0; t < bin_of.size();) {
+    const std::int64_t step = t + 1 < bin_of.size() ? bin_of[t + 1] - bin_of[t] : 1;
+    std::size_t n = 1;
+    while (t + n < bin_of.size() && bin_of[t + n] - bin_of[t + n - 1] == step)
       ++n;
-    runs.push_back({k, t, n});
-    k += n;
+    runs.push_back({t, bin_of[t], n, n > 1 ? step : 1});
+    t += n;
   }
   const SurveyAffine& a = g.fitted_affine;
   return nlohmann::json{{"segy_grid",
@@ -499,18 +496,17 @@ std::optional<Grid> grid_from_hint(const std::string& hint, const FileStamp& sta
         bins > std::numeric_limits<std::int32_t>::max())
       return std::nullopt;
     g.traces.assign(static_cast<std::size_t>(bins), -1);
-    std::int64_t placed = 0, next_trace = 0;
+    std::int64_t placed = 0;
     for (const auto& run : h.at("runs")) {
-      const auto [k, t, n] = run.get<std::array<std::int64_t, 3>>();
-      // Runs come in file order and take the traces in turn: each trace once.
-      if (t != next_trace || n < 1 || k < 0 || k + n > bins) return std::nullopt;
+      const auto [t, b, n, step] = run.get<std::array<std::int64_t, 4>>();
+      // Runs take the file's traces in turn, each trace once, each bin at most once.
+      if (t != placed || n < 1 || n > traces - placed || step < -bins || step > bins) return std::nullopt;
       for (std::int64_t m = 0; m < n; ++m) {
-        std::int32_t& slot = g.traces[static_cast<std::size_t>(file_order_bin(g, k + m))];
-        if (slot >= 0) return std::nullopt;
-        slot = static_cast<std::int32_t>(t + m);
+        const std::int64_t bin = b + m * step;
+        if (bin < 0 || bin >= bins || g.traces[static_cast<std::size_t>(bin)] >= 0) return std::nullopt;
+        g.traces[static_cast<std::size_t>(bin)] = static_cast<std::int32_t>(t + m);
       }
       placed += n;
-      next_trace = t + n;
     }
     if (placed != traces) return std::nullopt;
     return g;

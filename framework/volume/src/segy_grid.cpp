@@ -459,6 +459,9 @@ std::string grid_hint(const Grid& g, const FileStamp& stamp) {
     runs.push_back({t, bin_of[t], n, n > 1 ? step : 1});
     t += n;
   }
+  // Holes everywhere make runs of a trace or two: the hint would weigh about as much as the headers
+  // it spares each worker, so there is none.
+  if (runs.size() > std::max<std::size_t>(1024, bin_of.size() / 16)) return {};
   const SurveyAffine& a = g.fitted_affine;
   return nlohmann::json{{"segy_grid",
                          {{"size", stamp.size},

@@ -21,3 +21,14 @@ head -c 8000 "$seeds/cube.segy" >"$seeds/segy_header/headers.segy"
   dd if="$seeds/cube.segy" bs=400 skip=10 count=99 status=none # 4000 bytes = 10 blocks of 400
   tail -c +$((3600 + 101 * 400 + 1)) "$seeds/cube.segy"
 } >"$seeds/segy_header/irregular.segy"
+# A placeholder in the first trace's place: flagged dead (bytes 29-30), every other header field 0
+# but the sample count and interval (bytes 115-118), samples 0.
+{
+  head -c 3600 "$seeds/cube.segy"
+  head -c 28 /dev/zero
+  printf '\000\002'
+  head -c 84 /dev/zero
+  dd if="$seeds/cube.segy" bs=1 skip=$((3600 + 114)) count=4 status=none
+  head -c $((122 + 160)) /dev/zero
+  tail -c +$((3600 + 400 + 1)) "$seeds/cube.segy"
+} >"$seeds/segy_header/placeholder.segy"

@@ -168,6 +168,73 @@ TEST(SegyBroken, MissingTracesAreMissingSamples) {
   }
 }
 
+// Placeholders: traces flagged dead whose headers are zero but for the sample count and interval,
+// as some programs pad a survey to its full rectangle. Where they pad it (here the first, an inner
+// and the last trace), each is a dead trace in its place: the file opens without the NaN policy,
+// with the sample axis and affine of the same survey written whole (not the zeros of trace 0),
+// and reads as that survey with zeros at the placeholders. That holds whether the grid is found
+// from the corners (an inner placeholder only) or by reading every header. Beside a missing
+// trace, the placeholders' bins cannot be known: they are left out, and the message says so.
+TEST(SegyBroken, PlaceholdersPaddingASurveyAreDeadTracesInTheirPlaces) {
+  ScratchDir dir;
+  for (bool crossline_sorted : {false, true}) {
+    SCOPED_TRACE(crossline_sorted ? "crossline-sorted" : "inline-sorted");
+    SegySpec s;
+    s.crossline_sorted = crossline_sorted;
+    s.delay_ms = 100;
+    const std::string name = crossline_sorted ? "xl" : "il";
+    const std::string full_path = dir.file(name + "_full.sgy");
+    write_with_segyio(full_path, s);
+    const auto full = open_volume(full_path);
+    using Places = std::vector<std::array<int, 2>>;
+    for (const Places& places : {Places{{0, 0}, {3, 4}, {6, 8}}, Places{{3, 4}}}) {
+      SCOPED_TRACE(places.size());
+      s.placeholders = places;
+      const std::string path = dir.file(name + std::to_string(places.size()) + ".sgy");
+      write_with_segyio(path, s);
+      const auto padded = open_volume(path);
+      const Geometry &g = padded->geometry(), &want = full->geometry();
+      EXPECT_EQ(g.shape, want.shape);
+      EXPECT_EQ(g.inline0, want.inline0);
+      EXPECT_EQ(g.crossline0, want.crossline0);
+      EXPECT_EQ(g.inline_step, want.inline_step);
+      EXPECT_EQ(g.crossline_step, want.crossline_step);
+      EXPECT_EQ(g.z0, 100.0);
+      EXPECT_EQ(g.dz, want.dz);
+      for (auto [i, j] : {std::array<double, 2>{0, 0}, {6, 0}, {0, 8}, {6, 8}})
+        for (int axis = 0; axis < 2; ++axis)
+          EXPECT_NEAR(g.affine.apply(i, j)[static_cast<std::size_t>(axis)],
+                      want.affine.apply(i, j)[static_cast<std::size_t>(axis)], 0.02);
+      const Box all = want.bounds();
+      const auto got = padded->read(all), expected = full->read(all);
+      for (std::int64_t i = 0; i < all.hi[0]; ++i)
+        for (std::int64_t j = 0; j < all.hi[1]; ++j) {
+          const bool placeholder =
+              std::find(places.begin(), places.end(), std::array<int, 2>{int(i), int(j)}) != places.end();
+          for (std::int64_t k = 0; k < all.hi[2]; ++k)
+            ASSERT_EQ(got[all.offset({i, j, k})], placeholder ? 0.0f : expected[all.offset({i, j, k})])
+                << "(" << i << ", " << j << ", " << k << ")";
+        }
+    }
+    s.placeholders = {{0, 0}};
+    s.missing = {{3, 4}};
+    const std::string path = dir.file(name + "_holes.sgy");
+    write_with_segyio(path, s);
+    const std::string message = message_of<FormatError>([&] { open_volume(path); });
+    EXPECT_NE(message.find("61 of 63 traces (7 inlines x 9 crosslines; 1 placeholders, dead traces with line "
+                           "numbers 0, left out"),
+              std::string::npos)
+        << message;
+    const auto irregular =
+        open_volume(path, {.nan_policy = NanPolicy::fill, .fill_value = std::numeric_limits<float>::quiet_NaN()});
+    EXPECT_EQ(irregular->geometry().z0, 100.0);
+    const auto got = irregular->read(full->geometry().bounds());
+    EXPECT_TRUE(std::isnan(got[full->geometry().bounds().offset({0, 0, 5})]));
+    EXPECT_TRUE(std::isnan(got[full->geometry().bounds().offset({3, 4, 5})]));
+    EXPECT_EQ(got[full->geometry().bounds().offset({0, 1, 5})], formula(0, 1, 5));
+  }
+}
+
 // An irregular survey's grid takes a pass over every trace header. The volume hands it on
 // (reopen_hint), so that another process opening the file with it (a worker) skips that pass while
 // the file keeps its size and modification time. Shown by changing one trace's coordinates and

@@ -48,6 +48,9 @@ struct SegySpec {
   int late_by_ms = 0;
   bool late_trace_dead = false; // that trace flagged dead (trace identification code 2)
   int coordinate_units = 0;     // written at byte 89 when not 0 (2: seconds of arc, 3: degrees, 4: DDDMMSS)
+  // (i, j) of traces written in place as placeholders: flagged dead, every header field 0 but the
+  // sample count and interval, samples 0.
+  std::vector<std::array<int, 2>> placeholders;
 
   long trace0() const { return 3600L + 3200L * extended_headers; }
   int inline_number(int i) const { return il0 + (i + (gap_in_inlines && i >= ni / 2 ? 1 : 0)) * il_step; }
@@ -141,6 +144,15 @@ inline void write_with_segyio(const std::string& path, const SegySpec& s) {
   for (const auto& [i, j] : order)
     for (int offset = 1; offset <= s.offsets; ++offset, ++trace) {
       std::array<char, SEGY_TRACE_HEADER_SIZE> h{};
+      if (std::find(s.placeholders.begin(), s.placeholders.end(), std::array<int, 2>{i, j}) != s.placeholders.end()) {
+        segy_set_field(h.data(), SEGY_TR_TRACE_ID, 2);
+        segy_set_field(h.data(), SEGY_TR_SAMPLE_COUNT, s.ns);
+        segy_set_field(h.data(), SEGY_TR_SAMPLE_INTER, s.interval_us);
+        ASSERT_EQ(segy_write_traceheader(fp, trace, h.data(), s.trace0(), bytes), SEGY_OK);
+        const std::vector<char> zeros(static_cast<std::size_t>(bytes), 0);
+        ASSERT_EQ(segy_writetrace(fp, trace, zeros.data(), s.trace0(), bytes), SEGY_OK);
+        continue;
+      }
       segy_set_field(h.data(), s.inline_byte, s.inline_number(i));
       segy_set_field(h.data(), s.crossline_byte, s.xl0 + j * s.xl_step);
       segy_set_field(h.data(), SEGY_TR_OFFSET, offset);

@@ -216,10 +216,11 @@ std::unique_ptr<Volume> open_segy(const std::string& path, const OpenOptions& op
 
   const int ni = grid.ni, nj = grid.nj;
   auto corner = [&](int i, int j) { return segy::read_header(file.get(), layout, grid.trace_of(i, j), path); };
-  // The first trace of the file gives the sample axis; a regular grid's corners fix the affine
-  // (find_grid checked their line numbers), an irregular one's was fitted to every trace by
-  // find_grid, as it read them.
-  const TraceHeader origin = grid.irregular() ? segy::read_header(file.get(), layout, 0, path) : corner(0, 0);
+  // The first live trace of the file (not a placeholder) gives the sample axis. A grid found from a
+  // few headers has its affine fixed by its corners (find_grid checked their line numbers); one
+  // found by reading every header (irregular, or padded with placeholders) had it fitted to every
+  // live trace, as they were read.
+  const TraceHeader origin = grid.fitted ? segy::read_header(file.get(), layout, grid.first_live, path) : corner(0, 0);
 
   if (layout.interval == 0)
     throw FormatError("no sample interval: binary header byte 3217 and trace header byte 117 are both 0", {path},
@@ -234,12 +235,12 @@ std::unique_ptr<Volume> open_segy(const std::string& path, const OpenOptions& op
   g.z_unit = depth ? SampleUnit::metres : SampleUnit::milliseconds;
   g.dz = layout.interval / 1000.0; // microseconds to ms (or, in our depth files, mm to m)
   g.z0 = trace_start(origin);
-  // Both the scan and this take the file's first trace (the corner (0, 0) of a regular grid) as the
-  // reference of geographic coordinates.
+  // Both the scan and this take the file's first live trace (the corner (0, 0) of a grid found from
+  // its corners) as the reference of geographic coordinates.
   const segy::TraceCoordinates coordinates(origin);
-  g.affine = grid.irregular() ? usable_or_default(grid.fitted_affine)
-                              : fit_affine(coordinates.xy(origin), coordinates.xy(corner(ni - 1, 0)),
-                                           coordinates.xy(corner(0, nj - 1)), ni, nj);
+  g.affine = grid.fitted ? usable_or_default(grid.fitted_affine)
+                         : fit_affine(coordinates.xy(origin), coordinates.xy(corner(ni - 1, 0)),
+                                      coordinates.xy(corner(0, nj - 1)), ni, nj);
   return std::make_unique<SegyVolume>(path, std::move(file), layout, grid, g, coordinates.description(),
                                       segy::grid_hint(grid, stamp));
 }

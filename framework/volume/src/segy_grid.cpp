@@ -84,7 +84,8 @@ Probe probe(segy_file* file, const Layout& layout, const SegyOptions& bytes, con
   const TraceHeader last = read_header(file, layout, layout.traces - 1, path);
   if (field(first, il) == 0 && field(first, xl) == 0 && field(last, il) == 0 && field(last, xl) == 0)
     return {std::nullopt,
-            {"no line numbers at bytes " + pair_text(bytes) + ": the first and the last trace hold 0 at both", ""}};
+            {"no line numbers at bytes " + pair_text(bytes) + ": the first and the last trace hold 0 at both", "",
+             placeholder(first, bytes) || placeholder(last, bytes)}};
   int sorting = SEGY_UNKNOWN_SORTING;
   int status = segy_sorting(file, il, xl, SEGY_TR_OFFSET, &sorting, t0, tb);
   if (status != SEGY_OK || sorting == SEGY_UNKNOWN_SORTING)
@@ -225,17 +226,26 @@ private:
 // more than ten times the traces is not taken for a survey (wrong header bytes, most likely). The
 // same pass fits the affine to the traces' coordinates.
 Probe scan(segy_file* file, const Layout& layout, const SegyOptions& bytes, const std::string& path) {
-  std::vector<std::array<int, 2>> bins(static_cast<std::size_t>(layout.traces));
+  // The live traces (placeholders have no line numbers) and their bins, in file order.
+  std::vector<int> live;
+  std::vector<std::array<int, 2>> bins;
   CoordinateFit coordinates;
-  const TraceCoordinates frame(read_header(file, layout, 0, path));
+  std::optional<TraceCoordinates> frame; // from the first live trace
   for (int t = 0; t < layout.traces; ++t) {
     const TraceHeader header = read_header(file, layout, t, path);
+    if (placeholder(header, bytes)) continue;
+    if (!frame) frame.emplace(header);
     const std::array<int, 2> bin{field(header, bytes.inline_byte), field(header, bytes.crossline_byte)};
-    bins[static_cast<std::size_t>(t)] = bin;
-    coordinates.add(bin[0] - bins[0][0], bin[1] - bins[0][1], frame.xy(header));
+    live.push_back(t);
+    bins.push_back(bin);
+    coordinates.add(bin[0] - bins[0][0], bin[1] - bins[0][1], frame->xy(header));
   }
+  if (live.empty())
+    return {std::nullopt, {"reading every trace header: every trace is a placeholder (dead, line numbers 0)", ""}};
   Grid g;
   g.bytes = bytes;
+  g.fitted = true;
+  g.first_live = live.front();
   const auto il_of = [](const std::array<int, 2>& b) { return b[0]; };
   const auto xl_of = [](const std::array<int, 2>& b) { return b[1]; };
   g.inline_sorted = sorted_by(bins, il_of, xl_of);
@@ -263,11 +273,22 @@ Probe scan(segy_file* file, const Layout& layout, const SegyOptions& bytes, cons
   g.nj = static_cast<int>(nj);
   g.fitted_affine = coordinates.in_indices(double(g.il0) - bins[0][0], double(g.il_step), double(g.xl0) - bins[0][1],
                                            double(g.xl_step));
+  const auto bin_of = [&](const std::array<int, 2>& b) {
+    const std::int64_t i = (std::int64_t{b[0]} - g.il0) / g.il_step, j = (std::int64_t{b[1]} - g.xl0) / g.xl_step;
+    return g.inline_sorted ? i * nj + j : j * ni + i; // in file order, numbers counting up
+  };
+  // Placeholders padding the survey to its full rectangle: every live trace sits at the place in
+  // the file its bin has, so each placeholder's place is its bin too.
+  bool padded = ni * nj == layout.traces;
+  for (std::size_t n = 0; padded && n < live.size(); ++n)
+    padded = bin_of(bins[n]) == live[n];
+  if (padded) return {g, {}};
+  g.placeholders_left_out = layout.traces - static_cast<int>(live.size());
   g.traces.assign(static_cast<std::size_t>(ni * nj), -1);
-  for (int t = 0; t < layout.traces; ++t) {
-    const auto [il, xl] = bins[static_cast<std::size_t>(t)];
+  for (std::size_t n = 0; n < live.size(); ++n) {
+    const auto [il, xl] = bins[n];
     const std::int64_t i = (std::int64_t{il} - g.il0) / g.il_step, j = (std::int64_t{xl} - g.xl0) / g.xl_step;
-    g.traces[static_cast<std::size_t>(i * nj + j)] = t; // sorted: no bin twice
+    g.traces[static_cast<std::size_t>(i * nj + j)] = live[n]; // sorted: no bin twice
   }
   return {g, {}};
 }
@@ -278,7 +299,12 @@ std::string missing_text(const Grid& grid) {
   if (!grid.irregular()) return {};
   const auto present = std::count_if(grid.traces.begin(), grid.traces.end(), [](std::int32_t t) { return t >= 0; });
   std::string text = std::to_string(present) + " of " + std::to_string(grid.traces.size()) + " traces (" +
-                     std::to_string(grid.ni) + " inlines x " + std::to_string(grid.nj) + " crosslines)";
+                     std::to_string(grid.ni) + " inlines x " + std::to_string(grid.nj) + " crosslines" +
+                     (grid.placeholders_left_out > 0
+                          ? "; " + std::to_string(grid.placeholders_left_out) +
+                                " placeholders, dead traces with line numbers 0, left out: their bins are not known"
+                          : std::string()) +
+                     ")";
   // A whole line missing reads best as the jump in the line numbers.
   std::vector<bool> inline_has(static_cast<std::size_t>(grid.ni)), crossline_has(static_cast<std::size_t>(grid.nj));
   for (int i = 0; i < grid.ni; ++i)
@@ -367,11 +393,17 @@ TraceHeader read_header(segy_file* file, const Layout& layout, int trace, const 
   return header;
 }
 
+bool placeholder(const TraceHeader& header, const SegyOptions& bytes) {
+  return field(header, SEGY_TR_TRACE_ID) == 2 && field(header, bytes.inline_byte) == 0 &&
+         field(header, bytes.crossline_byte) == 0;
+}
+
 void check_position(const TraceHeader& header, const Grid& grid, std::int64_t i, std::int64_t j, int trace,
                     const std::string& path) {
   if (field(header, grid.bytes.inline_byte) == grid.inline_of(i) &&
       field(header, grid.bytes.crossline_byte) == grid.crossline_of(j))
     return;
+  if (!grid.irregular() && placeholder(header, grid.bytes)) return; // its place in the file is its bin
   Problem p = misplaced(header, grid, i, j, trace);
   throw FormatError(p.message, {path}, p.hint);
 }
@@ -417,12 +449,13 @@ Grid find_grid(segy_file* file, const Layout& layout, const SegyOptions& bytes, 
           "--inline-byte and --crossline-byte, or segy: {inline_byte: N, crossline_byte: M} in the recipe's input "
           "section";
   const std::string hint = asked.problem.hint.empty() ? also : asked.problem.hint + "; " + also;
-  // No positions give a full grid: the traces at the asked ones may be a survey with some missing,
-  // read when missing samples are (the NaN fill policy), refused otherwise.
+  // No positions give a full grid from a few headers: the traces at the asked ones may be a survey
+  // with some missing, read when missing samples are (the NaN fill policy) and refused otherwise,
+  // or one padded with placeholders, read.
   if (!asked.problem.scan) throw FormatError(asked.problem.message, {path}, hint);
   Probe scanned = scan(file, layout, bytes, path);
   if (!scanned.grid) throw FormatError(asked.problem.message + "; " + scanned.problem.message, {path}, hint);
-  if (read_missing) return *scanned.grid;
+  if (read_missing || !scanned.grid->irregular()) return *scanned.grid; // irregular, or padded with placeholders
   throw FormatError("irregular survey at bytes " + pair_text(bytes) + ": " + missing_text(*scanned.grid) +
                         " (traces are missing where the survey has none, or the file was cut short)",
                     {path},
@@ -452,9 +485,13 @@ std::string grid_hint(const Grid& g, const FileStamp& stamp) {
     }
   nlohmann::json runs = nlohmann::json::array();
   for (std::size_t t = 0; t < bin_of.size();) {
+    if (bin_of[t] < 0) { // a placeholder left out
+      ++t;
+      continue;
+    }
     const std::int64_t step = t + 1 < bin_of.size() ? bin_of[t + 1] - bin_of[t] : 1;
     std::size_t n = 1;
-    while (t + n < bin_of.size() && bin_of[t + n] - bin_of[t + n - 1] == step)
+    while (t + n < bin_of.size() && bin_of[t + n] >= 0 && bin_of[t + n] - bin_of[t + n - 1] == step)
       ++n;
     runs.push_back({t, bin_of[t], n, n > 1 ? step : 1});
     t += n;
@@ -469,6 +506,8 @@ std::string grid_hint(const Grid& g, const FileStamp& stamp) {
                           {"bytes", {g.bytes.inline_byte, g.bytes.crossline_byte}},
                           {"inline_sorted", g.inline_sorted},
                           {"lines", {g.ni, g.nj, g.il0, g.il_step, g.xl0, g.xl_step}},
+                          {"first_live", g.first_live},
+                          {"placeholders_left_out", g.placeholders_left_out},
                           {"affine", {a.x0, a.xi, a.xj, a.y0, a.yi, a.yj}},
                           {"runs", std::move(runs)}}}}
       .dump();
@@ -493,25 +532,33 @@ std::optional<Grid> grid_from_hint(const std::string& hint, const FileStamp& sta
     g.xl0 = lines[4];
     g.xl_step = lines[5];
     const auto a = h.at("affine").get<std::array<double, 6>>();
+    g.fitted = true;
     g.fitted_affine = {a[0], a[1], a[2], a[3], a[4], a[5]};
+    g.first_live = h.at("first_live").get<int>();
+    g.placeholders_left_out = h.at("placeholders_left_out").get<int>();
     const std::int64_t bins = std::int64_t{g.ni} * g.nj;
     if (g.ni < 1 || g.nj < 1 || g.il_step == 0 || g.xl_step == 0 || bins > 10 * std::int64_t{traces} ||
         bins > std::numeric_limits<std::int32_t>::max())
       return std::nullopt;
     g.traces.assign(static_cast<std::size_t>(bins), -1);
-    std::int64_t placed = 0;
+    std::int64_t placed = 0, next = 0;
     for (const auto& run : h.at("runs")) {
       const auto [t, b, n, step] = run.get<std::array<std::int64_t, 4>>();
-      // Runs take the file's traces in turn, each trace once, each bin at most once.
-      if (t != placed || n < 1 || n > traces - placed || step < -bins || step > bins) return std::nullopt;
+      // Runs take the file's traces in order (placeholders left out between them), each trace
+      // once, each bin at most once.
+      if (t < next || n < 1 || n > traces - t || step < -bins || step > bins) return std::nullopt;
       for (std::int64_t m = 0; m < n; ++m) {
         const std::int64_t bin = b + m * step;
         if (bin < 0 || bin >= bins || g.traces[static_cast<std::size_t>(bin)] >= 0) return std::nullopt;
         g.traces[static_cast<std::size_t>(bin)] = static_cast<std::int32_t>(t + m);
       }
       placed += n;
+      next = t + n;
     }
-    if (placed != traces) return std::nullopt;
+    // Every trace but the placeholders left out, the first live one among them.
+    if (placed != traces - g.placeholders_left_out || g.first_live < 0 || g.first_live >= traces ||
+        std::find(g.traces.begin(), g.traces.end(), g.first_live) == g.traces.end())
+      return std::nullopt;
     return g;
   } catch (const nlohmann::json::exception&) {
     return std::nullopt;

@@ -27,10 +27,18 @@ struct Grid {
   // at (i, j), row-major, -1 where the file has none. Empty for a full grid, whose traces follow
   // from the sorting.
   std::vector<std::int32_t> traces;
-  // An irregular survey's affine: the least-squares fit of the CDP coordinates of every trace
-  // present (its corners may be missing), made in the pass over the headers that found the grid.
-  // The default grid at the first trace when the file has no coordinates; may be degenerate.
+  // Found by the pass over every trace header (an irregular survey, or one padded with
+  // placeholders): the affine is then fitted_affine, the least-squares fit of the CDP coordinates
+  // of every live trace (its corners may be missing or placeholders), made in that pass; the
+  // default grid at the first live trace when the file has no coordinates; may be degenerate.
+  // Otherwise the three corners give the affine.
+  bool fitted = false;
   SurveyAffine fitted_affine;
+  // The first trace of the file that is not a placeholder: its header gives the sample axis.
+  int first_live = 0;
+  // Placeholders that could not be placed: in an irregular survey they are left out (their bins
+  // have no trace); a survey they pad to a full rectangle has them at their places.
+  int placeholders_left_out = 0;
 
   bool irregular() const { return !traces.empty(); }
   // The file's trace at (i, j); -1 when the survey has no trace there.
@@ -45,6 +53,11 @@ struct Grid {
 
 // The 4-byte integer (or 2-byte, for such fields) at 1-based byte `position` of a trace header.
 int field(const TraceHeader& header, int position);
+
+// A placeholder: a trace flagged dead (identification code 2, bytes 29-30) whose line numbers at
+// `bytes` are both 0, as some programs pad a survey to a full rectangle. It has no place of its
+// own: in a full grid its place in the file is its bin, and its samples are read as written.
+bool placeholder(const TraceHeader& header, const SegyOptions& bytes);
 
 // How the CDP coordinates of a file's traces (bytes 181/185, scaled by byte 71) become x and y,
 // after the coordinate units of its first trace (byte 89). Lengths (1, and 0 for unspecified) are
@@ -85,7 +98,8 @@ void check_header_bytes(const SegyOptions& bytes, const std::string& path);
 // corners. Otherwise, when no other common positions (9/21, 5/21, 17/13, 189/193) describe a full
 // grid, every trace header is read: sorted traces with some missing give an irregular grid
 // (Grid::traces), returned when `read_missing` (missing samples are read, not refused) and refused
-// otherwise, naming what is missing. Pre-stack, unsorted and unreadable files are refused with a
+// otherwise, naming what is missing; placeholders that pad the survey to its full rectangle give a
+// full grid (fitted). Pre-stack, unsorted and unreadable files are refused with a
 // FormatError that names the positions that would work, and how to pass them.
 Grid find_grid(segy_file* file, const Layout& layout, const SegyOptions& bytes, bool read_missing,
                const std::string& path);

@@ -32,3 +32,10 @@ head -c 8000 "$seeds/cube.segy" >"$seeds/segy_header/headers.segy"
   head -c $((122 + 160)) /dev/zero
   tail -c +$((3600 + 400 + 1)) "$seeds/cube.segy"
 } >"$seeds/segy_header/placeholder.segy"
+# Line numbers far apart: the first trace's inline (bytes 189-192) is -2147483645, where the
+# others count from 1000 (differences beyond an int; the scan once overflowed on them).
+{
+  head -c $((3600 + 188)) "$seeds/cube.segy"
+  printf '\200\000\000\003'
+  tail -c +$((3600 + 192 + 1)) "$seeds/cube.segy"
+} >"$seeds/segy_header/far_apart.segy"

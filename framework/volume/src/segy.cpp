@@ -210,8 +210,10 @@ std::unique_ptr<Volume> open_segy(const std::string& path, const OpenOptions& op
   const bool read_missing = options.nan_policy == NanPolicy::fill;
   const segy::FileStamp stamp = segy::file_stamp(path);
   std::optional<Grid> hinted;
-  if (read_missing && !options.reopen_hint.empty())
+  if (!options.reopen_hint.empty()) {
     hinted = segy::grid_from_hint(options.reopen_hint, stamp, options.segy, layout.traces);
+    if (hinted && hinted->irregular() && !read_missing) hinted.reset(); // find_grid refuses it, naming what is missing
+  }
   const Grid grid = hinted ? std::move(*hinted) : segy::find_grid(file.get(), layout, options.segy, read_missing, path);
 
   const int ni = grid.ni, nj = grid.nj;

@@ -63,12 +63,18 @@ Problem misplaced(const TraceHeader& header, const Grid& g, std::int64_t i, std:
 
 // Evenly spaced line numbers give the step; anything else is described.
 std::optional<Problem> regular_step(const std::vector<int>& numbers, const char* what, int& step) {
-  step = numbers.size() > 1 ? numbers[1] - numbers[0] : 1;
+  // Differences in 64 bits: two numbers far apart differ by more than an int holds.
+  const std::int64_t first = numbers.size() > 1 ? std::int64_t{numbers[1]} - numbers[0] : 1;
   for (std::size_t n = 1; n < numbers.size(); ++n)
-    if (step == 0 || numbers[n] - numbers[n - 1] != step)
+    if (first == 0 || std::int64_t{numbers[n]} - numbers[n - 1] != first)
       return Problem{std::string(what) + " numbers are not evenly spaced: " + std::to_string(numbers[n - 1]) +
-                         " then " + std::to_string(numbers[n]) + " after a step of " + std::to_string(step),
+                         " then " + std::to_string(numbers[n]) + " after a step of " + std::to_string(first),
                      "geotandem needs a regular grid: pad the missing lines with dead traces", true};
+  if (first < std::numeric_limits<int>::min() || first > std::numeric_limits<int>::max())
+    return Problem{std::string(what) + " numbers " + std::to_string(numbers[0]) + " and " + std::to_string(numbers[1]) +
+                       " are too far apart to be neighbouring lines",
+                   "check the header bytes of the line numbers", true};
+  step = static_cast<int>(first);
   return std::nullopt;
 }
 
@@ -176,10 +182,11 @@ std::int64_t line_step(std::vector<int>& numbers) {
 // products keep their precision.
 class CoordinateFit {
 public:
-  void add(int u, int v, const std::array<double, 2>& xy) {
+  void add(std::int64_t u, std::int64_t v, const std::array<double, 2>& xy) {
     if (n_ == 0) first_ = xy;
     any_ = any_ || xy[0] != 0.0 || xy[1] != 0.0;
-    const double du = u, dv = v, dx = xy[0] - first_[0], dy = xy[1] - first_[1];
+    const double du = static_cast<double>(u), dv = static_cast<double>(v), dx = xy[0] - first_[0],
+                 dy = xy[1] - first_[1];
     n_ += 1.0;
     su_ += du;
     sv_ += dv;
@@ -238,7 +245,7 @@ Probe scan(segy_file* file, const Layout& layout, const SegyOptions& bytes, cons
     const std::array<int, 2> bin{field(header, bytes.inline_byte), field(header, bytes.crossline_byte)};
     live.push_back(t);
     bins.push_back(bin);
-    coordinates.add(bin[0] - bins[0][0], bin[1] - bins[0][1], frame->xy(header));
+    coordinates.add(std::int64_t{bin[0]} - bins[0][0], std::int64_t{bin[1]} - bins[0][1], frame->xy(header));
   }
   if (live.empty())
     return {std::nullopt, {"reading every trace header: every trace is a placeholder (dead, line numbers 0)", ""}};
@@ -473,7 +480,7 @@ FileStamp file_stamp(const std::string& path) {
 }
 
 std::string grid_hint(const Grid& g, const FileStamp& stamp) {
-  if (!g.irregular()) return {};
+  if (!g.fitted) return {}; // found from a few headers: nothing to spare
   // Each trace's bin (row-major), in file order; then runs of traces whose bins go on by a constant
   // step: [first trace, its bin, count, step] (step 1 or nj along a line, negative for numbers that
   // count down).
@@ -540,9 +547,15 @@ std::optional<Grid> grid_from_hint(const std::string& hint, const FileStamp& sta
     if (g.ni < 1 || g.nj < 1 || g.il_step == 0 || g.xl_step == 0 || bins > 10 * std::int64_t{traces} ||
         bins > std::numeric_limits<std::int32_t>::max())
       return std::nullopt;
+    const nlohmann::json& runs = h.at("runs");
+    if (runs.empty()) { // a full grid padded with placeholders: the traces follow from the sorting
+      if (bins != traces || g.placeholders_left_out != 0 || g.first_live < 0 || g.first_live >= traces)
+        return std::nullopt;
+      return g;
+    }
     g.traces.assign(static_cast<std::size_t>(bins), -1);
     std::int64_t placed = 0, next = 0;
-    for (const auto& run : h.at("runs")) {
+    for (const auto& run : runs) {
       const auto [t, b, n, step] = run.get<std::array<std::int64_t, 4>>();
       // Runs take the file's traces in order (placeholders left out between them), each trace
       // once, each bin at most once.

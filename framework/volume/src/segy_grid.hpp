@@ -116,7 +116,8 @@ FileStamp file_stamp(const std::string& path);
 // An irregular grid as text (Volume::reopen_hint), so that other processes opening the same file
 // skip the pass over every trace header: its numbers, affine and stamp, and its traces as runs of
 // consecutive traces whose bins follow at a constant step (about one run per line of a survey with
-// a ragged outline). Empty for a full grid, and when the runs are short (holes everywhere).
+// a ragged outline), none for a survey padded with placeholders. Empty for a grid found from a few
+// headers, and when the runs are short (holes everywhere).
 std::string grid_hint(const Grid& grid, const FileStamp& stamp);
 // The grid of a hint, when the hint is well formed, for this stamp and these header bytes, and
 // places each of the file's `traces` traces once; nothing otherwise (the grid is then found as

@@ -56,8 +56,8 @@ public:
   virtual Index3 source_halo() const { return {0, 0, 0}; }
   // What opening this file again needs and opening it found (OpenOptions::reopen_hint): another
   // process that opens the same file with it skips that work. Empty when there is nothing worth
-  // passing on; only an irregular SEG-Y survey, whose grid took a pass over every trace header,
-  // has one.
+  // passing on; only a SEG-Y survey whose grid took a pass over every trace header (irregular, or
+  // padded with placeholders) has one.
   virtual std::string reopen_hint() const { return {}; }
 
 protected:

@@ -76,9 +76,7 @@ template <bool Even, class Neighbours>
 // floats apart.
 GEOTANDEM_AVX2_CLONES void filter_line(const float* centre, std::ptrdiff_t stride, const Kernel& kernel,
                                        float* __restrict o, std::size_t n) {
-  const auto neighbours = [centre, stride](int t) {
-    return std::pair{centre + t * stride, centre - t * stride};
-  };
+  const auto neighbours = [centre, stride](int t) { return std::pair{centre + t * stride, centre - t * stride}; };
   if (kernel.symmetry == Symmetry::even)
     filter_outputs<true>(centre, neighbours, kernel, o, n);
   else
@@ -185,8 +183,8 @@ volume::Index3 correlate(const float* in, const volume::Index3& in_shape, int ax
     // Along axis 0 or 1 the lines keep their length, so the outputs of one plane (axis 1) or of
     // the whole array (axis 0) are one run of input samples shifted by radius strides: one call
     // over that run, whose blocks are long.
-    const std::size_t run = axis == 0 ? static_cast<std::size_t>(shape[0] * shape[1]) * nk
-                                      : static_cast<std::size_t>(shape[1]) * nk;
+    const std::size_t run =
+        axis == 0 ? static_cast<std::size_t>(shape[0] * shape[1]) * nk : static_cast<std::size_t>(shape[1]) * nk;
     const std::int64_t runs = axis == 0 ? 1 : shape[0];
     for (std::int64_t i = 0; i < runs; ++i) {
       filter_line(in + (i * in_nj + offset[1]) * in_nk + offset[0] * in_nj * in_nk, stride, kernel, o, run);

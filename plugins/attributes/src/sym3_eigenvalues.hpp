@@ -28,10 +28,10 @@ inline CosSin third_of_acos(double r) {
   // 13 Chebyshev nodes, rewritten in powers of x (the sum of the terms' magnitudes stays below 0.5,
   // so nothing cancels), evaluated by Estrin's scheme: a tree of depth 4 instead of a chain of 12
   // dependent steps, which kept the loop over many matrices waiting on latency.
-  static constexpr double c[13] = {0.46791111376204425,    -0.026907018875910328,  0.004111357986966158,
-                                   -0.0008213478572713075, 0.00018690180655774795, -4.594744703276468e-05,
-                                   1.1890191672683579e-05, -3.197249212733438e-06, 8.820344416558504e-07,
-                                   -2.3861099626069165e-07, 6.824491221707902e-08, -2.7736702507424457e-08,
+  static constexpr double c[13] = {0.46791111376204425,     -0.026907018875910328,  0.004111357986966158,
+                                   -0.0008213478572713075,  0.00018690180655774795, -4.594744703276468e-05,
+                                   1.1890191672683579e-05,  -3.197249212733438e-06, 8.820344416558504e-07,
+                                   -2.3861099626069165e-07, 6.824491221707902e-08,  -2.7736702507424457e-08,
                                    8.195423963395745e-09};
   const double rc = std::min(1.0, std::max(-1.0, r));
   const double s = std::sqrt(0.5 * (1.0 + rc));

@@ -173,8 +173,9 @@ TEST(SegyBroken, MissingTracesAreMissingSamples) {
 // and the last trace), each is a dead trace in its place: the file opens without the NaN policy,
 // with the sample axis and affine of the same survey written whole (not the zeros of trace 0),
 // and reads as that survey with zeros at the placeholders. That holds whether the grid is found
-// from the corners (an inner placeholder only) or by reading every header. Beside a missing
-// trace, the placeholders' bins cannot be known: they are left out, and the message says so.
+// from the corners (an inner placeholder only) or by reading every header. Placeholders after
+// the survey's traces are left out, and the survey is read whole. Beside a missing trace, the
+// placeholders' bins cannot be known: they are left out, and the message says so.
 TEST(SegyBroken, PlaceholdersPaddingASurveyAreDeadTracesInTheirPlaces) {
   ScratchDir dir;
   for (bool crossline_sorted : {false, true}) {
@@ -224,6 +225,22 @@ TEST(SegyBroken, PlaceholdersPaddingASurveyAreDeadTracesInTheirPlaces) {
                 << "(" << i << ", " << j << ", " << k << ")";
         }
     }
+    // Placeholders after the survey: every bin has its trace, so nothing is missing.
+    s.placeholders = {};
+    s.trailing_placeholders = 2;
+    const std::string trailing_path = dir.file(name + "_trailing.sgy");
+    write_with_segyio(trailing_path, s);
+    const auto trailing = open_volume(trailing_path);
+    EXPECT_EQ(trailing->geometry().shape, full->geometry().shape);
+    EXPECT_EQ(trailing->geometry().z0, 100.0);
+    EXPECT_EQ(trailing->read(full->geometry().bounds()), full->read(full->geometry().bounds()));
+    for (const auto& d : trailing->format_details()) {
+      if (d.key != "traces") continue;
+      EXPECT_EQ(d.value, "63, every bin of the grid; 2 placeholders (dead traces with line numbers 0) besides them, "
+                         "not read");
+    }
+    s.trailing_placeholders = 0;
+
     s.placeholders = {{0, 0}};
     s.missing = {{3, 4}};
     const std::string path = dir.file(name + "_holes.sgy");

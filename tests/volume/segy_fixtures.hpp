@@ -51,6 +51,7 @@ struct SegySpec {
   // (i, j) of traces written in place as placeholders: flagged dead, every header field 0 but the
   // sample count and interval, samples 0.
   std::vector<std::array<int, 2>> placeholders;
+  int trailing_placeholders = 0; // placeholders written after every trace of the survey
 
   long trace0() const { return 3600L + 3200L * extended_headers; }
   int inline_number(int i) const { return il0 + (i + (gap_in_inlines && i >= ni / 2 ? 1 : 0)) * il_step; }
@@ -141,16 +142,20 @@ inline void write_with_segyio(const std::string& path, const SegySpec& s) {
 
   int trace = 0;
   const double factor = stored_factor(s.scalar);
+  const auto write_placeholder = [&](int at) {
+    std::array<char, SEGY_TRACE_HEADER_SIZE> h{};
+    segy_set_field(h.data(), SEGY_TR_TRACE_ID, 2);
+    segy_set_field(h.data(), SEGY_TR_SAMPLE_COUNT, s.ns);
+    segy_set_field(h.data(), SEGY_TR_SAMPLE_INTER, s.interval_us);
+    const std::vector<char> zeros(static_cast<std::size_t>(bytes), 0);
+    return segy_write_traceheader(fp, at, h.data(), s.trace0(), bytes) == SEGY_OK &&
+           segy_writetrace(fp, at, zeros.data(), s.trace0(), bytes) == SEGY_OK;
+  };
   for (const auto& [i, j] : order)
     for (int offset = 1; offset <= s.offsets; ++offset, ++trace) {
       std::array<char, SEGY_TRACE_HEADER_SIZE> h{};
       if (std::find(s.placeholders.begin(), s.placeholders.end(), std::array<int, 2>{i, j}) != s.placeholders.end()) {
-        segy_set_field(h.data(), SEGY_TR_TRACE_ID, 2);
-        segy_set_field(h.data(), SEGY_TR_SAMPLE_COUNT, s.ns);
-        segy_set_field(h.data(), SEGY_TR_SAMPLE_INTER, s.interval_us);
-        ASSERT_EQ(segy_write_traceheader(fp, trace, h.data(), s.trace0(), bytes), SEGY_OK);
-        const std::vector<char> zeros(static_cast<std::size_t>(bytes), 0);
-        ASSERT_EQ(segy_writetrace(fp, trace, zeros.data(), s.trace0(), bytes), SEGY_OK);
+        ASSERT_TRUE(write_placeholder(trace));
         continue;
       }
       segy_set_field(h.data(), s.inline_byte, s.inline_number(i));
@@ -176,6 +181,8 @@ inline void write_with_segyio(const std::string& path, const SegySpec& s) {
       const std::vector<char> samples = encoded_trace(layout, i, j, s.ns);
       ASSERT_EQ(segy_writetrace(fp, trace, samples.data(), s.trace0(), bytes), SEGY_OK);
     }
+  for (int n = 0; n < s.trailing_placeholders; ++n, ++trace)
+    ASSERT_TRUE(write_placeholder(trace));
   ASSERT_EQ(segy_close(fp), SEGY_OK);
 }
 

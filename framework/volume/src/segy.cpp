@@ -64,21 +64,29 @@ public:
   std::string source() const override { return path_; }
   std::string reopen_hint() const override { return hint_; }
   std::vector<FormatDetail> format_details() const override {
-    std::vector<FormatDetail> details{
-        {"sample_format",
-         std::string(segy::sample_format_name(layout_.format)) + " (code " + std::to_string(layout_.format) + ")"},
-        {"byte_order", segy::byte_order_name(layout_.little_endian)},
-        {"inline_byte", std::to_string(grid_.bytes.inline_byte)},
-        {"crossline_byte", std::to_string(grid_.bytes.crossline_byte)},
-        {"sorting", grid_.sorting()},
-        {"traces", grid_.irregular() ? "an irregular survey, whose missing traces read as missing samples: " +
-                                           segy::missing_text(grid_)
-                                     : std::to_string(grid_.ni * grid_.nj) + ", every bin of the grid"}};
+    std::vector<FormatDetail> details{{"sample_format", std::string(segy::sample_format_name(layout_.format)) +
+                                                            " (code " + std::to_string(layout_.format) + ")"},
+                                      {"byte_order", segy::byte_order_name(layout_.little_endian)},
+                                      {"inline_byte", std::to_string(grid_.bytes.inline_byte)},
+                                      {"crossline_byte", std::to_string(grid_.bytes.crossline_byte)},
+                                      {"sorting", grid_.sorting()},
+                                      {"traces", traces_text()}};
     if (!coordinates_.empty()) details.push_back({"coordinates", coordinates_});
     return details;
   }
 
 protected:
+  std::string traces_text() const {
+    const bool complete = std::find(grid_.traces.begin(), grid_.traces.end(), -1) == grid_.traces.end();
+    if (grid_.irregular() && !complete)
+      return "an irregular survey, whose missing traces read as missing samples: " + segy::missing_text(grid_);
+    std::string text = std::to_string(grid_.ni * grid_.nj) + ", every bin of the grid";
+    if (grid_.placeholders_left_out > 0)
+      text += "; " + std::to_string(grid_.placeholders_left_out) +
+              " placeholders (dead traces with line numbers 0) besides them, not read";
+    return text;
+  }
+
   void read_box(const Box& box, std::span<float> out) const override {
     // segyio keeps a file position: one reader at a time per handle.
     std::lock_guard lock(mutex_);

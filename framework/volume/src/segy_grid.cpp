@@ -462,7 +462,10 @@ Grid find_grid(segy_file* file, const Layout& layout, const SegyOptions& bytes, 
   if (!asked.problem.scan) throw FormatError(asked.problem.message, {path}, hint);
   Probe scanned = scan(file, layout, bytes, path);
   if (!scanned.grid) throw FormatError(asked.problem.message + "; " + scanned.problem.message, {path}, hint);
-  if (read_missing || !scanned.grid->irregular()) return *scanned.grid; // irregular, or padded with placeholders
+  // Read: a survey padded with placeholders, or one whose every bin has a trace (placeholders
+  // elsewhere in the file), or with missing samples read.
+  const auto& traces = scanned.grid->traces;
+  if (read_missing || std::find(traces.begin(), traces.end(), -1) == traces.end()) return *scanned.grid;
   throw FormatError("irregular survey at bytes " + pair_text(bytes) + ": " + missing_text(*scanned.grid) +
                         " (traces are missing where the survey has none, or the file was cut short)",
                     {path},

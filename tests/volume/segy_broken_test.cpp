@@ -239,6 +239,10 @@ TEST(SegyBroken, PlaceholdersPaddingASurveyAreDeadTracesInTheirPlaces) {
       EXPECT_EQ(d.value, "63, every bin of the grid; 2 placeholders (dead traces with line numbers 0) besides them, "
                          "not read");
     }
+    OpenOptions hinted;
+    hinted.reopen_hint = trailing->reopen_hint();
+    ASSERT_FALSE(hinted.reopen_hint.empty());
+    EXPECT_EQ(open_volume(trailing_path, hinted)->format_details(), trailing->format_details());
     s.trailing_placeholders = 0;
 
     s.placeholders = {{0, 0}};

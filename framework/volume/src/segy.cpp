@@ -220,7 +220,9 @@ std::unique_ptr<Volume> open_segy(const std::string& path, const OpenOptions& op
   std::optional<Grid> hinted;
   if (!options.reopen_hint.empty()) {
     hinted = segy::grid_from_hint(options.reopen_hint, stamp, options.segy, layout.traces);
-    if (hinted && hinted->irregular() && !read_missing) hinted.reset(); // find_grid refuses it, naming what is missing
+    // Missing traces are refused unless read as missing samples: find_grid refuses them, naming them.
+    if (hinted && !read_missing && std::find(hinted->traces.begin(), hinted->traces.end(), -1) != hinted->traces.end())
+      hinted.reset();
   }
   const Grid grid = hinted ? std::move(*hinted) : segy::find_grid(file.get(), layout, options.segy, read_missing, path);
 

@@ -17,8 +17,10 @@
 #include "formats.hpp"
 #include "geotandem/core/error.hpp"
 #include "geotandem/core/params.hpp"
+#include "segy_coordinates.hpp"
 #include "segy_file.hpp"
 #include "segy_grid.hpp"
+#include "segy_grid_hint.hpp"
 #include "segy_layout.hpp"
 
 namespace geotandem::volume::detail {
@@ -53,16 +55,17 @@ class SegyVolume final : public Volume {
 public:
   // `coordinates`: how geographic trace coordinates were taken (TraceCoordinates::description);
   // empty for lengths.
-  // `hint`: the irregular grid for other processes (segy::grid_hint); empty for a full grid.
+  // `stamp`: the file's when it was opened, which the grid handed to other processes carries.
   SegyVolume(std::string path, segy::Handle file, Layout layout, Grid grid, Geometry geometry, std::string coordinates,
-             std::string hint)
+             segy::FileStamp stamp)
       : path_(std::move(path)), file_(std::move(file)), layout_(layout), grid_(std::move(grid)),
-        geometry_(std::move(geometry)), coordinates_(std::move(coordinates)), hint_(std::move(hint)) {}
+        geometry_(std::move(geometry)), coordinates_(std::move(coordinates)), stamp_(stamp) {}
 
   const Geometry& geometry() const override { return geometry_; }
   std::string format() const override { return "SEG-Y"; }
   std::string source() const override { return path_; }
-  std::string reopen_hint() const override { return hint_; }
+  // Made when asked (by a manager, for its workers), not at every open.
+  std::string reopen_hint() const override { return segy::grid_hint(grid_, stamp_); }
   std::vector<FormatDetail> format_details() const override {
     std::vector<FormatDetail> details{{"sample_format", std::string(segy::sample_format_name(layout_.format)) +
                                                             " (code " + std::to_string(layout_.format) + ")"},
@@ -77,8 +80,7 @@ public:
 
 protected:
   std::string traces_text() const {
-    const bool complete = std::find(grid_.traces.begin(), grid_.traces.end(), -1) == grid_.traces.end();
-    if (grid_.irregular() && !complete)
+    if (grid_.missing_bins())
       return "an irregular survey, whose missing traces read as missing samples: " + segy::missing_text(grid_);
     std::string text = std::to_string(grid_.ni * grid_.nj) + ", every bin of the grid";
     if (grid_.placeholders_left_out > 0)
@@ -149,7 +151,7 @@ private:
   Grid grid_;
   Geometry geometry_;
   std::string coordinates_;
-  std::string hint_;
+  segy::FileStamp stamp_;
   mutable std::mutex mutex_;
   mutable std::vector<char> scratch_; // guarded by mutex_
 };
@@ -221,10 +223,9 @@ std::unique_ptr<Volume> open_segy(const std::string& path, const OpenOptions& op
   if (!options.reopen_hint.empty()) {
     hinted = segy::grid_from_hint(options.reopen_hint, stamp, options.segy, layout.traces);
     // Missing traces are refused unless read as missing samples: find_grid refuses them, naming them.
-    if (hinted && !read_missing && std::find(hinted->traces.begin(), hinted->traces.end(), -1) != hinted->traces.end())
-      hinted.reset();
+    if (hinted && !read_missing && hinted->missing_bins()) hinted.reset();
   }
-  const Grid grid = hinted ? std::move(*hinted) : segy::find_grid(file.get(), layout, options.segy, read_missing, path);
+  Grid grid = hinted ? std::move(*hinted) : segy::find_grid(file.get(), layout, options.segy, read_missing, path);
 
   const int ni = grid.ni, nj = grid.nj;
   auto corner = [&](int i, int j) { return segy::read_header(file.get(), layout, grid.trace_of(i, j), path); };
@@ -253,8 +254,8 @@ std::unique_ptr<Volume> open_segy(const std::string& path, const OpenOptions& op
   g.affine = grid.fitted ? usable_or_default(grid.fitted_affine)
                          : fit_affine(coordinates.xy(origin), coordinates.xy(corner(ni - 1, 0)),
                                       coordinates.xy(corner(0, nj - 1)), ni, nj);
-  return std::make_unique<SegyVolume>(path, std::move(file), layout, grid, g, coordinates.description(),
-                                      segy::grid_hint(grid, stamp));
+  return std::make_unique<SegyVolume>(path, std::move(file), layout, std::move(grid), g, coordinates.description(),
+                                      stamp);
 }
 
 } // namespace geotandem::volume::detail

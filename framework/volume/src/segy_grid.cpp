@@ -2,22 +2,14 @@
 
 #include "segy_grid.hpp"
 
-#include <sys/stat.h>
-
 #include <algorithm>
-#include <cerrno>
-#include <cmath>
-#include <cstdio>
-#include <cstring>
 #include <limits>
-#include <numbers>
 #include <numeric>
 #include <optional>
 #include <vector>
 
-#include <nlohmann/json.hpp>
-
 #include "geotandem/core/error.hpp"
+#include "segy_coordinates.hpp"
 
 namespace geotandem::volume::detail::segy {
 namespace {
@@ -177,57 +169,6 @@ std::int64_t line_step(std::vector<int>& numbers) {
   return step == 0 ? 1 : step;
 }
 
-// The least-squares fit of x = a + bu u + bv v (and y likewise) over traces at line-number offsets
-// (u, v) from the first trace, coordinates taken from the first trace's too, so that the sums of
-// products keep their precision.
-class CoordinateFit {
-public:
-  void add(std::int64_t u, std::int64_t v, const std::array<double, 2>& xy) {
-    if (n_ == 0) first_ = xy;
-    any_ = any_ || xy[0] != 0.0 || xy[1] != 0.0;
-    const double du = static_cast<double>(u), dv = static_cast<double>(v), dx = xy[0] - first_[0],
-                 dy = xy[1] - first_[1];
-    n_ += 1.0;
-    su_ += du;
-    sv_ += dv;
-    suu_ += du * du;
-    suv_ += du * dv;
-    svv_ += dv * dv;
-    sx_ = {sx_[0] + dx, sx_[1] + du * dx, sx_[2] + dv * dx};
-    sy_ = {sy_[0] + dy, sy_[1] + du * dy, sy_[2] + dv * dy};
-  }
-
-  // The fit in grid indices: line numbers u = u0 + i u_step, v = v0 + j v_step (offsets from the
-  // first trace's). The default grid at the first trace without coordinates or with every trace on
-  // one line.
-  SurveyAffine in_indices(double u0, double u_step, double v0, double v_step) const {
-    SurveyAffine a;
-    a.x0 = first_[0];
-    a.y0 = first_[1];
-    const double mu = su_ / n_, mv = sv_ / n_;
-    const double vuu = suu_ - n_ * mu * mu, vuv = suv_ - n_ * mu * mv, vvv = svv_ - n_ * mv * mv;
-    const double det = vuu * vvv - vuv * vuv;
-    if (!any_ || !(det > 1e-9 * (vuu * vvv))) return a;
-    // Centred on the means: the slopes from the 2 x 2 system; the value at (u0, v0) from the means.
-    auto fit = [&](const std::array<double, 3>& s, double first, double& x0, double& along_i, double& along_j) {
-      const double mean = s[0] / n_, cu = s[1] - n_ * mu * mean, cv = s[2] - n_ * mv * mean;
-      const double bu = (cu * vvv - cv * vuv) / det, bv = (cv * vuu - cu * vuv) / det;
-      x0 = first + mean + bu * (u0 - mu) + bv * (v0 - mv);
-      along_i = bu * u_step;
-      along_j = bv * v_step;
-    };
-    fit(sx_, first_[0], a.x0, a.xi, a.xj);
-    fit(sy_, first_[1], a.y0, a.yi, a.yj);
-    return a;
-  }
-
-private:
-  std::array<double, 2> first_{};
-  bool any_ = false;
-  double n_ = 0.0, su_ = 0.0, sv_ = 0.0, suu_ = 0.0, suv_ = 0.0, svv_ = 0.0;
-  std::array<double, 3> sx_{}, sy_{};
-};
-
 // Every trace header read: a survey whose sorted traces leave bins of its rectangle empty. The
 // rectangle is spanned by the smallest and largest line numbers at the common step; a rectangle
 // more than ten times the traces is not taken for a survey (wrong header bytes, most likely). The
@@ -349,50 +290,6 @@ int field(const TraceHeader& header, int position) {
   return value;
 }
 
-TraceCoordinates::TraceCoordinates(const TraceHeader& first) : units_(field(first, SEGY_TR_COORD_UNITS)) {
-  if (!geographic()) return;
-  origin_ = scaled(first);
-  // WGS84: the meridian's radius of curvature M and the prime vertical's N at the first trace.
-  constexpr double a = 6378137.0, f = 1.0 / 298.257223563, e2 = f * (2.0 - f);
-  const double phi = origin_[1] * std::numbers::pi / 180.0;
-  const double w = 1.0 - e2 * std::sin(phi) * std::sin(phi);
-  const double m = a * (1.0 - e2) / (w * std::sqrt(w)), n = a / std::sqrt(w);
-  north_per_degree_ = m * std::numbers::pi / 180.0;
-  east_per_degree_ = n * std::cos(phi) * std::numbers::pi / 180.0;
-}
-
-std::array<double, 2> TraceCoordinates::scaled(const TraceHeader& header) const {
-  const double scalar = field(header, SEGY_TR_SOURCE_GROUP_SCALAR);
-  const double factor = scalar == 0 ? 1.0 : scalar > 0 ? scalar : 1.0 / -scalar;
-  std::array<double, 2> xy{field(header, SEGY_TR_CDP_X) * factor, field(header, SEGY_TR_CDP_Y) * factor};
-  if (units_ == 2) {
-    xy = {xy[0] / 3600.0, xy[1] / 3600.0};
-  } else if (units_ == 4) {
-    for (double& v : xy) { // +-DDDMMSS.ss
-      const double d = std::floor(std::fabs(v) / 10000.0), m = std::floor((std::fabs(v) - d * 10000.0) / 100.0);
-      const double sec = std::fabs(v) - d * 10000.0 - m * 100.0;
-      v = std::copysign(d + m / 60.0 + sec / 3600.0, v);
-    }
-  }
-  return xy;
-}
-
-std::array<double, 2> TraceCoordinates::xy(const TraceHeader& header) const {
-  const std::array<double, 2> xy = scaled(header);
-  if (!geographic()) return xy;
-  return {(xy[0] - origin_[0]) * east_per_degree_, (xy[1] - origin_[1]) * north_per_degree_};
-}
-
-std::string TraceCoordinates::description() const {
-  if (!geographic()) return "";
-  static constexpr const char* names[] = {"seconds of arc", "decimal degrees", "degrees, minutes and seconds"};
-  char origin[64];
-  std::snprintf(origin, sizeof origin, "longitude %.6f, latitude %.6f", origin_[0], origin_[1]);
-  return std::string(names[units_ - 2]) + " (byte 89 = " + std::to_string(units_) +
-         "): longitude and latitude, taken as metres east and north of the first trace (" + origin +
-         ") on the WGS84 ellipsoid; x and y are local, not map coordinates";
-}
-
 TraceHeader read_header(segy_file* file, const Layout& layout, int trace, const std::string& path) {
   TraceHeader header{};
   if (int status = segy_traceheader(file, trace, header.data(), layout.trace0, layout.trace_bytes); status != SEGY_OK)
@@ -464,121 +361,13 @@ Grid find_grid(segy_file* file, const Layout& layout, const SegyOptions& bytes, 
   if (!scanned.grid) throw FormatError(asked.problem.message + "; " + scanned.problem.message, {path}, hint);
   // Read: a survey padded with placeholders, or one whose every bin has a trace (placeholders
   // elsewhere in the file), or with missing samples read.
-  const auto& traces = scanned.grid->traces;
-  if (read_missing || std::find(traces.begin(), traces.end(), -1) == traces.end()) return *scanned.grid;
+  if (read_missing || !scanned.grid->missing_bins()) return *scanned.grid;
   throw FormatError("irregular survey at bytes " + pair_text(bytes) + ": " + missing_text(*scanned.grid) +
                         " (traces are missing where the survey has none, or the file was cut short)",
                     {path},
                     "read the missing traces as missing samples with --nan fill (input.nan: fill in a recipe): "
                     "outside every body, dead traces under attributes; or pad the cube to a full rectangle of "
                     "traces with dead traces");
-}
-
-FileStamp file_stamp(const std::string& path) {
-  struct stat st {};
-  if (::stat(path.c_str(), &st) != 0)
-    throw IoError(std::string("cannot examine the file: ") + std::strerror(errno), {path});
-  return {static_cast<std::uintmax_t>(st.st_size),
-          static_cast<std::int64_t>(st.st_mtim.tv_sec) * 1000000000 + st.st_mtim.tv_nsec};
-}
-
-std::string grid_hint(const Grid& g, const FileStamp& stamp) {
-  if (!g.fitted) return {}; // found from a few headers: nothing to spare
-  // Each trace's bin (row-major), in file order; then runs of traces whose bins go on by a constant
-  // step: [first trace, its bin, count, step] (step 1 or nj along a line, negative for numbers that
-  // count down).
-  std::vector<std::int64_t> bin_of;
-  for (std::size_t b = 0; b < g.traces.size(); ++b)
-    if (const std::int32_t t = g.traces[b]; t >= 0) {
-      if (bin_of.size() <= static_cast<std::size_t>(t)) bin_of.resize(static_cast<std::size_t>(t) + 1, -1);
-      bin_of[static_cast<std::size_t>(t)] = static_cast<std::int64_t>(b);
-    }
-  nlohmann::json runs = nlohmann::json::array();
-  for (std::size_t t = 0; t < bin_of.size();) {
-    if (bin_of[t] < 0) { // a placeholder left out
-      ++t;
-      continue;
-    }
-    const std::int64_t step = t + 1 < bin_of.size() ? bin_of[t + 1] - bin_of[t] : 1;
-    std::size_t n = 1;
-    while (t + n < bin_of.size() && bin_of[t + n] >= 0 && bin_of[t + n] - bin_of[t + n - 1] == step)
-      ++n;
-    runs.push_back({t, bin_of[t], n, n > 1 ? step : 1});
-    t += n;
-  }
-  // Holes everywhere make runs of a trace or two: the hint would weigh about as much as the headers
-  // it spares each worker, so there is none.
-  if (runs.size() > std::max<std::size_t>(1024, bin_of.size() / 16)) return {};
-  const SurveyAffine& a = g.fitted_affine;
-  return nlohmann::json{{"segy_grid",
-                         {{"size", stamp.size},
-                          {"modified_ns", stamp.modified_ns},
-                          {"bytes", {g.bytes.inline_byte, g.bytes.crossline_byte}},
-                          {"inline_sorted", g.inline_sorted},
-                          {"lines", {g.ni, g.nj, g.il0, g.il_step, g.xl0, g.xl_step}},
-                          {"first_live", g.first_live},
-                          {"placeholders_left_out", g.placeholders_left_out},
-                          {"affine", {a.x0, a.xi, a.xj, a.y0, a.yi, a.yj}},
-                          {"runs", std::move(runs)}}}}
-      .dump();
-}
-
-std::optional<Grid> grid_from_hint(const std::string& hint, const FileStamp& stamp, const SegyOptions& bytes,
-                                   int traces) {
-  try {
-    const nlohmann::json h = nlohmann::json::parse(hint).at("segy_grid");
-    if (h.at("size").get<std::uintmax_t>() != stamp.size ||
-        h.at("modified_ns").get<std::int64_t>() != stamp.modified_ns ||
-        h.at("bytes") != nlohmann::json{bytes.inline_byte, bytes.crossline_byte})
-      return std::nullopt;
-    Grid g;
-    g.bytes = bytes;
-    g.inline_sorted = h.at("inline_sorted").get<bool>();
-    const auto lines = h.at("lines").get<std::array<int, 6>>();
-    g.ni = lines[0];
-    g.nj = lines[1];
-    g.il0 = lines[2];
-    g.il_step = lines[3];
-    g.xl0 = lines[4];
-    g.xl_step = lines[5];
-    const auto a = h.at("affine").get<std::array<double, 6>>();
-    g.fitted = true;
-    g.fitted_affine = {a[0], a[1], a[2], a[3], a[4], a[5]};
-    g.first_live = h.at("first_live").get<int>();
-    g.placeholders_left_out = h.at("placeholders_left_out").get<int>();
-    const std::int64_t bins = std::int64_t{g.ni} * g.nj;
-    if (g.ni < 1 || g.nj < 1 || g.il_step == 0 || g.xl_step == 0 || bins > 10 * std::int64_t{traces} ||
-        bins > std::numeric_limits<std::int32_t>::max())
-      return std::nullopt;
-    const nlohmann::json& runs = h.at("runs");
-    if (runs.empty()) { // a full grid padded with placeholders: the traces follow from the sorting
-      if (bins != traces || g.placeholders_left_out != 0 || g.first_live < 0 || g.first_live >= traces)
-        return std::nullopt;
-      return g;
-    }
-    g.traces.assign(static_cast<std::size_t>(bins), -1);
-    std::int64_t placed = 0, next = 0;
-    for (const auto& run : runs) {
-      const auto [t, b, n, step] = run.get<std::array<std::int64_t, 4>>();
-      // Runs take the file's traces in order (placeholders left out between them), each trace
-      // once, each bin at most once.
-      if (t < next || n < 1 || n > traces - t || step < -bins || step > bins) return std::nullopt;
-      for (std::int64_t m = 0; m < n; ++m) {
-        const std::int64_t bin = b + m * step;
-        if (bin < 0 || bin >= bins || g.traces[static_cast<std::size_t>(bin)] >= 0) return std::nullopt;
-        g.traces[static_cast<std::size_t>(bin)] = static_cast<std::int32_t>(t + m);
-      }
-      placed += n;
-      next = t + n;
-    }
-    // Every trace but the placeholders left out, the first live one among them.
-    if (placed != traces - g.placeholders_left_out || g.first_live < 0 || g.first_live >= traces ||
-        std::find(g.traces.begin(), g.traces.end(), g.first_live) == g.traces.end())
-      return std::nullopt;
-    return g;
-  } catch (const nlohmann::json::exception&) {
-    return std::nullopt;
-  }
 }
 
 } // namespace geotandem::volume::detail::segy

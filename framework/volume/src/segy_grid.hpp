@@ -3,6 +3,7 @@
 // from the trace headers at chosen byte positions. When the positions asked for do not describe
 // a regular grid, the common alternatives are tried so that the error can name the ones that do.
 
+#include <algorithm>
 #include <array>
 #include <cstdint>
 #include <optional>
@@ -41,6 +42,8 @@ struct Grid {
   int placeholders_left_out = 0;
 
   bool irregular() const { return !traces.empty(); }
+  // Whether some bin of the rectangle has no trace (its samples are missing).
+  bool missing_bins() const { return std::find(traces.begin(), traces.end(), -1) != traces.end(); }
   // The file's trace at (i, j); -1 when the survey has no trace there.
   int trace_of(std::int64_t i, std::int64_t j) const {
     if (irregular()) return traces[static_cast<std::size_t>(i * nj + j)];
@@ -58,29 +61,6 @@ int field(const TraceHeader& header, int position);
 // `bytes` are both 0, as some programs pad a survey to a full rectangle. It has no place of its
 // own: in a full grid its place in the file is its bin, and its samples are read as written.
 bool placeholder(const TraceHeader& header, const SegyOptions& bytes);
-
-// How the CDP coordinates of a file's traces (bytes 181/185, scaled by byte 71) become x and y,
-// after the coordinate units of its first trace (byte 89). Lengths (1, and 0 for unspecified) are
-// taken as written. Longitude and latitude (2: seconds of arc, 3: decimal degrees, 4: degrees,
-// minutes and seconds written DDDMMSS) are taken as metres east and north of the first trace, by
-// the WGS84 ellipsoid's radii of curvature at its latitude: across a survey of tens of kilometres
-// the scale is off by a few parts in a million, so bin spacing and azimuths are right, but the
-// coordinates are local, not those of a map projection.
-class TraceCoordinates {
-public:
-  explicit TraceCoordinates(const TraceHeader& first);
-  std::array<double, 2> xy(const TraceHeader& header) const;
-  bool geographic() const { return units_ >= 2 && units_ <= 4; }
-  // For geographic units, what they are and how they were taken (a format detail); empty otherwise.
-  std::string description() const;
-
-private:
-  // The coordinates as written, scaled: longitude and latitude in degrees when geographic.
-  std::array<double, 2> scaled(const TraceHeader& header) const;
-  int units_ = 0;
-  std::array<double, 2> origin_{}; // the first trace's longitude and latitude (degrees)
-  double east_per_degree_ = 0.0, north_per_degree_ = 0.0;
-};
 
 // Throws IoError naming the trace when its header cannot be read.
 TraceHeader read_header(segy_file* file, const Layout& layout, int trace, const std::string& path);
@@ -103,27 +83,6 @@ void check_header_bytes(const SegyOptions& bytes, const std::string& path);
 // FormatError that names the positions that would work, and how to pass them.
 Grid find_grid(segy_file* file, const Layout& layout, const SegyOptions& bytes, bool read_missing,
                const std::string& path);
-
-// A file's size and modification time: what says that a grid found earlier still describes it.
-struct FileStamp {
-  std::uintmax_t size = 0;
-  std::int64_t modified_ns = 0;
-  bool operator==(const FileStamp&) const = default;
-};
-// Throws IoError naming the file when it cannot be examined.
-FileStamp file_stamp(const std::string& path);
-
-// An irregular grid as text (Volume::reopen_hint), so that other processes opening the same file
-// skip the pass over every trace header: its numbers, affine and stamp, and its traces as runs of
-// consecutive traces whose bins follow at a constant step (about one run per line of a survey with
-// a ragged outline), none for a survey padded with placeholders. Empty for a grid found from a few
-// headers, and when the runs are short (holes everywhere).
-std::string grid_hint(const Grid& grid, const FileStamp& stamp);
-// The grid of a hint, when the hint is well formed, for this stamp and these header bytes, and
-// places each of the file's `traces` traces once; nothing otherwise (the grid is then found as
-// usual). Reading still checks every trace's line numbers against its place.
-std::optional<Grid> grid_from_hint(const std::string& hint, const FileStamp& stamp, const SegyOptions& bytes,
-                                   int traces);
 
 // What an irregular grid lacks, for messages: "62 of 63 traces (7 inlines x 9 crosslines); the
 // first missing: inline 106, crossline 300". Empty for a full grid.

@@ -77,6 +77,26 @@ inline void expect_near_affine(const SurveyAffine& a, const SurveyAffine& b, dou
   EXPECT_NEAR(a.yj, b.yj, tolerance);
 }
 
+// The same grid and sample axis: shape, line numbers and their steps, first sample and interval.
+inline void expect_same_grid(const Geometry& a, const Geometry& b) {
+  EXPECT_EQ(a.shape, b.shape);
+  EXPECT_EQ(a.inline0, b.inline0);
+  EXPECT_EQ(a.inline_step, b.inline_step);
+  EXPECT_EQ(a.crossline0, b.crossline0);
+  EXPECT_EQ(a.crossline_step, b.crossline_step);
+  EXPECT_EQ(a.z0, b.z0);
+  EXPECT_EQ(a.dz, b.dz);
+}
+
+// Two affines place the four corner traces of a grid of `shape` within `tolerance` metres.
+inline void expect_near_at_corners(const SurveyAffine& a, const SurveyAffine& b, const Index3& shape,
+                                   double tolerance) {
+  const double ni = static_cast<double>(shape[0] - 1), nj = static_cast<double>(shape[1] - 1);
+  for (auto [i, j] : {std::array<double, 2>{0, 0}, {ni, 0}, {0, nj}, {ni, nj}})
+    for (std::size_t axis = 0; axis < 2; ++axis)
+      EXPECT_NEAR(a.apply(i, j)[axis], b.apply(i, j)[axis], tolerance) << "(" << i << ", " << j << ")";
+}
+
 inline void write_bytes(const std::string& path, const std::string& bytes) {
   std::ofstream out(path, std::ios::binary | std::ios::trunc);
   out.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));

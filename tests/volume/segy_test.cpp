@@ -222,13 +222,7 @@ TEST(SegyWrite, RoundTripKeepsGeometryAndSamples) {
 
   auto back = open_volume(path);
   const Geometry& b = back->geometry();
-  EXPECT_EQ(b.shape, g.shape);
-  EXPECT_EQ(b.inline0, g.inline0);
-  EXPECT_EQ(b.inline_step, g.inline_step);
-  EXPECT_EQ(b.crossline0, g.crossline0);
-  EXPECT_EQ(b.crossline_step, g.crossline_step);
-  EXPECT_EQ(b.dz, g.dz);
-  EXPECT_EQ(b.z0, g.z0);
+  geotandem::volume::testing::expect_same_grid(b, g);
   EXPECT_EQ(b.z_unit, g.z_unit);
   // Coordinates are stored in centimetres: corners within half a centimetre.
   for (double i : {0.0, g.shape[0] - 1.0})

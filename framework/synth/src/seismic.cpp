@@ -1,8 +1,9 @@
 // The seismic kind: noiseless traces from the model (seismic_model.cpp) plus band-limited noise
 // (white noise per sample, convolved with the wavelet along the trace and with a 3x3 binomial
-// kernel across traces).
+// kernel across traces, in floats).
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <cstring>
 #include <limits>
@@ -18,35 +19,70 @@ namespace geotandem::synth {
 namespace detail {
 namespace {
 
-constexpr double binomial[3] = {0.25, 0.5, 0.25};
+// Eight floats as one value (a GCC/Clang vector extension); loads and stores go through memcpy.
+using Float8 = float __attribute__((vector_size(32)));
+constexpr std::int64_t kLanes = 8;
 
-// out[k] = sum over t < terms of weights[t] * rows[t][k], for k < n, each sum from 0.0 in the order
-// t = 0, 1, ... (the same operations as adding one weighted row after another), kept in registers
-// for eight samples at a time (explicit vectors: left to itself the compiler vectorises over t).
-GEOTANDEM_AVX2_CLONES void weighted_sum(double* __restrict out, const double* const* rows, const double* weights,
-                                        std::size_t terms, std::int64_t n) {
-  using Lanes = double __attribute__((vector_size(32))); // four samples (two SSE registers by default)
+// Unit-variance white noise (uniform in [-sqrt 3, sqrt 3)) at samples k0 .. k0 + n of the trace
+// whose stream is `trace_key`: sample k is uniform(hash1(trace_key, k), ...) in double precision
+// (the stream the generator has always drawn), rounded to a float. Four samples at a time: the
+// 64-bit multiplications of the hash as vectors, and the top 53 bits made a double exactly (52 of
+// them as a mantissa, the last added as 2^-53), so every value has the bits of the scalar formula.
+GEOTANDEM_AVX2_CLONES void white_noise(std::uint64_t trace_key, std::int64_t k0, std::int64_t n, float* out) {
+  using U64x4 = std::uint64_t __attribute__((vector_size(32)));
+  using F64x4 = double __attribute__((vector_size(32)));
+  using F32x4 = float __attribute__((vector_size(16)));
+  constexpr double lo = -1.7320508075688772, hi = 1.7320508075688772;
+  const U64x4 lanes = {0u, 1u, 2u, 3u};
+  const U64x4 one = {0x3ff0000000000000u, 0x3ff0000000000000u, 0x3ff0000000000000u, 0x3ff0000000000000u};
+  const std::uint64_t half_ulp = std::bit_cast<std::uint64_t>(0x1.0p-53);
   std::int64_t k = 0;
-  for (; k + 8 <= n; k += 8) {
-    Lanes low = {0.0, 0.0, 0.0, 0.0}, high = low;
-    for (std::size_t t = 0; t < terms; ++t) {
-      const double w = weights[t];
-      Lanes a, b;
-      std::memcpy(&a, rows[t] + k, sizeof a);
-      std::memcpy(&b, rows[t] + k + 4, sizeof b);
-      low += w * a;
-      high += w * b;
-    }
-    std::memcpy(out + k, &low, sizeof low);
-    std::memcpy(out + k + 4, &high, sizeof high);
+  for (; k + 4 <= n; k += 4) {
+    U64x4 x = trace_key ^ (static_cast<std::uint64_t>(k0 + k) + lanes); // hash1, then mix64
+    x += 0x9e3779b97f4a7c15u;
+    x = (x ^ (x >> 30)) * 0xbf58476d1ce4e5b9u;
+    x = (x ^ (x >> 27)) * 0x94d049bb133111ebu;
+    x = x ^ (x >> 31);
+    const F64x4 high = reinterpret_cast<F64x4>((x >> 12) | one) - 1.0; // (x >> 12) 2^-52
+    const F64x4 low = reinterpret_cast<F64x4>((0u - ((x >> 11) & 1u)) & half_ulp);
+    const F64x4 value = lo + (hi - lo) * (high + low);
+    const F32x4 rounded = __builtin_convertvector(value, F32x4);
+    std::memcpy(out + k, &rounded, sizeof rounded);
   }
-  for (; k < n; ++k) {
-    double acc = 0.0;
-    for (std::size_t t = 0; t < terms; ++t)
-      acc += weights[t] * rows[t][k];
-    out[k] = acc;
+  for (; k < n; ++k)
+    out[k] = static_cast<float>(uniform(hash1(trace_key, k0 + k), lo, hi));
+}
+
+// out[k] = w[0] in[k] + sum over d = 1 .. radius of w[d] (in[k - d] + in[k + d]) for k < n (a
+// multiple of 8), in that order: a symmetric filter, in[-radius .. n + radius) readable.
+GEOTANDEM_AVX2_CLONES void symmetric_filter(const float* in, const float* w, std::int64_t radius, std::int64_t n,
+                                            float* out) {
+  for (std::int64_t k = 0; k < n; k += kLanes) {
+    Float8 c;
+    std::memcpy(&c, in + k, sizeof c);
+    Float8 sum = w[0] * c;
+    for (std::int64_t d = 1; d <= radius; ++d) {
+      Float8 before, after;
+      std::memcpy(&before, in + k - d, sizeof before);
+      std::memcpy(&after, in + k + d, sizeof after);
+      sum += w[d] * (before + after);
+    }
+    std::memcpy(out + k, &sum, sizeof sum);
   }
 }
+
+// out[k] = 0.25 a[k] + 0.5 b[k] + 0.25 c[k] for k < n (a multiple of 8): the binomial 1-2-1.
+GEOTANDEM_AVX2_CLONES void binomial3(const float* a, const float* b, const float* c, std::int64_t n, float* out) {
+  for (std::int64_t k = 0; k < n; k += kLanes) {
+    Float8 x, y, z;
+    std::memcpy(&x, a + k, sizeof x);
+    std::memcpy(&y, b + k, sizeof y);
+    std::memcpy(&z, c + k, sizeof z);
+    const Float8 sum = 0.25f * x + 0.5f * y + 0.25f * z;
+    std::memcpy(out + k, &sum, sizeof sum);
+  }
+}
+
 // RMS of the noise before scaling: unit-variance white noise through the wavelet taps (sum of
 // squares) and the 3x3 binomial kernel (sum of squares 0.375 per axis).
 double unit_noise_rms(const Wavelet& wavelet) {
@@ -70,7 +106,7 @@ protected:
       if (model_.noise_scale > 0.0) slabs.advance(i);
       for (auto j = box.lo[1]; j < box.hi[1]; ++j) {
         model_.trace(i, j, box.lo[2], box.hi[2], signal.data());
-        if (model_.noise_scale > 0.0) slabs.noise(j - box.lo[1], signal.data());
+        if (model_.noise_scale > 0.0) slabs.add_noise(j - box.lo[1], signal.data());
         for (std::int64_t k = 0; k < nk; ++k)
           out[at++] = static_cast<float>(signal[static_cast<std::size_t>(k)]);
       }
@@ -78,78 +114,99 @@ protected:
   }
 
 private:
-  // Temporal convolutions of white noise for the three inlines around the current one, kept as a
-  // rolling window so that each inline is convolved once per read.
+  // The noise of the box's traces, in floats: white noise per trace filtered by the wavelet along
+  // it, then by the binomial 1-2-1 across crosslines (kept per inline) and across inlines (per
+  // trace read). The three inlines around the current one are a rolling window, so that each
+  // inline is filtered once per read. A sample's noise depends only on its trace and sample index.
   class NoiseSlabs {
   public:
     NoiseSlabs(const SeismicModel& model, const volume::Box& box)
-        : model_(model), box_(box), nj_(box.size(1) + 2), nk_(box.size(2)) {
+        : model_(model), box_(box), nj_(box.size(1)), nk_(box.size(2)), stride_((nk_ + kLanes - 1) / kLanes * kLanes),
+          radius_(model.wavelet.half_taps()) {
       for (auto& s : slab_)
-        s.resize(static_cast<std::size_t>(nj_ * nk_));
+        s.resize(static_cast<std::size_t>(nj_ * stride_));
+      const auto& taps = model_.wavelet.taps;
+      for (std::int64_t d = 0; d <= radius_; ++d)
+        half_taps_.push_back(static_cast<float>(taps[static_cast<std::size_t>(radius_ + d)]));
+      white_.resize(static_cast<std::size_t>(stride_ + 2 * radius_));
+      filtered_.resize(static_cast<std::size_t>((nj_ + 2) * stride_));
+      sum_.resize(static_cast<std::size_t>(stride_));
     }
     // Makes the slabs hold inlines i - 1, i, i + 1.
     void advance(std::int64_t i) {
       for (std::int64_t d = -1; d <= 1; ++d) {
         const std::int64_t want = i + d;
-        auto& slot = slab_[static_cast<std::size_t>(((want % 3) + 3) % 3)];
-        auto& held = held_[static_cast<std::size_t>(((want % 3) + 3) % 3)];
-        if (held == want) continue;
-        fill(want, slot);
-        held = want;
+        const auto slot = static_cast<std::size_t>(((want % 3) + 3) % 3);
+        if (held_[slot] == want) continue;
+        fill(want, slab_[slot]);
+        held_[slot] = want;
       }
       current_ = i;
     }
     // Adds the scaled noise of trace (current, box.lo[1] + jj) to `out`.
-    void noise(std::int64_t jj, double* out) const {
-      const double* rows[9];
-      double weights[9];
-      for (int di = 0; di < 3; ++di) {
-        const auto& s = slab_[static_cast<std::size_t>((((current_ + di - 1) % 3) + 3) % 3)];
-        for (int dj = 0; dj < 3; ++dj)
-          rows[di * 3 + dj] = s.data() + (jj + dj) * nk_;
-      }
-      for (int n = 0; n < 9; ++n)
-        weights[n] = binomial[n / 3] * binomial[n % 3];
-      // Per sample the same sum in the same order (n = 0 .. 8), accumulated across the trace so
-      // that the loop over samples vectorises.
-      sum_.resize(static_cast<std::size_t>(nk_));
-      weighted_sum(sum_.data(), rows, weights, 9, nk_);
+    void add_noise(std::int64_t jj, double* out) {
+      const float* row[3];
+      for (int di = 0; di < 3; ++di)
+        row[di] = slab_[static_cast<std::size_t>((((current_ + di - 1) % 3) + 3) % 3)].data() + jj * stride_;
+      binomial3(row[0], row[1], row[2], stride_, sum_.data());
       for (std::int64_t k = 0; k < nk_; ++k)
-        out[k] += model_.noise_scale * sum_[static_cast<std::size_t>(k)];
+        out[k] += model_.noise_scale * static_cast<double>(sum_[static_cast<std::size_t>(k)]);
     }
 
   private:
-    void fill(std::int64_t i, std::vector<double>& slab) const {
-      const auto& taps = model_.wavelet.taps;
-      const std::int64_t h = model_.wavelet.half_taps();
-      std::vector<double> white(static_cast<std::size_t>(nk_ + 2 * h));
-      std::vector<const double*> rows(taps.size());
-      for (std::size_t t = 0; t < taps.size(); ++t)
-        rows[t] = white.data() + 2 * h - static_cast<std::int64_t>(t);
-      for (std::int64_t jj = 0; jj < nj_; ++jj) {
+    void fill(std::int64_t i, std::vector<float>& slab) {
+      // The white noise the filter reads: a radius each side of the stride's samples.
+      const std::int64_t k_white = box_.lo[2] - radius_;
+      const std::int64_t n_white = static_cast<std::int64_t>(white_.size());
+      const float* centre = white_.data() + radius_;
+      for (std::int64_t jj = 0; jj < nj_ + 2; ++jj) {
         const std::uint64_t trace_key = hash2(model_.noise_key, i, box_.lo[1] - 1 + jj);
-        for (std::int64_t n = 0; n < nk_ + 2 * h; ++n)
-          white[static_cast<std::size_t>(n)] = uniform(hash1(trace_key, box_.lo[2] - h + n), -1.7320508075688772,
-                                                       1.7320508075688772); // unit variance
-        // The wavelet filter, sample k summing its taps t = 0 .. 2h in order (as a dot product
-        // per sample would), with the loop over samples innermost so that it vectorises.
-        weighted_sum(slab.data() + jj * nk_, rows.data(), taps.data(), taps.size(), nk_);
+        white_noise(trace_key, k_white, n_white, white_.data());
+        symmetric_filter(centre, half_taps_.data(), radius_, stride_, filtered_.data() + jj * stride_);
       }
+      for (std::int64_t jj = 0; jj < nj_; ++jj)
+        binomial3(filtered_.data() + jj * stride_, filtered_.data() + (jj + 1) * stride_,
+                  filtered_.data() + (jj + 2) * stride_, stride_, slab.data() + jj * stride_);
     }
 
     const SeismicModel& model_;
     volume::Box box_;
-    std::int64_t nj_, nk_;
-    std::array<std::vector<double>, 3> slab_;
+    std::int64_t nj_, nk_, stride_, radius_;
+    std::array<std::vector<float>, 3> slab_;
+    std::vector<float> half_taps_, white_, filtered_, sum_;
     std::array<std::int64_t, 3> held_{std::numeric_limits<std::int64_t>::min(),
                                       std::numeric_limits<std::int64_t>::min(),
                                       std::numeric_limits<std::int64_t>::min()};
     std::int64_t current_ = 0;
-    mutable std::vector<double> sum_;
   };
 
   SeismicModel model_;
 };
+
+// Tables the layers that traces can reach: samples -2h - 1 .. nk + 2h + 1 under every fold of the
+// cube (the shift is affine, so it is extreme at the corners; the stretch lies in [1, 1 + sum of
+// the bumps' heights]). Capped at 2^20 layers; a layer outside the table is computed on demand.
+void table_layers(SeismicModel& model) {
+  const auto& shape = model.frame.geometry().shape;
+  double shift_lo = HUGE_VAL, shift_hi = -HUGE_VAL;
+  for (const double i : {0.0, static_cast<double>(shape[0] - 1)})
+    for (const double j : {0.0, static_cast<double>(shape[1] - 1)}) {
+      const Vec3 p = model.frame.to_frame(i, j, 0.0);
+      const double shift = model.fold.offset + model.fold.dip_x * p.x + model.fold.dip_y * p.y;
+      shift_lo = std::min(shift_lo, shift);
+      shift_hi = std::max(shift_hi, shift);
+    }
+  double stretch_hi = 1.0;
+  for (const auto& b : model.fold.bumps)
+    stretch_hi += std::max(0.0, b.height);
+  const double reach = 2.0 * model.wavelet.half + 1.0;
+  const double z_lo = -reach - shift_hi, z_hi = static_cast<double>(shape[2]) + reach - shift_lo;
+  const double m_lo = std::min(z_lo, z_lo / stretch_hi) / model.spacing - 2.0;
+  const double m_hi = std::max(z_hi, z_hi / stretch_hi) / model.spacing + 2.0;
+  const double most = 1048576.0;
+  if (!(m_hi - m_lo < most)) return;
+  model.table_layers(static_cast<std::int64_t>(std::floor(m_lo)), static_cast<std::int64_t>(std::ceil(m_hi)) + 1);
+}
 
 struct RmsFigures {
   double all = 0.0, background = 0.0, chaotic = 0.0;
@@ -241,6 +298,7 @@ std::unique_ptr<SyntheticCube> make_seismic(const SeismicOptions& options) {
   model.noise_key = detail::key(options.seed, detail::Stream::noise);
   model.fold = std::move(layout.fold);
   model.spacing = options.reflector_spacing;
+  detail::table_layers(model);
   model.chaotic_amplitude = options.chaotic_gain; // same spike density inside and out: RMS ratio = gain
   model.chaotic = std::move(layout.chaotic);
   model.spots = std::move(layout.spots);

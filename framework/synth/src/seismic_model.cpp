@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <atomic>
 #include <cmath>
+#include <cstring>
 #include <numbers>
 
 #include "fast_exp.hpp"
@@ -26,29 +27,64 @@ GEOTANDEM_AVX2_CLONES void exponentials(double a, const double* __restrict first
   }
 }
 
-// values[t * n + m] = amplitude * (1 - 2 a x^2) g for spike m at tap t of its support, with g and
-// ratio carried along the support by the recurrence g *= ratio, ratio *= step2, x += 1 (the loop
-// over taps carries it, the loop over spikes vectorises).
-GEOTANDEM_AVX2_CLONES void support_values(double a, double step2, const double* __restrict amplitude,
-                                          double* __restrict x, double* __restrict g, double* __restrict ratio,
-                                          double* __restrict values, std::size_t n, std::size_t taps) {
-  for (std::size_t t = 0; t < taps; ++t) {
-    double* __restrict row = values + t * n;
-    for (std::size_t m = 0; m < n; ++m) {
-      row[m] = amplitude[m] * (1.0 - 2.0 * a * x[m] * x[m]) * g[m];
-      g[m] *= ratio[m];
-      ratio[m] *= step2;
-      x[m] += 1.0;
+using Lanes = double __attribute__((vector_size(32))); // four taps (two SSE registers by default)
+using Mask = std::int64_t __attribute__((vector_size(32)));
+
+// Adds every spike's Ricker values to ext, spike after spike in collection order, each along its
+// support [first, last] (ext[0] is sample `origin`). Tap t = first + 4 q + l of a spike is lane l
+// of step q: the first four taps come from g and ratio by the two-term recurrence
+// (g_{t+1} = g_t r_t, r_{t+1} = r_t e^{-2a}), and each lane then steps four taps at a time,
+// g_{t+4} = g_t R_t with R_t = r_t r_{t+1} r_{t+2} r_{t+3} and R_{t+4} = R_t e^{-32a}. A tap's
+// value depends only on its spike and its index in the support, never on the samples read.
+// (Steps aligned to multiples of 4 samples, with the lanes outside the support masked, were 9 %
+// slower: the store of one spike forwarded whole to the next one's load did not pay for the
+// extra step.)
+GEOTANDEM_AVX2_CLONES void add_supports(double a, double step2, double step32, const double* __restrict position,
+                                        const double* __restrict amplitude, const double* __restrict first,
+                                        const double* __restrict last, const double* __restrict g0,
+                                        const double* __restrict ratio0, std::size_t n, std::int64_t origin,
+                                        double* __restrict ext) {
+  const Lanes four = {4.0, 4.0, 4.0, 4.0};
+  static constexpr Mask below[4] = {{0, 0, 0, 0}, {-1, 0, 0, 0}, {-1, -1, 0, 0}, {-1, -1, -1, 0}}; // lanes < n
+  for (std::size_t m = 0; m < n; ++m) {
+    const double r0 = ratio0[m], r1 = r0 * step2, r2 = r1 * step2, r3 = r2 * step2;
+    const double g1 = g0[m] * r0, g2 = g1 * r1, g3 = g2 * r2;
+    const double big = r0 * r1 * r2 * r3, step8 = step2 * step2 * step2 * step2;
+    const double amp = amplitude[m];
+    Lanes g = {amp * g0[m], amp * g1, amp * g2, amp * g3};
+    Lanes ratio = {big, big * step8, big * step8 * step8, big * step8 * step8 * step8};
+    const double x0 = first[m] - position[m];
+    Lanes x = {x0, x0 + 1.0, x0 + 2.0, x0 + 3.0};
+    const auto taps = static_cast<std::int64_t>(last[m] - first[m]) + 1;
+    double* out = ext + (static_cast<std::int64_t>(first[m]) - origin);
+    std::int64_t t = 0;
+    for (; t + 4 <= taps; t += 4) {
+      const Lanes v = g * (1.0 - 2.0 * a * x * x);
+      Lanes sum;
+      std::memcpy(&sum, out + t, sizeof sum);
+      sum += v;
+      std::memcpy(out + t, &sum, sizeof sum);
+      g *= ratio;
+      ratio *= step32;
+      x += four;
     }
+    // The last 0 to 3 taps, with zeros in the lanes past the support (ext has room for them).
+    Lanes v = g * (1.0 - 2.0 * a * x * x);
+    v = reinterpret_cast<Lanes>(reinterpret_cast<Mask>(v) & below[taps - t]);
+    Lanes sum;
+    std::memcpy(&sum, out + t, sizeof sum);
+    sum += v;
+    std::memcpy(out + t, &sum, sizeof sum);
   }
 }
 
 struct Spikes {
-  std::vector<double> position, amplitude, first, g, ratio, x, values;
-  void clear() {
-    position.clear();
-    amplitude.clear();
-    first.clear();
+  std::vector<double> position, amplitude, first, last, g, ratio, ext;
+  // Room for n spikes (grows only, so that a warm thread allocates nothing).
+  void resize(std::size_t n) {
+    if (n <= position.size()) return;
+    for (auto* v : {&position, &amplitude, &first, &last, &g, &ratio})
+      v->resize(n);
   }
 };
 
@@ -64,6 +100,8 @@ struct Spikes {
 Wavelet::Wavelet(double peak_frequency_hz, double dt_s) {
   const double pf = std::numbers::pi * peak_frequency_hz * dt_s;
   a = pf * pf;
+  step2 = std::exp(-2.0 * a);
+  step32 = std::exp(-32.0 * a);
   half = std::sqrt(support_log / a);
   const int n = static_cast<int>(std::floor(half));
   for (int x = -n; x <= n; ++x)
@@ -125,6 +163,23 @@ Aabb BrightSpot::bounds(const Frame& frame, double half_height) const {
 SeismicModel::SeismicModel(const Frame& frame_, const Wavelet& wavelet_)
     : frame(frame_), wavelet(wavelet_), chaotic_grid({frame_.geometry().shape[0], frame_.geometry().shape[1], 1}, 16),
       spot_grid({frame_.geometry().shape[0], frame_.geometry().shape[1], 1}, 16) {}
+
+void SeismicModel::compute_layer(std::int64_t m, double& tau, double& amplitude) const {
+  const std::uint64_t r = hash1(reflector_key, m);
+  tau = spacing * (static_cast<double>(m) + 0.8 * unit(r));
+  amplitude = uniform(mix64(r), -1.0, 1.0);
+}
+
+void SeismicModel::table_layers(std::int64_t m0, std::int64_t m1) {
+  layer_tau.clear();
+  layer_amplitude.clear();
+  layer_m0 = m0;
+  std::vector<double> tau(static_cast<std::size_t>(m1 - m0)), amplitude(tau.size());
+  for (auto m = m0; m < m1; ++m)
+    compute_layer(m, tau[static_cast<std::size_t>(m - m0)], amplitude[static_cast<std::size_t>(m - m0)]);
+  layer_tau = std::move(tau);
+  layer_amplitude = std::move(amplitude);
+}
 
 void SeismicModel::intervals(std::int64_t i, std::int64_t j, std::vector<Interval>& out) const {
   out.clear();
@@ -192,86 +247,87 @@ void SeismicModel::trace(std::int64_t i, std::int64_t j, std::int64_t k0, std::i
   trace(i, j, trace_info(i, j), k0, k1, out);
 }
 
-void SeismicModel::trace(std::int64_t i, std::int64_t j, const TraceInfo& info, std::int64_t k0, std::int64_t k1,
-                         double* out) const {
+GEOTANDEM_AVX2_CLONES void SeismicModel::trace(std::int64_t i, std::int64_t j, const TraceInfo& info, std::int64_t k0,
+                                               std::int64_t k1, double* out) const {
   const auto count = static_cast<std::size_t>(k1 - k0);
-  std::fill(out, out + count, 0.0);
   const double h = wavelet.half;
   const double lo = static_cast<double>(k0) - h, hi = static_cast<double>(k1 - 1) + h;
   // Adds spike (position, amplitude) to every sample it reaches. exp(-a x^2) runs along the support
-  // by a two-term recurrence (three exp per spike instead of one per sample), always from the first
-  // sample of the support, so a sample's value never depends on the box. Each sample receives its
-  // spikes in one global order (layers by index, then chaotic spikes by body and index, then bright
-  // spots), whatever box is read, so sums are bit-identical.
+  // by recurrences (two exp per spike instead of one per sample), always from the first sample of
+  // the support, so a sample's value never depends on the box. Each sample receives its spikes in
+  // one global order (layers by index, then chaotic spikes by body and index, then bright spots),
+  // whatever box is read, so sums are bit-identical.
   // Spikes are collected first, the two exponentials of each computed in one vectorised pass
-  // (exponentials()), then added in collection order.
-  Spikes& spikes = spikes_scratch();
-  spikes.clear();
-  auto add = [&](double position, double amplitude) __attribute__((always_inline)) {
-    const double first = std::ceil(position - h);
-    const auto last = static_cast<std::int64_t>(std::floor(position + h));
-    if (last < k0 || static_cast<std::int64_t>(first) >= k1) return;
-    spikes.position.push_back(position);
-    spikes.amplitude.push_back(amplitude);
-    spikes.first.push_back(first);
-  };
+  // (exponentials()), then added in collection order (add_supports()).
   const std::vector<Interval>& inside = info.inside;
   auto in_chaotic = [&](double position) {
     for (const auto& iv : inside)
       if (position >= iv.top && position < iv.base) return true;
     return false;
   };
-
   const double stretch = info.stretch, shift = info.shift;
   // Layers m sit at geological time tau_m = spacing * (m + 0.8 u_m), increasing in m.
   const auto m_lo = static_cast<std::int64_t>(std::floor((lo - shift) / stretch / spacing)) - 1;
   const auto m_hi = static_cast<std::int64_t>(std::ceil((hi - shift) / stretch / spacing)) + 1;
+  // Chaotic bodies: spikes at random positions per trace, with no lateral continuity, n_lo .. n_hi
+  // of each interval.
+  auto n_lo = [&](const Interval& iv) {
+    return static_cast<std::int64_t>(std::floor(std::max(iv.top, lo) / spacing)) - 1;
+  };
+  auto n_hi = [&](const Interval& iv) {
+    return static_cast<std::int64_t>(std::ceil(std::min(iv.base, hi + 1.0) / spacing));
+  };
+  std::size_t most = static_cast<std::size_t>(std::max<std::int64_t>(0, m_hi - m_lo + 1)) + info.spots.size();
+  for (const auto& iv : inside)
+    most += static_cast<std::size_t>(std::max<std::int64_t>(0, n_hi(iv) - n_lo(iv) + 1));
+
+  Spikes& spikes = spikes_scratch();
+  spikes.resize(most + 3);
+  std::size_t count_spikes = 0;
+  auto add = [&](double position, double amplitude) __attribute__((always_inline)) {
+    const double first = std::ceil(position - h);
+    const double last = std::floor(position + h);
+    if (static_cast<std::int64_t>(last) < k0 || static_cast<std::int64_t>(first) >= k1) return;
+    spikes.position[count_spikes] = position;
+    spikes.amplitude[count_spikes] = amplitude;
+    spikes.first[count_spikes] = first;
+    spikes.last[count_spikes] = last;
+    ++count_spikes;
+  };
   for (auto m = m_lo; m <= m_hi; ++m) {
-    const std::uint64_t r = hash1(reflector_key, m);
-    const double tau = spacing * (static_cast<double>(m) + 0.8 * unit(r));
+    double tau = 0.0, amplitude = 0.0;
+    layer(m, tau, amplitude);
     const double position = tau * stretch + shift;
     if (position < lo || position > hi || in_chaotic(position)) continue;
-    add(position, uniform(mix64(r), -1.0, 1.0));
+    add(position, amplitude);
   }
-  // Chaotic bodies: spikes at random positions per trace, with no lateral continuity.
   const std::uint64_t trace_key = hash2(chaotic_key, i, j);
-  for (const auto& iv : inside) {
-    const double top = std::max(iv.top, lo), base = std::min(iv.base, hi + 1.0);
-    for (auto n = static_cast<std::int64_t>(std::floor(top / spacing)) - 1;
-         n <= static_cast<std::int64_t>(std::ceil(base / spacing)); ++n) {
+  for (const auto& iv : inside)
+    for (auto n = n_lo(iv); n <= n_hi(iv); ++n) {
       const std::uint64_t r = hash1(trace_key, n);
       const double position = spacing * (static_cast<double>(n) + unit(r));
       if (position < iv.top || position >= iv.base || position < lo || position > hi) continue;
       add(position, chaotic_amplitude * uniform(mix64(r), -1.0, 1.0));
     }
-  }
   for (const auto& [z, wgt] : info.spots)
     if (z >= lo && z <= hi) add(z, wgt);
 
-  const double a = wavelet.a, step2 = std::exp(-2.0 * a);
-  const std::size_t count_spikes = spikes.position.size();
-  spikes.g.resize(count_spikes);
-  spikes.ratio.resize(count_spikes);
-  exponentials(a, spikes.first.data(), spikes.position.data(), spikes.g.data(), spikes.ratio.data(), count_spikes);
-  // Every spike's support has at most `taps` samples. Its values along the support, computed for all
-  // spikes at once (tap-major, so the loop over spikes vectorises), by the same recurrence and in
-  // the same operations as one spike at a time would use: the values are the same bits.
-  const auto taps = static_cast<std::size_t>(std::floor(2.0 * h)) + 2;
-  spikes.x.resize(count_spikes);
-  spikes.values.resize(taps * count_spikes);
-  for (std::size_t n = 0; n < count_spikes; ++n)
-    spikes.x[n] = spikes.first[n] - spikes.position[n];
-  support_values(a, step2, spikes.amplitude.data(), spikes.x.data(), spikes.g.data(), spikes.ratio.data(),
-                 spikes.values.data(), count_spikes, taps);
-  // Added to the samples spike after spike, in collection order: each sample sums its spikes in
-  // the same order whatever box is read.
-  for (std::size_t n = 0; n < count_spikes; ++n) {
-    const auto first = static_cast<std::int64_t>(spikes.first[n]);
-    const auto last = std::min(static_cast<std::int64_t>(std::floor(spikes.position[n] + h)), k1 - 1);
-    const double* v = spikes.values.data() + n;
-    for (auto k = std::max(first, k0); k <= last; ++k)
-      out[k - k0] += v[static_cast<std::size_t>(k - first) * count_spikes];
-  }
+  const double a = wavelet.a;
+  // The exponentials for a whole number of vectors (four spikes: a scalar remainder cost as much as
+  // the vectors before it); the spikes after the last are harmless zeros.
+  const std::size_t padded = (count_spikes + 3) / 4 * 4;
+  std::fill(spikes.first.begin() + static_cast<std::ptrdiff_t>(count_spikes),
+            spikes.first.begin() + static_cast<std::ptrdiff_t>(padded), 0.0);
+  std::fill(spikes.position.begin() + static_cast<std::ptrdiff_t>(count_spikes),
+            spikes.position.begin() + static_cast<std::ptrdiff_t>(padded), 0.0);
+  exponentials(a, spikes.first.data(), spikes.position.data(), spikes.g.data(), spikes.ratio.data(), padded);
+  // The spikes' values go to a copy of the samples widened by a support each way, so that no
+  // support is cut at k0 or k1 (a cut support would still add the same values to the samples kept).
+  const auto reach = static_cast<std::int64_t>(std::ceil(2.0 * h)) + 1;
+  spikes.ext.assign(count + 2 * static_cast<std::size_t>(reach) + 4, 0.0);
+  add_supports(a, wavelet.step2, wavelet.step32, spikes.position.data(), spikes.amplitude.data(), spikes.first.data(),
+               spikes.last.data(), spikes.g.data(), spikes.ratio.data(), count_spikes, k0 - reach, spikes.ext.data());
+  std::copy_n(spikes.ext.data() + reach, count, out);
 }
 
 } // namespace geotandem::synth::detail

@@ -22,7 +22,9 @@ namespace geotandem::synth::detail {
 // exp(-a x^2) < 1e-7.
 struct Wavelet {
   double a = 0.0;
-  double half = 0.0;        // support half length (samples, fractional)
+  double half = 0.0;  // support half length (samples, fractional)
+  double step2 = 0.0; // exp(-2 a) and exp(-32 a), the recurrences' steps (seismic_model.cpp)
+  double step32 = 0.0;
   std::vector<double> taps; // w(n) for n = -floor(half) .. floor(half)
 
   Wavelet(double peak_frequency_hz, double dt_s);
@@ -98,8 +100,24 @@ struct SeismicModel {
   ItemGrid chaotic_grid;    // per trace cell: chaotic bodies
   ItemGrid spot_grid;       // per trace cell: bright spots
   double noise_scale = 0.0; // multiplies unit-variance band-limited noise
+  std::int64_t layer_m0 = 0;
+  std::vector<double> layer_tau, layer_amplitude;
 
   SeismicModel(const Frame& frame, const Wavelet& wavelet);
+  // Layer m's geological time and amplitude, from its hash; tabled for the layers a trace of an
+  // unfolded cube crosses (table_layers()), computed again outside that range.
+  void layer(std::int64_t m, double& tau, double& amplitude) const {
+    const auto at = static_cast<std::uint64_t>(m - layer_m0);
+    if (at < layer_tau.size()) {
+      tau = layer_tau[at];
+      amplitude = layer_amplitude[at];
+    } else {
+      compute_layer(m, tau, amplitude);
+    }
+  }
+  void compute_layer(std::int64_t m, double& tau, double& amplitude) const;
+  // Tables layers m0 .. m1 - 1 (after reflector_key and spacing are set; the values do not change).
+  void table_layers(std::int64_t m0, std::int64_t m1);
   // Chaotic intervals of trace (i, j).
   void intervals(std::int64_t i, std::int64_t j, std::vector<Interval>& out) const;
   // Noiseless samples [k0, k1) of trace (i, j), written to out[0 .. k1 - k0).

@@ -14,20 +14,14 @@
 #include "hash.hpp"
 #include "seismic_model.hpp"
 #include "validate.hpp"
+#include "white_noise.hpp"
 
 namespace geotandem::synth {
 namespace detail {
-namespace {
 
-// Eight floats as one value (a GCC/Clang vector extension); loads and stores go through memcpy.
-using Float8 = float __attribute__((vector_size(32)));
-constexpr std::int64_t kLanes = 8;
-
-// Unit-variance white noise (uniform in [-sqrt 3, sqrt 3)) at samples k0 .. k0 + n of the trace
-// whose stream is `trace_key`: sample k is uniform(hash1(trace_key, k), ...) in double precision
-// (the stream the generator has always drawn), rounded to a float. Four samples at a time: the
-// 64-bit multiplications of the hash as vectors, and the top 53 bits made a double exactly (52 of
-// them as a mantissa, the last added as 2^-53), so every value has the bits of the scalar formula.
+// Four samples at a time: the 64-bit multiplications of the hash as vectors, and the top 53 bits
+// made a double exactly (52 of them as a mantissa, the last added as 2^-53), so every value has
+// the bits of the scalar formula.
 GEOTANDEM_AVX2_CLONES void white_noise(std::uint64_t trace_key, std::int64_t k0, std::int64_t n, float* out) {
   using U64x4 = std::uint64_t __attribute__((vector_size(32)));
   using F64x4 = double __attribute__((vector_size(32)));
@@ -52,6 +46,12 @@ GEOTANDEM_AVX2_CLONES void white_noise(std::uint64_t trace_key, std::int64_t k0,
   for (; k < n; ++k)
     out[k] = static_cast<float>(uniform(hash1(trace_key, k0 + k), lo, hi));
 }
+
+namespace {
+
+// Eight floats as one value (a GCC/Clang vector extension); loads and stores go through memcpy.
+using Float8 = float __attribute__((vector_size(32)));
+constexpr std::int64_t kLanes = 8;
 
 // out[k] = w[0] in[k] + sum over d = 1 .. radius of w[d] (in[k - d] + in[k + d]) for k < n (a
 // multiple of 8), in that order: a symmetric filter, in[-radius .. n + radius) readable.

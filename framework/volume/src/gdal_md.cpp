@@ -1,8 +1,11 @@
 // Reader of cubes stored as 3-D arrays in netCDF-4, HDF5 and Zarr, through GDAL's multidimensional
 // API. The writer is in gdal_md_write.cpp; array choice and geometry in gdal_md_inspect.cpp.
 
+#include <algorithm>
 #include <array>
+#include <limits>
 #include <optional>
+#include <vector>
 
 #include "formats.hpp"
 #include "gdal_common.hpp"
@@ -28,10 +31,18 @@ class GdalMdVolume final : public Volume {
 public:
   GdalMdVolume(std::string path, std::string format, gdal::DatasetPtr dataset, std::shared_ptr<GDALGroup> root,
                std::shared_ptr<GDALMDArray> array, std::string array_name, Geometry geometry,
-               std::optional<float> no_data)
+               std::optional<float> no_data, gdal::LineGaps gaps)
       : path_(std::move(path)), format_(std::move(format)), dataset_(std::move(dataset)), root_(std::move(root)),
-        array_(std::move(array)), array_name_(std::move(array_name)), geometry_(std::move(geometry)),
-        no_data_(no_data) {}
+        array_(std::move(array)), array_name_(std::move(array_name)), geometry_(std::move(geometry)), no_data_(no_data),
+        gaps_(std::move(gaps)) {
+    // stored_[a][g]: the stored line at cube index g, -1 where the survey has none.
+    for (std::size_t a = 0; a < 2; ++a) {
+      if (gaps_.grid[a].empty()) continue;
+      stored_[a].assign(static_cast<std::size_t>(geometry_.shape[static_cast<int>(a)]), -1);
+      for (std::size_t m = 0; m < gaps_.grid[a].size(); ++m)
+        stored_[a][static_cast<std::size_t>(gaps_.grid[a][m])] = static_cast<std::int64_t>(m);
+    }
+  }
 
   ~GdalMdVolume() override {
     // Arrays and groups first: some drivers keep the file open while any handle lives.
@@ -47,31 +58,75 @@ public:
   std::vector<FormatDetail> format_details() const override {
     std::vector<FormatDetail> details{{"array", array_name_}}; // which of the file's arrays is read
     if (no_data_) details.push_back(gdal::no_data_detail(*no_data_));
+    if (gaps_.any()) {
+      const char* axis[2] = {"inlines ", "crosslines "};
+      std::string text;
+      for (std::size_t a = 0; a < 2; ++a)
+        if (!gaps_.missing[a].empty()) text += (text.empty() ? "" : "; ") + (axis[a] + gaps_.missing[a]);
+      details.push_back({"missing_lines", text + ", read as missing samples"});
+    }
     return details;
   }
   std::optional<float> declared_no_data() const override { return no_data_; }
 
 protected:
   void read_box(const Box& box, std::span<float> out) const override {
+    if (!gaps_.any()) {
+      read_stored(box, box.lo, out.data(), box);
+      return;
+    }
+    // A survey with missing lines: NaN everywhere, then every block of stored lines that are
+    // neighbours in both the file and the cube read in one piece into its place.
+    std::fill(out.begin(), out.end(), std::numeric_limits<float>::quiet_NaN());
+    const auto runs0 = runs(0, box.lo[0], box.hi[0]), runs1 = runs(1, box.lo[1], box.hi[1]);
+    for (const Run& r0 : runs0)
+      for (const Run& r1 : runs1) {
+        const Box part{{r0.lo, r1.lo, box.lo[2]}, {r0.hi, r1.hi, box.hi[2]}};
+        std::vector<float> stored(static_cast<std::size_t>(part.count()));
+        read_stored(part, {r0.stored, r1.stored, box.lo[2]}, stored.data(), box);
+        copy_region(stored.data(), part, out.data(), box, part);
+      }
+  }
+
+private:
+  // Cube indices [lo, hi) along an axis held by stored lines stored .. stored + (hi - lo).
+  struct Run {
+    std::int64_t lo, hi, stored;
+  };
+  std::vector<Run> runs(std::size_t axis, std::int64_t lo, std::int64_t hi) const {
+    std::vector<Run> out;
+    for (auto g = lo; g < hi; ++g) {
+      const std::int64_t s = stored_[axis].empty() ? g : stored_[axis][static_cast<std::size_t>(g)];
+      if (s < 0) continue;
+      if (!out.empty() && out.back().hi == g && out.back().stored + (g - out.back().lo) == s)
+        ++out.back().hi;
+      else
+        out.push_back({g, g + 1, s});
+    }
+    return out;
+  }
+
+  // Reads the stored hyperslab starting at `stored` with the extent of `part` into `out`, in C order.
+  void read_stored(const Box& part, const Index3& stored, float* out, const Box& asked) const {
     gdal::ErrorCapture errors;
     std::array<GUInt64, 3> start{};
     std::array<std::size_t, 3> count{};
     for (int a = 0; a < 3; ++a) {
-      start[static_cast<std::size_t>(a)] = static_cast<GUInt64>(box.lo[a]);
-      count[static_cast<std::size_t>(a)] = static_cast<std::size_t>(box.size(a));
+      start[static_cast<std::size_t>(a)] = static_cast<GUInt64>(stored[a]);
+      count[static_cast<std::size_t>(a)] = static_cast<std::size_t>(part.size(a));
     }
     // Null steps and strides: a contiguous C-order buffer of exactly the box, which is our layout.
-    if (!array_->Read(start.data(), count.data(), nullptr, nullptr, GDALExtendedDataType::Create(GDT_Float32),
-                      out.data(), out.data(), out.size_bytes())) {
+    const std::size_t bytes = static_cast<std::size_t>(part.count()) * sizeof(float);
+    if (!array_->Read(start.data(), count.data(), nullptr, nullptr, GDALExtendedDataType::Create(GDT_Float32), out, out,
+                      bytes)) {
       std::string what = "cannot read the samples of array " + array_->GetFullName() + errors.text();
-      ErrorContext where{path_, {}, {}, "box " + box.to_string(), {}};
+      ErrorContext where{path_, {}, {}, "box " + asked.to_string(), {}};
       if (errors.first_error() == CPLE_FileIO || errors.first_error() == CPLE_OpenFailed)
         throw IoError(what, where, "check that the file is still there and readable");
       throw FormatError(what, where, "the file may be truncated or damaged");
     }
   }
 
-private:
   std::string path_;
   std::string format_;
   // Declaration order matters: destroyed in reverse, the array before the dataset.
@@ -81,6 +136,8 @@ private:
   std::string array_name_; // the stored array's full name, "/chaos"
   Geometry geometry_;
   std::optional<float> no_data_; // the array's _FillValue, missing_value or fill_value
+  gdal::LineGaps gaps_;
+  std::array<std::vector<std::int64_t>, 2> stored_;
 };
 
 // What the file really is, from the driver that opened it ("netCDF-4" for the netCDF driver, which
@@ -108,15 +165,16 @@ std::unique_ptr<Volume> volume_of(gdal::DatasetPtr dataset, const std::string& p
                       "the file may be truncated or damaged; check that it was written completely");
   std::shared_ptr<GDALMDArray> stored = gdal::choose_array(*root, options.variable, path);
   std::shared_ptr<GDALMDArray> cube = gdal::in_cube_order(stored, path);
-  Geometry geometry = gdal::read_geometry(*cube, *stored, path);
+  gdal::LineGaps gaps;
+  Geometry geometry = gdal::read_geometry(*cube, *stored, path, options.nan_policy == NanPolicy::fill, &gaps);
   std::string name = format_of(*dataset, format);
   bool declared = false;
   const double no_data = stored->GetNoDataValueAsDouble(&declared);
   std::string array_name = stored->GetFullName();
   stored.reset();
   return std::make_unique<GdalMdVolume>(path, std::move(name), std::move(dataset), std::move(root), std::move(cube),
-                                        std::move(array_name), std::move(geometry),
-                                        gdal::no_data_of(declared, no_data));
+                                        std::move(array_name), std::move(geometry), gdal::no_data_of(declared, no_data),
+                                        std::move(gaps));
 }
 
 } // namespace

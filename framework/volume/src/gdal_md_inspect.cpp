@@ -126,17 +126,82 @@ void check_even_steps(const std::vector<double>& values, const GDALDimension& di
                             number_text(values[n - 1]) + " then " + number_text(values[n]) + " after a step of " +
                             number_text(step) + " (index " + std::to_string(n) + ")",
                         {path},
-                        "geotandem reads regular grids; resample the cube onto even steps (a gap of missing "
-                        "lines: write them as missing samples, NaN)");
+                        "geotandem reads regular grids, some of whose lines may be missing (steps that are whole "
+                        "multiples of the smallest); resample the cube onto even steps");
 }
 
-// First value and increment of a coordinate variable (increment kept at `step` for a single value).
+// Line numbers that skip whole lines: every step a whole multiple (1 or more) of the smallest, all
+// in one direction. The cube index of each stored line, or empty when they are not such a lattice.
+std::vector<std::int64_t> lattice_of(const std::vector<double>& values, double& step) {
+  if (values.size() < 3) return {};
+  step = values[1] - values[0];
+  for (std::size_t n = 1; n < values.size(); ++n) {
+    const double d = values[n] - values[n - 1];
+    if (!(d * step > 0.0)) return {}; // a turn, a repeated value or NaN
+    if (std::abs(d) < std::abs(step)) step = d;
+  }
+  double largest = 0.0;
+  for (double v : values)
+    largest = std::max(largest, std::abs(v));
+  const double tolerance = 1e-3 * std::abs(step) + 1e-6 * largest;
+  std::vector<std::int64_t> grid{0};
+  for (std::size_t n = 1; n < values.size(); ++n) {
+    const double d = values[n] - values[n - 1];
+    const double k = std::round(d / step);
+    if (!(std::abs(d - k * step) <= tolerance)) return {};
+    grid.push_back(grid.back() + static_cast<std::int64_t>(k));
+  }
+  return grid;
+}
+
+// "506, 507 and 510 (3 of 12 lines)": the line numbers the lattice skips (the first few).
+std::string missing_lines_text(const std::vector<std::int64_t>& grid, double first, double step) {
+  std::vector<std::int64_t> missing;
+  std::size_t count = 0;
+  for (std::size_t m = 1; m < grid.size(); ++m)
+    for (auto g = grid[m - 1] + 1; g < grid[m]; ++g) {
+      if (missing.size() < 6) missing.push_back(g);
+      ++count;
+    }
+  std::string text;
+  for (std::size_t n = 0; n < std::min<std::size_t>(missing.size(), 5); ++n)
+    text += (n == 0           ? ""
+             : n + 1 == count ? " and "
+                              : ", ") +
+            number_text(first + step * static_cast<double>(missing[n]));
+  if (count > 5) text += " and " + std::to_string(count - 5) + " more";
+  return text + " (" + std::to_string(count) + " of " + std::to_string(grid.back() + 1) + " lines)";
+}
+
+// First value and increment of a coordinate variable (increment kept at `step` for a single value);
+// for a survey with missing lines also its number of lines and where the stored ones go.
 void take_line_numbers(const std::vector<double>& values, const GDALDimension& dimension, const std::string& path,
-                       double& first, double& step) {
+                       bool read_missing, double& first, double& step, std::int64_t& count,
+                       std::vector<std::int64_t>& grid, std::string& missing) {
   if (values.empty()) return;
-  check_even_steps(values, dimension, path);
+  double lattice_step = 0.0;
+  std::vector<std::int64_t> lattice = lattice_of(values, lattice_step);
+  if (lattice.empty() || lattice.back() + 1 == static_cast<std::int64_t>(values.size())) {
+    check_even_steps(values, dimension, path);
+    first = values[0];
+    if (values.size() > 1 && values[1] != values[0]) step = values[1] - values[0];
+    return;
+  }
+  const std::string what = "the line numbers of dimension '" + dimension.GetName() +
+                           "' skip lines, missing: " + missing_lines_text(lattice, values[0], lattice_step);
+  // A few lines spread over a huge range are not a survey with some lines missing.
+  if (lattice.back() + 1 > 4 * static_cast<std::int64_t>(values.size()))
+    throw FormatError(what + ": more than three lines in four", {path},
+                      "geotandem reads regular grids; resample the cube onto even steps");
+  if (!read_missing)
+    throw FormatError(what, {path},
+                      "read the missing lines as missing samples with --nan fill (input.nan: fill in a recipe), "
+                      "or write them into the file as NaN");
   first = values[0];
-  if (values.size() > 1 && values[1] != values[0]) step = values[1] - values[0];
+  step = lattice_step;
+  count = lattice.back() + 1;
+  missing = missing_lines_text(lattice, values[0], lattice_step);
+  grid = std::move(lattice);
 }
 
 } // namespace
@@ -204,7 +269,8 @@ std::shared_ptr<GDALMDArray> in_cube_order(const std::shared_ptr<GDALMDArray>& a
   return view ? view : array;
 }
 
-Geometry read_geometry(const GDALMDArray& array, const GDALMDArray& attributes_of, const std::string& path) {
+Geometry read_geometry(const GDALMDArray& array, const GDALMDArray& attributes_of, const std::string& path,
+                       bool read_missing, LineGaps* gaps) {
   Geometry g;
   const auto& dims = array.GetDimensions();
   for (int a = 0; a < 3; ++a)
@@ -212,8 +278,12 @@ Geometry read_geometry(const GDALMDArray& array, const GDALMDArray& attributes_o
   // Without better knowledge the indices are the line numbers.
   g.inline0 = 0.0;
   g.crossline0 = 0.0;
-  take_line_numbers(coordinates_of(*dims[0]), *dims[0], path, g.inline0, g.inline_step);
-  take_line_numbers(coordinates_of(*dims[1]), *dims[1], path, g.crossline0, g.crossline_step);
+  LineGaps found;
+  take_line_numbers(coordinates_of(*dims[0]), *dims[0], path, read_missing, g.inline0, g.inline_step, g.shape[0],
+                    found.grid[0], found.missing[0]);
+  take_line_numbers(coordinates_of(*dims[1]), *dims[1], path, read_missing, g.crossline0, g.crossline_step, g.shape[1],
+                    found.grid[1], found.missing[1]);
+  if (gaps) *gaps = std::move(found);
 
   const GDALDimension& z = *dims[2];
   const std::string unit = unit_of(z);

@@ -128,8 +128,8 @@ void add_extract_command(CLI::App& app, Context& context, Runner& run) {
       }
       auto cube = volume::open_volume(a->cube, open);
       workflow::require_cells(cube->geometry(), a->cube); // before the store is made
-      for (const auto& detail : cube->format_details())   // how geographic coordinates were taken
-        if (detail.key == "coordinates") context.log.warning(a->cube + ": trace coordinates in " + detail.value);
+      for (const std::string& warning : volume::open_warnings(*cube))
+        context.log.warning(warning);
       // One worker per core unless told otherwise (no more than there are blocks; one block is
       // extracted in this process); --workers 0 extracts in this process.
       s.workers = a->workers.value_or(workflow::default_worker_count(cube->geometry(), s.block_size));

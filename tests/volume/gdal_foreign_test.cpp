@@ -154,6 +154,9 @@ TEST(GdalMdForeign, MissingLinesAreMissingSamplesUnderTheFillPolicy) {
       if (d.key == "missing_lines") details = d.value;
     EXPECT_EQ(details, std::string("inlines 506 (1 of 6 lines); crosslines ") + (down ? "13 and 12" : "12 and 13") +
                            " (2 of 6 lines), read as missing samples");
+    const auto warnings = gv::open_warnings(*cube);
+    ASSERT_EQ(warnings.size(), 1u);
+    EXPECT_EQ(warnings[0], cube->source() + ": missing lines: " + details);
     // Cube index -> stored index, -1 where missing.
     const std::vector<int> stored_inline{0, 1, 2, -1, 3, 4};
     const std::vector<int> stored_crossline =

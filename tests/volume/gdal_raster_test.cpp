@@ -50,10 +50,14 @@ void write_time_slices(const std::string& path, const char* driver_name, gv::Ind
   GDALClose(GDALDataset::ToHandle(dataset));
 }
 
-std::string layout_detail(const gv::Volume& v) {
+std::string detail_of(const gv::Volume& v, const std::string& key) {
   for (const auto& d : v.format_details())
-    if (d.key == "layout") return d.value;
+    if (d.key == key) return d.value;
   return "(none)";
+}
+
+std::string layout_detail(const gv::Volume& v) {
+  return detail_of(v, "layout");
 }
 
 void expect_boxes(const gv::Volume& cube) {
@@ -93,6 +97,25 @@ TEST(GdalTimeSlices, GeotiffStackWithAGeotransformReadsAsMapSlices) {
   EXPECT_NEAR(g.affine.step_i(), 12.5, 1e-9);
   EXPECT_NEAR(g.affine.step_j(), 25.0, 1e-9);
   expect_boxes(*cube);
+
+  // The file places the survey but not the sample axis: the default is said, and how to set it.
+  const std::string assumed = detail_of(*cube, "assumed");
+  EXPECT_EQ(assumed.rfind("the sample axis, 0 ms at steps of 4 ms (set the metadata items geotandem_z0", 0), 0)
+      << assumed;
+  EXPECT_EQ(assumed.find("position"), std::string::npos) << assumed;
+  const auto warnings = gv::open_warnings(*cube);
+  ASSERT_EQ(warnings.size(), 1u);
+  EXPECT_EQ(warnings[0], path + ": not in the file, assumed: " + assumed);
+  { // Once the file says its sample interval, nothing is assumed.
+    GDALDataset* dataset = GDALDataset::Open(path.c_str(), GDAL_OF_RASTER | GDAL_OF_UPDATE);
+    ASSERT_NE(dataset, nullptr);
+    ASSERT_EQ(dataset->SetMetadataItem("geotandem_dz", "2"), CE_None);
+    GDALClose(GDALDataset::ToHandle(dataset));
+  }
+  const auto told = gv::open_volume(path);
+  EXPECT_EQ(told->geometry().dz, 2.0);
+  EXPECT_EQ(detail_of(*told, "assumed"), "(none)");
+  EXPECT_TRUE(gv::open_warnings(*told).empty());
 }
 
 TEST(GdalTimeSlices, StackWithoutGeotransformGetsTheDefaultGrid) {
@@ -105,6 +128,11 @@ TEST(GdalTimeSlices, StackWithoutGeotransformGetsTheDefaultGrid) {
     EXPECT_EQ(cube->geometry().shape, (gv::Index3{6, 9, 11}));
     EXPECT_EQ(cube->geometry().affine, gv::SurveyAffine{});
     expect_boxes(*cube);
+    const std::string assumed = detail_of(*cube, "assumed");
+    EXPECT_NE(assumed.find("the sample axis, 0 ms at steps of 4 ms"), std::string::npos) << assumed;
+    EXPECT_NE(assumed.find("; the survey's position, bins of 25 m from x 0, y 0 (the file has no geotransform"),
+              std::string::npos)
+        << assumed;
   }
 }
 

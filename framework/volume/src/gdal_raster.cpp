@@ -19,6 +19,7 @@
 #include "gdal_common.hpp"
 #include "gdal_module.hpp"
 #include "geotandem/core/error.hpp"
+#include "geotandem/core/params.hpp"
 
 namespace geotandem::volume::detail {
 namespace {
@@ -30,9 +31,9 @@ enum class RasterLayout { time_slices, inline_slices };
 class GdalRasterVolume final : public Volume {
 public:
   GdalRasterVolume(std::string path, Format format, gdal::DatasetPtr dataset, RasterLayout layout, Geometry geometry,
-                   std::optional<float> no_data)
+                   std::optional<float> no_data, std::string assumed)
       : path_(std::move(path)), format_(format), dataset_(std::move(dataset)), layout_(layout),
-        geometry_(std::move(geometry)), no_data_(no_data) {}
+        geometry_(std::move(geometry)), no_data_(no_data), assumed_(std::move(assumed)) {}
 
   ~GdalRasterVolume() override {
     gdal::ErrorCapture quiet;
@@ -50,6 +51,7 @@ public:
     else
       details.push_back({"layout", "time slices (band = sample, raster x = inline, y = crossline)"});
     if (no_data_) details.push_back(gdal::no_data_detail(*no_data_));
+    if (!assumed_.empty()) details.push_back({"assumed", assumed_});
     return details;
   }
   std::optional<float> declared_no_data() const override { return no_data_; }
@@ -93,6 +95,7 @@ private:
   RasterLayout layout_;
   Geometry geometry_;
   std::optional<float> no_data_; // the first band's nodata (GeoTIFF's applies to every band)
+  std::string assumed_;          // what the file does not say (assumed_of)
 };
 
 // The layout item when present; otherwise inline slices for files with geotandem_* geometry items
@@ -170,6 +173,31 @@ Geometry geometry_of(GDALDataset& dataset, RasterLayout layout, const std::strin
   return g;
 }
 
+// What a classic raster leaves to the defaults, for a user to check: the sample axis (a time-slice
+// stack has no place for it) and the survey's position (no geotransform); empty when the file says
+// both.
+std::string assumed_of(GDALDataset& dataset, const Geometry& g) {
+  auto has = [&](std::initializer_list<const char*> keys) {
+    for (const char* key : keys)
+      if (dataset.GetMetadataItem(key)) return true;
+    return false;
+  };
+  std::string out;
+  if (!has({"geotandem_z0", "geotandem_dz", gdal::z_unit_key}))
+    out = "the sample axis, " + number_text(g.z0) + " " + to_string(g.z_unit) + " at steps of " + number_text(g.dz) +
+          " " + to_string(g.z_unit) +
+          " (set the metadata items geotandem_z0, geotandem_dz and geotandem_z_unit, e.g. gdal_edit -mo "
+          "geotandem_dz=2 -mo geotandem_z_unit=ms FILE)";
+  std::array<double, 6> transform{};
+  if (dataset.GetGeoTransform(transform.data()) != CE_None &&
+      !has({"geotandem_x0", "geotandem_xi", "geotandem_xj", "geotandem_y0", "geotandem_yi", "geotandem_yj"})) {
+    if (!out.empty()) out += "; ";
+    out += "the survey's position, bins of 25 m from x 0, y 0 (the file has no geotransform; give it one with "
+           "gdal_edit -a_ullr or gdal_translate)";
+  }
+  return out;
+}
+
 } // namespace
 
 std::unique_ptr<Volume> gdal::open_raster(const std::string& path, Format format, const OpenOptions&) {
@@ -190,8 +218,9 @@ std::unique_ptr<Volume> gdal::open_raster(const std::string& path, Format format
   Geometry geometry = geometry_of(*dataset, layout, path);
   int declared = FALSE;
   const double no_data = dataset->GetRasterBand(1)->GetNoDataValue(&declared);
+  std::string assumed = assumed_of(*dataset, geometry);
   return std::make_unique<GdalRasterVolume>(path, format, std::move(dataset), layout, std::move(geometry),
-                                            gdal::no_data_of(declared != FALSE, no_data));
+                                            gdal::no_data_of(declared != FALSE, no_data), std::move(assumed));
 }
 
 } // namespace geotandem::volume::detail

@@ -40,4 +40,17 @@ void MemoryVolume::read_box(const Box& box, std::span<float> out) const {
   copy_region(samples_.data(), geometry_.bounds(), out.data(), box, box);
 }
 
+std::vector<std::string> open_warnings(const Volume& volume) {
+  std::vector<std::string> out;
+  for (const FormatDetail& detail : volume.format_details()) {
+    if (detail.key == "coordinates")
+      out.push_back(volume.source() + ": trace coordinates in " + detail.value);
+    else if (detail.key == "assumed")
+      out.push_back(volume.source() + ": not in the file, assumed: " + detail.value);
+    else if (detail.key == "missing_lines")
+      out.push_back(volume.source() + ": missing lines: " + detail.value);
+  }
+  return out;
+}
+
 } // namespace geotandem::volume

@@ -331,8 +331,8 @@ RunOutcome run_workflow(const Recipe& recipe, const PluginRegistry& plugins, con
     throw InvalidArgument(e.message(), {recipe.path}, e.hint());
   }
   log.info("input: " + volumes.input->source());
-  for (const auto& detail : volumes.input->format_details()) // how geographic coordinates were taken
-    if (detail.key == "coordinates") log.warning(volumes.input->source() + ": trace coordinates in " + detail.value);
+  for (const std::string& warning : volume::open_warnings(*volumes.input))
+    log.warning(warning);
   if (settings.dry_run) {
     log.info("dry run: the recipe is valid and its chain builds; the extraction would read " +
              volumes.result->source() + "; nothing was written");

@@ -24,6 +24,13 @@ struct FormatDetail {
 // The key of the no-data value a file declares: its samples with that value read as NaN (missing).
 inline constexpr const char* kNoDataDetail = "no_data_value";
 
+class Volume;
+// The facts among a volume's format details that a command should print as warnings when it opens
+// the cube, as "PATH: text": geographic trace coordinates made local metres ("coordinates"), what
+// the file does not say and was assumed ("assumed"), lines missing from the survey
+// ("missing_lines").
+std::vector<std::string> open_warnings(const Volume& volume);
+
 class Volume {
 public:
   virtual ~Volume() = default;

@@ -126,6 +126,8 @@ void add_extract_command(CLI::App& app, Context& context, Runner& run) {
       } catch (const Error& e) {
         throw InvalidArgument("--block-size: " + e.message(), {}, e.hint());
       }
+      auto opening = context.progress(); // an irregular SEG-Y survey's pass over its headers
+      open.progress = opening.get();
       auto cube = volume::open_volume(a->cube, open);
       workflow::require_cells(cube->geometry(), a->cube); // before the store is made
       for (const std::string& warning : volume::open_warnings(*cube))

@@ -198,6 +198,8 @@ void add_info_command(CLI::App& app, Context& context, Runner& run) {
       options.segy = info->segy;
       options.variable = info->variable;
       options.no_data = no_data_option(info->no_data);
+      auto opening = context.progress(); // an irregular SEG-Y survey's pass over its headers
+      options.progress = opening.get();
       auto cube = volume::open_volume(info->path, options);
       std::optional<ValueStats> stats;
       if (!info->no_stats) {

@@ -135,6 +135,62 @@ TEST(SegyIrregular, MissingTracesAreMissingSamples) {
 // from the corners (an inner placeholder only) or by reading every header. Placeholders after
 // the survey's traces are left out, and the survey is read whole. Beside a missing trace, the
 // placeholders' bins cannot be known: they are left out, and the message says so.
+// What a Progress was told.
+class RecordingProgress final : public Progress {
+public:
+  std::vector<std::string> begun;
+  std::uint64_t total = 0, last = 0;
+  int ended = 0, stopped = 0;
+  void begin(const std::string& label, std::uint64_t count, const std::string& unit) override {
+    begun.push_back(label + " (" + unit + ")");
+    total = count;
+    last = 0;
+  }
+  void update(std::uint64_t done) override {
+    EXPECT_GE(done, last) << "progress went back";
+    last = done;
+  }
+  void end() override { ++ended; }
+  void stop() override { ++stopped; }
+};
+
+// The pass over every trace header that an irregular survey needs reports its progress, to the
+// last trace; a regular survey, whose grid comes from a few headers, reports nothing.
+TEST(SegyIrregular, ThePassOverEveryTraceHeaderReportsItsProgress) {
+  ScratchDir dir;
+  SegySpec s;
+  const std::string full_path = dir.file("full.sgy");
+  write_with_segyio(full_path, s);
+  s.missing = {{0, 0}, {3, 4}};
+  const std::string path = dir.file("irregular.sgy");
+  write_with_segyio(path, s);
+
+  RecordingProgress regular;
+  OpenOptions options{.nan_policy = NanPolicy::fill, .fill_value = std::numeric_limits<float>::quiet_NaN()};
+  options.progress = &regular;
+  open_volume(full_path, options);
+  EXPECT_TRUE(regular.begun.empty());
+
+  RecordingProgress scan;
+  options.progress = &scan;
+  const auto cube = open_volume(path, options);
+  ASSERT_EQ(scan.begun, std::vector<std::string>{"reading trace headers (traces)"});
+  EXPECT_EQ(scan.total, 61u);
+  EXPECT_EQ(scan.last, 61u);
+  EXPECT_EQ(scan.ended, 1);
+  EXPECT_EQ(scan.stopped, 0);
+  EXPECT_EQ(cube->geometry().shape, (Index3{7, 9, s.ns}));
+
+  // Refused after the pass (missing traces under the default policy): the task is stopped, not
+  // left running.
+  RecordingProgress refused;
+  OpenOptions strict;
+  strict.progress = &refused;
+  message_of<FormatError>([&] { open_volume(path, strict); });
+  EXPECT_EQ(refused.begun.size(), 1u);
+  EXPECT_EQ(refused.ended + refused.stopped, 1);
+}
+
 TEST(SegyIrregular, PlaceholdersPaddingASurveyAreDeadTracesInTheirPlaces) {
   ScratchDir dir;
   for (bool crossline_sorted : {false, true}) {

@@ -225,7 +225,8 @@ std::unique_ptr<Volume> open_segy(const std::string& path, const OpenOptions& op
     // Missing traces are refused unless read as missing samples: find_grid refuses them, naming them.
     if (hinted && !read_missing && hinted->missing_bins()) hinted.reset();
   }
-  Grid grid = hinted ? std::move(*hinted) : segy::find_grid(file.get(), layout, options.segy, read_missing, path);
+  Grid grid = hinted ? std::move(*hinted)
+                     : segy::find_grid(file.get(), layout, options.segy, read_missing, path, options.progress);
 
   const int ni = grid.ni, nj = grid.nj;
   auto corner = [&](int i, int j) { return segy::read_header(file.get(), layout, grid.trace_of(i, j), path); };

@@ -173,13 +173,25 @@ std::int64_t line_step(std::vector<int>& numbers) {
 // rectangle is spanned by the smallest and largest line numbers at the common step; a rectangle
 // more than ten times the traces is not taken for a survey (wrong header bytes, most likely). The
 // same pass fits the affine to the traces' coordinates.
-Probe scan(segy_file* file, const Layout& layout, const SegyOptions& bytes, const std::string& path) {
+Probe scan(segy_file* file, const Layout& layout, const SegyOptions& bytes, const std::string& path,
+           Progress* progress) {
   // The live traces (placeholders have no line numbers) and their bins, in file order.
   std::vector<int> live;
   std::vector<std::array<int, 2>> bins;
   CoordinateFit coordinates;
   std::optional<TraceCoordinates> frame; // from the first live trace
+  NullProgress silent;
+  Progress& report = progress ? *progress : silent;
+  report.begin("reading trace headers", static_cast<std::uint64_t>(layout.traces), "traces");
+  struct StopUnlessEnded {
+    Progress& report;
+    bool ended = false;
+    ~StopUnlessEnded() {
+      if (!ended) report.stop();
+    }
+  } guard{report};
   for (int t = 0; t < layout.traces; ++t) {
+    if (t % 65536 == 0) report.update(static_cast<std::uint64_t>(t));
     const TraceHeader header = read_header(file, layout, t, path);
     if (placeholder(header, bytes)) continue;
     if (!frame) frame.emplace(header);
@@ -188,6 +200,9 @@ Probe scan(segy_file* file, const Layout& layout, const SegyOptions& bytes, cons
     bins.push_back(bin);
     coordinates.add(std::int64_t{bin[0]} - bins[0][0], std::int64_t{bin[1]} - bins[0][1], frame->xy(header));
   }
+  report.update(static_cast<std::uint64_t>(layout.traces));
+  report.end();
+  guard.ended = true;
   if (live.empty())
     return {std::nullopt, {"reading every trace header: every trace is a placeholder (dead, line numbers 0)", ""}};
   Grid g;
@@ -328,7 +343,7 @@ void check_header_bytes(const SegyOptions& bytes, const std::string& path) {
 }
 
 Grid find_grid(segy_file* file, const Layout& layout, const SegyOptions& bytes, bool read_missing,
-               const std::string& path) {
+               const std::string& path, Progress* progress) {
   check_header_bytes(bytes, path);
   Probe asked = probe(file, layout, bytes, path);
   if (asked.grid) return *asked.grid;
@@ -357,7 +372,7 @@ Grid find_grid(segy_file* file, const Layout& layout, const SegyOptions& bytes, 
   // with some missing, read when missing samples are (the NaN fill policy) and refused otherwise,
   // or one padded with placeholders, read.
   if (!asked.problem.scan) throw FormatError(asked.problem.message, {path}, hint);
-  Probe scanned = scan(file, layout, bytes, path);
+  Probe scanned = scan(file, layout, bytes, path, progress);
   if (!scanned.grid) throw FormatError(asked.problem.message + "; " + scanned.problem.message, {path}, hint);
   // Read: a survey padded with placeholders, or one whose every bin has a trace (placeholders
   // elsewhere in the file), or with missing samples read.

@@ -81,8 +81,9 @@ void check_header_bytes(const SegyOptions& bytes, const std::string& path);
 // otherwise, naming what is missing; placeholders that pad the survey to its full rectangle give a
 // full grid (fitted). Pre-stack, unsorted and unreadable files are refused with a
 // FormatError that names the positions that would work, and how to pass them.
+// `progress` (may be null) follows the pass over every trace header, when one is needed.
 Grid find_grid(segy_file* file, const Layout& layout, const SegyOptions& bytes, bool read_missing,
-               const std::string& path);
+               const std::string& path, Progress* progress = nullptr);
 
 // What an irregular grid lacks, for messages: "62 of 63 traces (7 inlines x 9 crosslines); the
 // first missing: inline 106, crossline 300". Empty for a full grid.

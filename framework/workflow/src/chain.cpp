@@ -19,7 +19,7 @@ namespace {
 
 // `missing_as_nan`: under `nan: fill`, the missing samples read as NaN rather than the lowest float
 // (the attributes then see them as dead samples and the result masks them: open_chain).
-std::shared_ptr<const volume::Volume> open_input(const nlohmann::json& in, bool missing_as_nan) {
+std::shared_ptr<const volume::Volume> open_input(const nlohmann::json& in, bool missing_as_nan, Progress* progress) {
   if (in.contains("synthetic")) {
     const auto& s = in.at("synthetic");
     const auto shape = s.at("shape").get<std::vector<std::int64_t>>();
@@ -48,6 +48,7 @@ std::shared_ptr<const volume::Volume> open_input(const nlohmann::json& in, bool 
                     in["segy"].value("crossline_byte", options.segy.crossline_byte)};
   // Not part of the chain's identity: the runner adds it to the workers' copy only.
   options.reopen_hint = in.value("reopen_hint", "");
+  options.progress = progress;
   return std::shared_ptr<const volume::Volume>(volume::open_volume(in.at("file").get<std::string>(), options));
 }
 
@@ -168,7 +169,7 @@ ParamValues chain_step_values(const ChainStep& step, const Plugin& plugin) {
   return values;
 }
 
-ChainVolumes open_chain(const ChainDescription& description, const PluginRegistry& plugins) {
+ChainVolumes open_chain(const ChainDescription& description, const PluginRegistry& plugins, Progress* progress) {
   if (description.steps.empty()) throw InvalidArgument("the chain description has no steps");
   // Every step is checked before the input is opened: cheap refusals first.
   std::vector<std::pair<const Plugin*, ParamValues>> resolved;
@@ -202,7 +203,7 @@ ChainVolumes open_chain(const ChainDescription& description, const PluginRegistr
   // the result is the lowest float wherever the input is missing (shared_input.hpp, DeadSamples).
   // Read directly by the extraction, they are the lowest float from the input itself.
   const bool dead = dead_samples(description);
-  out.input = open_input(description.input, dead);
+  out.input = open_input(description.input, dead, progress);
   // The attributes read the input through one shared fetch per read of the result (shared_input.hpp).
   auto shared = std::make_shared<const detail::SharedInput>(out.input);
   std::shared_ptr<const volume::Volume> seen = shared;

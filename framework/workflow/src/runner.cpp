@@ -326,7 +326,8 @@ RunOutcome run_workflow(const Recipe& recipe, const PluginRegistry& plugins, con
   const ChainDescription chain = describe_chain(recipe, plugins);
   ChainVolumes volumes;
   try {
-    volumes = open_chain(chain, plugins);
+    auto opening = progress_of(settings); // an irregular SEG-Y survey's pass over its headers
+    volumes = open_chain(chain, plugins, opening.get());
   } catch (const InvalidArgument& e) {
     throw InvalidArgument(e.message(), {recipe.path}, e.hint());
   }

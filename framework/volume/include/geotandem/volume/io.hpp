@@ -49,6 +49,10 @@ struct OpenOptions {
   // For multidimensional files with several 3D arrays: the array's name (empty: the only 3D one).
   std::string variable;
   SegyOptions segy;
+  // Where long work while opening reports how far it got: the pass over every trace header of an
+  // irregular SEG-Y survey (a few seconds per ten million traces, more on a network file system).
+  // Not owned; null: nowhere.
+  Progress* progress = nullptr;
   // Volume::reopen_hint of the same file opened with the same options, by another process (the
   // manager, for its workers). Used only while it still describes the file (same size and
   // modification time, same header bytes); ignored otherwise, and by formats that have none.

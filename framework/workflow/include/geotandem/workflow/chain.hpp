@@ -12,6 +12,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "geotandem/core/progress.hpp"
 #include "geotandem/volume/volume.hpp"
 #include "geotandem/workflow/recipe.hpp"
 #include "geotandem/workflow/registry.hpp"
@@ -64,7 +65,9 @@ struct ChainVolumes {
 // is written. Every step is checked against `plugins`: known, of the right kind, of the same
 // version, its parameters valid. Throws InvalidArgument naming the step, and what opening the input
 // throws.
-ChainVolumes open_chain(const ChainDescription& description, const PluginRegistry& plugins);
+// `progress` (may be null) follows long work while the input opens (OpenOptions::progress).
+ChainVolumes open_chain(const ChainDescription& description, const PluginRegistry& plugins,
+                        Progress* progress = nullptr);
 // open_chain(...).result.
 std::shared_ptr<const volume::Volume> open_chain_volume(const ChainDescription& description,
                                                         const PluginRegistry& plugins);

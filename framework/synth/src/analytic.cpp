@@ -134,6 +134,22 @@ private:
       }
   }
 
+  // A tube's line is horizontal: its part of the distance that depends on x and y is computed once
+  // per column of samples (the same bits as sample by sample).
+  void apply(const Tube& tube, const volume::Box& region, const volume::Box& box, std::span<float> out) const {
+    for (auto i = region.lo[0]; i < region.hi[0]; ++i)
+      for (auto j = region.lo[1]; j < region.hi[1]; ++j) {
+        float* row = out.data() + box.offset({i, j, region.lo[2]});
+        Tube::Column column = tube.column(frame_.to_frame(static_cast<double>(i), static_cast<double>(j), 0.0));
+        for (auto k = region.lo[2]; k < region.hi[2]; ++k) {
+          const double d = tube.signed_distance(column, static_cast<double>(k));
+          if (d <= -transition_width) continue;
+          float& sample = row[k - region.lo[2]];
+          sample = std::max(sample, static_cast<float>(profile(d)));
+        }
+      }
+  }
+
   Frame frame_;
   // Bubbles are most of the items of a large cube (about 170,000 at 1024^3) and the smallest, so
   // they are kept apart: a variant takes the room of its largest shape, six times a sphere's.

@@ -183,6 +183,33 @@ double Tube::signed_distance(const Vec3& p) const {
   return std::min(radius - d, line.end_distance(s, n));
 }
 
+Tube::Column Tube::column(const Vec3& p) const {
+  Column c;
+  line.local(p, c.s, c.n);
+  const double near = radius + band;
+  if (std::abs(c.n) > line.amplitude + near || std::abs(c.s) > line.half_length + radius + reach) return c;
+  c.far = false;
+  const double across = std::abs(c.n - line.offset(c.s)) * line.lipschitz_factor;
+  c.across2 = across * across;
+  return c;
+}
+
+double Tube::signed_distance(Column& c, double z) const {
+  const double dz = z - line.centre.z;
+  const double near = radius + band;
+  if (c.far || std::abs(dz) > near) return -reach;
+  if (c.across2 + dz * dz > near * near) return -reach;
+  if (!c.nearest) {
+    const double t = line.nearest(c.s, c.n);
+    const double ds = c.s - t, dn = c.n - line.offset(t);
+    c.horizontal2 = ds * ds + dn * dn;
+    c.end = line.end_distance(c.s, c.n);
+    c.nearest = true;
+  }
+  const double d = std::sqrt(c.horizontal2 + dz * dz);
+  return std::min(radius - d, c.end);
+}
+
 double Tube::volume() const {
   return line.arc_length() * std::numbers::pi * radius * radius;
 }

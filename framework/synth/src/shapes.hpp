@@ -93,6 +93,19 @@ struct Tube {
   double signed_distance(const Vec3& p) const;
   double volume() const;
   Aabb bounds(const Frame& frame) const { return line.bounds(frame, radius, radius); }
+
+  // The line is horizontal: what signed_distance computes from p.x and p.y alone, for a column of
+  // samples; signed_distance(column, z) then gives the same bits as signed_distance(p).
+  struct Column {
+    bool far = true;          // every sample of the column is farther than radius + band
+    double s = 0.0, n = 0.0;  // the column in the line's local coordinates
+    double across2 = 0.0;     // squared lower bound on the horizontal distance to the line
+    bool nearest = false;     // whether the two below are known (once a sample needs them):
+    double horizontal2 = 0.0; // squared horizontal distance to the line's nearest point
+    double end = 0.0;         // the distance estimate to the line's ends
+  };
+  Column column(const Vec3& p) const;
+  double signed_distance(Column& column, double z) const;
 };
 
 } // namespace geotandem::synth::detail

@@ -118,31 +118,17 @@ private:
   }
 
   // Raises the samples of `region` to the item's value where it is higher. Max is exact and
-  // commutative, so the order of the items does not change a single bit.
+  // commutative, so the order of the items does not change a single bit. Every shape's distance
+  // is split into what depends on x and y, computed once per column of samples, and the rest (the
+  // same bits as point by point: shapes.hpp).
   template <class Shape>
   void apply(const Shape& shape, const volume::Box& region, const volume::Box& box, std::span<float> out) const {
     for (auto i = region.lo[0]; i < region.hi[0]; ++i)
       for (auto j = region.lo[1]; j < region.hi[1]; ++j) {
         float* row = out.data() + box.offset({i, j, region.lo[2]});
+        auto column = shape.column(frame_.to_frame(static_cast<double>(i), static_cast<double>(j), 0.0));
         for (auto k = region.lo[2]; k < region.hi[2]; ++k) {
-          const double d = shape.signed_distance(
-              frame_.to_frame(static_cast<double>(i), static_cast<double>(j), static_cast<double>(k)));
-          if (d <= -transition_width) continue;
-          float& sample = row[k - region.lo[2]];
-          sample = std::max(sample, static_cast<float>(profile(d)));
-        }
-      }
-  }
-
-  // A tube's line is horizontal: its part of the distance that depends on x and y is computed once
-  // per column of samples (the same bits as sample by sample).
-  void apply(const Tube& tube, const volume::Box& region, const volume::Box& box, std::span<float> out) const {
-    for (auto i = region.lo[0]; i < region.hi[0]; ++i)
-      for (auto j = region.lo[1]; j < region.hi[1]; ++j) {
-        float* row = out.data() + box.offset({i, j, region.lo[2]});
-        Tube::Column column = tube.column(frame_.to_frame(static_cast<double>(i), static_cast<double>(j), 0.0));
-        for (auto k = region.lo[2]; k < region.hi[2]; ++k) {
-          const double d = tube.signed_distance(column, static_cast<double>(k));
+          const double d = shape.signed_distance(column, static_cast<double>(k));
           if (d <= -transition_width) continue;
           float& sample = row[k - region.lo[2]];
           sample = std::max(sample, static_cast<float>(profile(d)));

@@ -26,6 +26,21 @@ double Ellipsoid::signed_distance(const Vec3& p) const {
   return (1.0 - rho) * rho / g;
 }
 
+Ellipsoid::Column Ellipsoid::column(const Vec3& p) const {
+  const double dx = p.x - centre.x, dy = p.y - centre.y;
+  const double s = (dx * axes.ux + dy * axes.uy) / a;
+  const double n = (dx * axes.vx + dy * axes.vy) / b;
+  return {s * s + n * n, s * s / (a * a) + n * n / (b * b)};
+}
+
+double Ellipsoid::signed_distance(const Column& column, double at_z) const {
+  const double z = (at_z - centre.z) / c;
+  const double rho = std::sqrt(column.rho2 + z * z);
+  const double g = std::sqrt(column.grad2 + z * z / (c * c));
+  if (g == 0.0) return std::min({a, b, c});
+  return (1.0 - rho) * rho / g;
+}
+
 double Ellipsoid::volume() const {
   return 4.0 / 3.0 * std::numbers::pi * a * b * c;
 }
@@ -44,6 +59,10 @@ double Shell::signed_distance(const Vec3& p) const {
   return std::min(outer.signed_distance(p), -cavity.signed_distance(p));
 }
 
+double Shell::signed_distance(const Column& column, double z) const {
+  return std::min(outer.signed_distance(column.outer, z), -cavity.signed_distance(column.cavity, z));
+}
+
 double Shell::volume() const {
   return outer.volume() * (1.0 - inner * inner * inner);
 }
@@ -51,6 +70,11 @@ double Shell::volume() const {
 double Sphere::signed_distance(const Vec3& p) const {
   const double dx = p.x - centre.x, dy = p.y - centre.y, dz = p.z - centre.z;
   return r - std::sqrt(dx * dx + dy * dy + dz * dz);
+}
+
+double Sphere::signed_distance(const Column& column, double z) const {
+  const double dz = z - centre.z;
+  return r - std::sqrt(column.horizontal2 + dz * dz);
 }
 
 double SinuousLine::offset(double t) const {

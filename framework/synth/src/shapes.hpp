@@ -26,6 +26,14 @@ struct Ellipsoid {
   double signed_distance(const Vec3& p) const;
   double volume() const;
   Aabb bounds(const Frame& frame) const;
+
+  // The sums of signed_distance's horizontal terms, for a column of samples at p.x, p.y;
+  // signed_distance(column, z) gives the bits of signed_distance(p) (the terms add in order).
+  struct Column {
+    double rho2 = 0.0, grad2 = 0.0;
+  };
+  Column column(const Vec3& p) const;
+  double signed_distance(const Column& column, double z) const;
 };
 
 // A thick ellipsoidal shell: the outer ellipsoid minus the same ellipsoid scaled by `inner`.
@@ -38,6 +46,12 @@ struct Shell {
   double signed_distance(const Vec3& p) const;
   double volume() const;
   Aabb bounds(const Frame& frame) const { return outer.bounds(frame); }
+
+  struct Column {
+    Ellipsoid::Column outer, cavity;
+  };
+  Column column(const Vec3& p) const { return {outer.column(p), cavity.column(p)}; }
+  double signed_distance(const Column& column, double z) const;
 };
 
 // A bubble.
@@ -45,6 +59,15 @@ struct Sphere {
   Vec3 centre;
   double r = 1.0;
   double signed_distance(const Vec3& p) const;
+
+  struct Column {
+    double horizontal2 = 0.0;
+  };
+  Column column(const Vec3& p) const {
+    const double dx = p.x - centre.x, dy = p.y - centre.y;
+    return {dx * dx + dy * dy};
+  }
+  double signed_distance(const Column& column, double z) const;
 };
 
 // A horizontal sinuous centre line: c(t) = centre + t*u + A*sin(k*t + phase)*v, t in

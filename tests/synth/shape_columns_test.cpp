@@ -1,9 +1,11 @@
 // The analytic kind computes every shape's distance a column of samples at a time (the part that
 // depends on x and y once per column, shapes.hpp): it must give the bits of the point-by-point
-// formula at every sample, near the shapes, at a tube's ends, in a shell's cavity and far away.
+// formulas the generator used before (written out below) at every sample, near the shapes, at a
+// tube's ends, in a shell's cavity and far away, so that its cubes keep their bytes.
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <numbers>
@@ -13,6 +15,47 @@
 
 namespace geotandem::synth::detail {
 namespace {
+
+// The point-by-point formulas, each sum in its order.
+double ellipsoid_distance(const Ellipsoid& e, const Vec3& p) {
+  const double dx = p.x - e.centre.x, dy = p.y - e.centre.y;
+  const double s = (dx * e.axes.ux + dy * e.axes.uy) / e.a;
+  const double n = (dx * e.axes.vx + dy * e.axes.vy) / e.b;
+  const double z = (p.z - e.centre.z) / e.c;
+  const double rho = std::sqrt(s * s + n * n + z * z);
+  const double g = std::sqrt(s * s / (e.a * e.a) + n * n / (e.b * e.b) + z * z / (e.c * e.c));
+  if (g == 0.0) return std::min({e.a, e.b, e.c});
+  return (1.0 - rho) * rho / g;
+}
+
+double point_distance(const Ellipsoid& e, const Vec3& p) {
+  return ellipsoid_distance(e, p);
+}
+
+double point_distance(const Shell& shell, const Vec3& p) {
+  return std::min(ellipsoid_distance(shell.outer, p), -ellipsoid_distance(shell.cavity, p));
+}
+
+double point_distance(const Sphere& sphere, const Vec3& p) {
+  const double dx = p.x - sphere.centre.x, dy = p.y - sphere.centre.y, dz = p.z - sphere.centre.z;
+  return sphere.r - std::sqrt(dx * dx + dy * dy + dz * dz);
+}
+
+double point_distance(const Tube& t, const Vec3& p) {
+  double s = 0.0, n = 0.0;
+  t.line.local(p, s, n);
+  const double dz = p.z - t.line.centre.z;
+  const double near = t.radius + t.band;
+  if (std::abs(dz) > near || std::abs(n) > t.line.amplitude + near ||
+      std::abs(s) > t.line.half_length + t.radius + t.reach)
+    return -t.reach;
+  const double across = std::abs(n - t.line.offset(s)) * t.line.lipschitz_factor;
+  if (across * across + dz * dz > near * near) return -t.reach;
+  const double u = t.line.nearest(s, n);
+  const double ds = s - u, dn = n - t.line.offset(u);
+  const double d = std::sqrt(ds * ds + dn * dn + dz * dz);
+  return std::min(t.radius - d, t.line.end_distance(s, n));
+}
 
 struct Counts {
   std::size_t near = 0, checked = 0;
@@ -26,7 +69,7 @@ void expect_same_bits(const Shape& shape, const Vec3& centre, double band, Layou
     auto c = shape.column({x, y, 0.0});
     for (int k = 0; k < 60; ++k) {
       const double z = k * 0.75;
-      const double want = shape.signed_distance(Vec3{x, y, z});
+      const double want = point_distance(shape, Vec3{x, y, z});
       const double got = shape.signed_distance(c, z);
       ASSERT_EQ(std::memcmp(&got, &want, sizeof got), 0)
           << "column (" << x << ", " << y << "), z " << z << ": " << got << " against " << want;

@@ -14,18 +14,6 @@ Axes Axes::of(double azimuth_rad) {
 Ellipsoid::Ellipsoid(Vec3 centre_, double a_, double b_, double c_, double azimuth_)
     : centre(centre_), a(a_), b(b_), c(c_), azimuth(azimuth_), axes(Axes::of(azimuth_)) {}
 
-double Ellipsoid::signed_distance(const Vec3& p) const {
-  const double dx = p.x - centre.x, dy = p.y - centre.y;
-  const double s = (dx * axes.ux + dy * axes.uy) / a;
-  const double n = (dx * axes.vx + dy * axes.vy) / b;
-  const double z = (p.z - centre.z) / c;
-  const double rho = std::sqrt(s * s + n * n + z * z);
-  // |grad rho| * rho = |(s/a, n/b, z/c)| in normalised coordinates.
-  const double g = std::sqrt(s * s / (a * a) + n * n / (b * b) + z * z / (c * c));
-  if (g == 0.0) return std::min({a, b, c});
-  return (1.0 - rho) * rho / g;
-}
-
 Ellipsoid::Column Ellipsoid::column(const Vec3& p) const {
   const double dx = p.x - centre.x, dy = p.y - centre.y;
   const double s = (dx * axes.ux + dy * axes.uy) / a;
@@ -36,6 +24,7 @@ Ellipsoid::Column Ellipsoid::column(const Vec3& p) const {
 double Ellipsoid::signed_distance(const Column& column, double at_z) const {
   const double z = (at_z - centre.z) / c;
   const double rho = std::sqrt(column.rho2 + z * z);
+  // |grad rho| * rho = |(s/a, n/b, z/c)| in normalised coordinates.
   const double g = std::sqrt(column.grad2 + z * z / (c * c));
   if (g == 0.0) return std::min({a, b, c});
   return (1.0 - rho) * rho / g;
@@ -55,21 +44,12 @@ Shell::Shell(const Ellipsoid& outer_, double inner_)
     : outer(outer_), cavity(outer_.centre, outer_.a * inner_, outer_.b * inner_, outer_.c * inner_, outer_.azimuth),
       inner(inner_) {}
 
-double Shell::signed_distance(const Vec3& p) const {
-  return std::min(outer.signed_distance(p), -cavity.signed_distance(p));
-}
-
 double Shell::signed_distance(const Column& column, double z) const {
   return std::min(outer.signed_distance(column.outer, z), -cavity.signed_distance(column.cavity, z));
 }
 
 double Shell::volume() const {
   return outer.volume() * (1.0 - inner * inner * inner);
-}
-
-double Sphere::signed_distance(const Vec3& p) const {
-  const double dx = p.x - centre.x, dy = p.y - centre.y, dz = p.z - centre.z;
-  return r - std::sqrt(dx * dx + dy * dy + dz * dz);
 }
 
 double Sphere::signed_distance(const Column& column, double z) const {
@@ -188,25 +168,11 @@ double SinuousLine::max_amplitude(double wavelength, double reach) {
   return (-k2 * reach + std::sqrt(k2 * k2 * reach * reach + 7.2 * k2)) / (4.0 * k2);
 }
 
-double Tube::signed_distance(const Vec3& p) const {
-  double s = 0.0, n = 0.0;
-  line.local(p, s, n);
-  const double dz = p.z - line.centre.z;
-  // Only samples closer than radius + band to the line can get an estimate above -band; all others
-  // get -reach. Cheap tests first: no point of the line has |n| > A, its ends lie at
-  // |s| <= half_length, and (the line being the graph of a Lipschitz function of s) the distance
-  // is at least the offset across it times 1/sqrt(1 + L^2).
-  const double near = radius + band;
-  if (std::abs(dz) > near || std::abs(n) > line.amplitude + near || std::abs(s) > line.half_length + radius + reach)
-    return -reach;
-  const double across = std::abs(n - line.offset(s)) * line.lipschitz_factor;
-  if (across * across + dz * dz > near * near) return -reach;
-  const double t = line.nearest(s, n);
-  const double ds = s - t, dn = n - line.offset(t);
-  const double d = std::sqrt(ds * ds + dn * dn + dz * dz);
-  return std::min(radius - d, line.end_distance(s, n));
-}
-
+// Only samples closer than radius + band to the line can get an estimate above -band; all others
+// get -reach. Cheap tests first: no point of the line has |n| > A, its ends lie at
+// |s| <= half_length, and (the line being the graph of a Lipschitz function of s) the distance is
+// at least the offset across it times 1/sqrt(1 + L^2). The nearest point comes last, once per
+// column and only when a sample passes those tests.
 Tube::Column Tube::column(const Vec3& p) const {
   Column c;
   line.local(p, c.s, c.n);

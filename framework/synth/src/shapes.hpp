@@ -22,18 +22,19 @@ struct Ellipsoid {
   Axes axes;
 
   Ellipsoid(Vec3 centre, double a, double b, double c, double azimuth);
-  // (1 - rho) / |grad rho| with rho the normalised radius: exact sign, first-order distance.
-  double signed_distance(const Vec3& p) const;
   double volume() const;
   Aabb bounds(const Frame& frame) const;
 
-  // The sums of signed_distance's horizontal terms, for a column of samples at p.x, p.y;
-  // signed_distance(column, z) gives the bits of signed_distance(p) (the terms add in order).
+  // (1 - rho) / |grad rho| with rho the normalised radius: exact sign, first-order distance. Every
+  // shape's distance is taken a column of samples at a time (the analytic kind reads boxes): its
+  // terms that depend on x and y alone once per column (column()), then one sample's
+  // (signed_distance(column, z)).
   struct Column {
-    double rho2 = 0.0, grad2 = 0.0;
+    double rho2 = 0.0, grad2 = 0.0; // the horizontal terms of rho^2 and of |grad rho|^2 rho^2
   };
   Column column(const Vec3& p) const;
   double signed_distance(const Column& column, double z) const;
+  double signed_distance(const Vec3& p) const { return signed_distance(column(p), p.z); }
 };
 
 // A thick ellipsoidal shell: the outer ellipsoid minus the same ellipsoid scaled by `inner`.
@@ -43,7 +44,6 @@ struct Shell {
   double inner = 0.5;
 
   Shell(const Ellipsoid& outer, double inner);
-  double signed_distance(const Vec3& p) const;
   double volume() const;
   Aabb bounds(const Frame& frame) const { return outer.bounds(frame); }
 
@@ -52,13 +52,13 @@ struct Shell {
   };
   Column column(const Vec3& p) const { return {outer.column(p), cavity.column(p)}; }
   double signed_distance(const Column& column, double z) const;
+  double signed_distance(const Vec3& p) const { return signed_distance(column(p), p.z); }
 };
 
 // A bubble.
 struct Sphere {
   Vec3 centre;
   double r = 1.0;
-  double signed_distance(const Vec3& p) const;
 
   struct Column {
     double horizontal2 = 0.0;
@@ -68,6 +68,7 @@ struct Sphere {
     return {dx * dx + dy * dy};
   }
   double signed_distance(const Column& column, double z) const;
+  double signed_distance(const Vec3& p) const { return signed_distance(column(p), p.z); }
 };
 
 // A horizontal sinuous centre line: c(t) = centre + t*u + A*sin(k*t + phase)*v, t in
@@ -113,12 +114,10 @@ struct Tube {
   double band = 1.0;  // estimates are exact-signed first-order distances down to -band
   double reach = 2.0; // returned (negated) where the estimate is below -band; reach >= band
 
-  double signed_distance(const Vec3& p) const;
   double volume() const;
   Aabb bounds(const Frame& frame) const { return line.bounds(frame, radius, radius); }
 
-  // The line is horizontal: what signed_distance computes from p.x and p.y alone, for a column of
-  // samples; signed_distance(column, z) then gives the same bits as signed_distance(p).
+  // The line is horizontal: what the distance needs of p.x and p.y alone, for a column of samples.
   struct Column {
     bool far = true;          // every sample of the column is farther than radius + band
     double s = 0.0, n = 0.0;  // the column in the line's local coordinates
@@ -129,6 +128,10 @@ struct Tube {
   };
   Column column(const Vec3& p) const;
   double signed_distance(Column& column, double z) const;
+  double signed_distance(const Vec3& p) const {
+    Column c = column(p);
+    return signed_distance(c, p.z);
+  }
 };
 
 } // namespace geotandem::synth::detail

@@ -1,5 +1,6 @@
 #pragma once
-// Helpers of the GDAL-backed format tests (gdal_test.cpp, gdal_foreign_test.cpp): a formula cube
+// Helpers of the GDAL-backed format tests (gdal_test.cpp, gdal_foreign_test.cpp,
+// gdal_coordinates_test.cpp, gdal_raster_test.cpp): a formula cube
 // whose every sample is unique, files written through GDAL as other tools would, error capture.
 
 #include <gdal_priv.h>
@@ -131,17 +132,46 @@ inline void fill_array(GDALMDArray& array, std::array<int, 3> axes) {
       array.Write(start, count.data(), nullptr, nullptr, GDALExtendedDataType::Create(GDT_Float64), values.data()));
 }
 
-inline void write_coordinate(GDALGroup& root, const std::shared_ptr<GDALDimension>& dim, double first, double step,
-                             const char* unit) {
-  auto variable = add_array(root, dim->GetName(), {dim}, GDT_Float64);
-  std::vector<double> values(static_cast<std::size_t>(dim->GetSize()));
-  for (std::size_t n = 0; n < values.size(); ++n)
-    values[n] = first + step * static_cast<double>(n);
+// Writes `values` as the coordinate variable of `dim`, stored as `type` (Float32 as some tools
+// store them), with a `units` attribute unless `unit` is null.
+inline void write_values(GDALGroup& root, const std::shared_ptr<GDALDimension>& dim, const std::vector<double>& values,
+                         GDALDataType type, const char* unit) {
+  auto variable = add_array(root, dim->GetName(), {dim}, type);
   const GUInt64 start = 0;
   const std::size_t count = values.size();
   ASSERT_TRUE(
       variable->Write(&start, &count, nullptr, nullptr, GDALExtendedDataType::Create(GDT_Float64), values.data()));
   if (unit) variable->CreateAttribute("units", {}, GDALExtendedDataType::CreateString())->Write(unit);
+}
+
+inline void write_coordinate(GDALGroup& root, const std::shared_ptr<GDALDimension>& dim, double first, double step,
+                             const char* unit) {
+  std::vector<double> values(static_cast<std::size_t>(dim->GetSize()));
+  for (std::size_t n = 0; n < values.size(); ++n)
+    values[n] = first + step * static_cast<double>(n);
+  write_values(root, dim, values, GDT_Float64, unit);
+}
+
+// One axis of a netCDF file written by write_axes: its dimension, and its coordinate variable
+// unless `values` is empty.
+struct Axis {
+  std::string name;
+  std::size_t size = 0; // taken from values when they are given
+  std::vector<double> values;
+  GDALDataType type = GDT_Float64;
+  const char* unit = nullptr;
+};
+
+// A netCDF file whose array "seismic" (Float32, the formula of value_at) spans the three axes.
+inline void write_axes(const std::string& path, const std::array<Axis, 3>& axes) {
+  write_foreign(path, "netCDF", [&](GDALGroup& root) {
+    std::vector<std::shared_ptr<GDALDimension>> dims;
+    for (const Axis& axis : axes) {
+      dims.push_back(root.CreateDimension(axis.name, "", "", axis.values.empty() ? axis.size : axis.values.size()));
+      if (!axis.values.empty()) write_values(root, dims.back(), axis.values, axis.type, axis.unit);
+    }
+    fill_array(*add_array(root, "seismic", dims, GDT_Float32), {0, 1, 2});
+  });
 }
 
 } // namespace gdal_fixtures

@@ -187,8 +187,9 @@ void take_line_numbers(const std::vector<double>& values, const GDALDimension& d
     if (values.size() > 1 && values[1] != values[0]) step = values[1] - values[0];
     return;
   }
-  const std::string what = "the line numbers of dimension '" + dimension.GetName() +
-                           "' skip lines, missing: " + missing_lines_text(lattice, values[0], lattice_step);
+  std::string skipped = missing_lines_text(lattice, values[0], lattice_step);
+  const std::string what =
+      "the line numbers of dimension '" + dimension.GetName() + "' skip lines, missing: " + skipped;
   // A few lines spread over a huge range are not a survey with some lines missing.
   if (lattice.back() + 1 > 4 * static_cast<std::int64_t>(values.size()))
     throw FormatError(what + ": more than three lines in four", {path},
@@ -200,7 +201,7 @@ void take_line_numbers(const std::vector<double>& values, const GDALDimension& d
   first = values[0];
   step = lattice_step;
   count = lattice.back() + 1;
-  missing = missing_lines_text(lattice, values[0], lattice_step);
+  missing = std::move(skipped);
   grid = std::move(lattice);
 }
 

@@ -29,16 +29,7 @@ namespace fs = std::filesystem;
 using namespace geotandem;
 using namespace geotandem::volume;
 using geotandem::testing::ScratchDir;
-using geotandem::volume::testing::expect_near_at_corners;
-using geotandem::volume::testing::expect_same_grid;
-using geotandem::volume::testing::formula;
-using geotandem::volume::testing::formula_cube;
-using geotandem::volume::testing::formula_samples;
-using geotandem::volume::testing::message_of;
-using geotandem::volume::testing::probe_boxes;
-using geotandem::volume::testing::sample_geometry;
-using geotandem::volume::testing::SegySpec;
-using geotandem::volume::testing::write_with_segyio;
+using namespace geotandem::volume::testing; // the cube and SEG-Y fixtures
 
 namespace {
 

@@ -6,6 +6,7 @@
 #include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <numbers>
 
 #include "array3.hpp"
@@ -192,6 +193,84 @@ TEST(Filters, CorrelateMatchesDirectSumOnEveryAxis) {
             ASSERT_NEAR(out.data[n], sum, 1e-5) << "axis " << axis << " at " << i << ", " << j << ", " << k;
           }
     }
+}
+
+// One output of a filter in the order every path must keep (w0 c, then w_t (plus_t +- minus_t) for
+// t = 1 .. radius, zero taps skipped), in floats: the vector blocks, the lines rounded up to whole
+// vectors and the batches of planes across must all give exactly these bits.
+float sum_in_order(const detail::Kernel& kernel, const std::function<float(int)>& at) {
+  const bool even = kernel.symmetry == detail::Symmetry::even;
+  float sum = even ? kernel.half[0] * at(0) : 0.0f;
+  for (int t = 1; t <= kernel.radius(); ++t) {
+    const float w = kernel.half[static_cast<std::size_t>(t)];
+    if (w == 0.0f) continue;
+    sum += w * (even ? at(t) + at(-t) : at(t) - at(-t));
+  }
+  return sum;
+}
+
+std::vector<detail::Kernel> kernels_of_every_path() {
+  // Radii 1-6 and 9 have their own loop, 7 and 20 the general one, the Hilbert kernel (zero taps)
+  // the general one with skips.
+  std::vector<detail::Kernel> kernels;
+  for (double sigma : {0.3, 0.6, 1.0, 1.3, 1.6, 2.0, 2.3, 3.0, 6.7})
+    kernels.push_back(detail::gaussian_kernel(sigma));
+  kernels.push_back(detail::gaussian_derivative_kernel(1.0));
+  kernels.push_back(detail::gaussian_derivative_kernel(2.3));
+  kernels.push_back(detail::hilbert_kernel(8));
+  return kernels;
+}
+
+TEST(Filters, EveryLineLengthGivesTheBitsOfOneSumAtATime) {
+  // Lines of 1 to 45 outputs along the trace, 1 to 3 lines per plane: lines rounded up to whole
+  // vectors overlap their successor's first outputs, and the last lines of the array cannot.
+  for (const detail::Kernel& kernel : kernels_of_every_path())
+    for (int outputs = 1; outputs <= 45; outputs += outputs < 12 ? 1 : 11)
+      for (int lines = 1; lines <= 3; ++lines) {
+        const int r = kernel.radius();
+        const Index3 shape{2, lines, outputs + 2 * r};
+        auto u = cube(shape, [](int i, int j, int k) { return noise(i, j, k); });
+        const detail::Array3 in = detail::read_mirrored(*u, u->geometry().bounds(), {0, 0, 0});
+        const detail::Array3 out = detail::correlate(in, 2, kernel);
+        ASSERT_EQ(out.shape, (Index3{2, lines, outputs}));
+        std::size_t n = 0;
+        for (int i = 0; i < 2; ++i)
+          for (int j = 0; j < lines; ++j)
+            for (int k = 0; k < outputs; ++k, ++n) {
+              const float expected = sum_in_order(kernel, [&](int t) {
+                return in.data[static_cast<std::size_t>((i * lines + j) * shape[2] + k + r + t)];
+              });
+              ASSERT_EQ(out.data[n], expected) << "radius " << r << ", " << outputs << " outputs, line " << j;
+            }
+      }
+}
+
+TEST(Filters, PlanesFilteredTogetherGiveTheBitsOfOneSumAtATime) {
+  // 1 to 6 output planes at once, of sizes that leave blocks of 32, of 8 and single outputs.
+  for (const detail::Kernel& kernel : kernels_of_every_path())
+    for (int count = 1; count <= 6; ++count)
+      for (std::size_t n : {std::size_t{1}, std::size_t{13}, std::size_t{77}}) {
+        const int r = kernel.radius();
+        std::vector<std::vector<float>> planes(static_cast<std::size_t>(2 * r + count), std::vector<float>(n));
+        for (std::size_t p = 0; p < planes.size(); ++p)
+          for (std::size_t m = 0; m < n; ++m)
+            planes[p][m] = static_cast<float>(noise(static_cast<int>(p), static_cast<int>(m), 3));
+        std::vector<const float*> in;
+        for (const auto& plane : planes)
+          in.push_back(plane.data());
+        std::vector<std::vector<float>> out(static_cast<std::size_t>(count), std::vector<float>(n));
+        std::vector<float*> outs;
+        for (auto& plane : out)
+          outs.push_back(plane.data());
+        detail::correlate_planes(in.data(), kernel, outs.data(), n, count);
+        for (int b = 0; b < count; ++b)
+          for (std::size_t m = 0; m < n; ++m) {
+            const float expected =
+                sum_in_order(kernel, [&](int t) { return planes[static_cast<std::size_t>(b + r + t)][m]; });
+            ASSERT_EQ(out[static_cast<std::size_t>(b)][m], expected)
+                << "radius " << r << ", plane " << b << " of " << count << ", sample " << m << " of " << n;
+          }
+      }
 }
 
 TEST(Eigenvalues, MatchEigenOnRandomAndDegenerateMatrices) {

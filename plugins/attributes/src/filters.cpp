@@ -1,6 +1,7 @@
 #include "filters.hpp"
 #include "geotandem/core/simd.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <numbers>
@@ -16,59 +17,156 @@ namespace {
 // fuse a multiply with an add (no FMA), so every output has the same bits whichever clone runs.
 using Float8 = float __attribute__((vector_size(32)));
 constexpr std::size_t kLanes = 8;
+// Eight floats at any address (one unaligned load or store). Loads and stores are written in
+// place: no function takes or returns a Float8, whose passing would differ between the clones.
+using UnalignedFloat8 = float __attribute__((vector_size(32), aligned(4), may_alias));
+
+// The taps w(0 .. radius) of a kernel. With R > 0 the radius is known when compiling: the taps
+// are copied into the object (the outputs' stores may not alias them, so they stay in registers
+// across blocks), the loop over them is unrolled and none is tested against 0 (the dispatch below
+// has checked that none is). With R = 0 they are read from the kernel and zero taps are skipped.
+template <int R> struct Taps {
+  explicit Taps(const Kernel& kernel) : radius(R > 0 ? R : kernel.radius()) {
+    if constexpr (R > 0)
+      std::memcpy(fixed, kernel.half.data(), sizeof fixed);
+    else
+      w = kernel.half.data();
+  }
+  Taps(const Taps&) = delete; // w may point into the object
+  Taps& operator=(const Taps&) = delete;
+  bool skip(float wt) const { return R == 0 && wt == 0.0f; }
+
+  float fixed[R + 1];
+  const float* w = fixed;
+  int radius;
+};
 
 // Outputs o[k .. k + 8 V): o = w0 c (even) or 0 (odd), then o += w_t (plus_t +- minus_t) for
-// t = 1, 2, ..., radius in that order. The V sums stay in registers over all the taps (one load
-// and one store of o, not one per tap), and V > 1 lets their additions overlap.
+// t = 1, 2, ..., radius in that order, skipping zero taps. The V sums stay in registers over all
+// the taps (one load and one store of o, not one per tap), and V > 1 lets their additions overlap.
 // `neighbours(t)` gives the pointers {plus_t, minus_t} at output 0.
-template <bool Even, int V, class Neighbours>
-[[gnu::always_inline]] inline void filter_block(const float* centre, const Neighbours& neighbours, const float* w,
-                                                int radius, float* o, std::size_t k) {
-  // Loads and stores go through memcpy (unaligned, one instruction each); no function takes or
-  // returns a Float8, whose passing would differ between the clones.
+template <bool Even, int V, int R, class Neighbours>
+[[gnu::always_inline]] inline void filter_block(const float* centre, const Neighbours& neighbours, const Taps<R>& taps,
+                                                float* o, std::size_t k) {
+  const float* w = taps.w;
   Float8 sum[V];
-  for (int v = 0; v < V; ++v) {
-    sum[v] = Float8{};
-    if (Even) {
-      Float8 c;
-      std::memcpy(&c, centre + k + kLanes * v, sizeof c);
-      sum[v] = w[0] * c;
-    }
-  }
-  for (int t = 1; t <= radius; ++t) {
+#pragma GCC unroll 4
+  for (int v = 0; v < V; ++v)
+    sum[v] = Even ? w[0] * *reinterpret_cast<const UnalignedFloat8*>(centre + k + kLanes * v) : Float8{};
+#pragma GCC unroll 16
+  for (int t = 1; t <= taps.radius; ++t) {
     const float wt = w[t];
-    if (wt == 0.0f) continue;
+    if (taps.skip(wt)) continue;
     const auto [a, b] = neighbours(t);
+#pragma GCC unroll 4
     for (int v = 0; v < V; ++v) {
-      Float8 x, y;
-      std::memcpy(&x, a + k + kLanes * v, sizeof x);
-      std::memcpy(&y, b + k + kLanes * v, sizeof y);
+      const Float8 x = *reinterpret_cast<const UnalignedFloat8*>(a + k + kLanes * v);
+      const Float8 y = *reinterpret_cast<const UnalignedFloat8*>(b + k + kLanes * v);
       sum[v] += wt * (Even ? x + y : x - y);
     }
   }
-  std::memcpy(o + k, sum, sizeof sum);
+#pragma GCC unroll 4
+  for (int v = 0; v < V; ++v)
+    *reinterpret_cast<UnalignedFloat8*>(o + k + kLanes * v) = sum[v];
 }
 
-// The same sums for all of o[0 .. n): blocks of 32, then of 8, then one output at a time.
-template <bool Even, class Neighbours>
-[[gnu::always_inline]] inline void filter_outputs(const float* centre, const Neighbours& neighbours,
-                                                  const Kernel& kernel, float* o, std::size_t n) {
-  const float* w = kernel.half.data();
-  const int radius = kernel.radius();
-  std::size_t k = 0;
-  for (; k + 4 * kLanes <= n; k += 4 * kLanes)
-    filter_block<Even, 4>(centre, neighbours, w, radius, o, k);
-  for (; k + kLanes <= n; k += kLanes)
-    filter_block<Even, 1>(centre, neighbours, w, radius, o, k);
-  for (; k < n; ++k) {
-    float sum = Even ? w[0] * centre[k] : 0.0f;
-    for (int t = 1; t <= radius; ++t) {
-      const float wt = w[t];
-      if (wt == 0.0f) continue;
-      const auto [a, b] = neighbours(t);
-      sum += wt * (Even ? a[k] + b[k] : a[k] - b[k]);
+// Output k alone: the same sum as a block's lane.
+template <bool Even, int R, class Neighbours>
+[[gnu::always_inline]] inline float filter_one(const float* centre, const Neighbours& neighbours, const Taps<R>& taps,
+                                               std::size_t k) {
+  float sum = Even ? taps.w[0] * centre[k] : 0.0f;
+  for (int t = 1; t <= taps.radius; ++t) {
+    const float wt = taps.w[t];
+    if (taps.skip(wt)) continue;
+    const auto [a, b] = neighbours(t);
+    sum += wt * (Even ? a[k] + b[k] : a[k] - b[k]);
+  }
+  return sum;
+}
+
+// Lines along one axis: `lines` lines of n outputs each, line L's centres at centre + L line_in
+// and its outputs at o + L pitch; `neighbours(t)` gives the pointers {plus_t, minus_t} of line 0's
+// output 0. Each line goes in blocks of 32, then of 8, then one output at a time.
+template <class Neighbours> struct Lines {
+  const float* centre;
+  Neighbours neighbours;
+  std::size_t line_in = 0, pitch = 0, n = 0, lines = 1;
+  float* o;
+
+  template <bool Even, int R> [[gnu::always_inline]] void filter(const Taps<R>& taps) const {
+    float* out = o;
+    for (std::size_t line = 0; line < lines; ++line, out += pitch) {
+      const std::size_t shift = line * line_in;
+      const float* c = centre + shift;
+      const auto shifted = [this, shift](int t) {
+        const auto [a, b] = neighbours(t);
+        return std::pair{a + shift, b + shift};
+      };
+      std::size_t k = 0;
+      for (; k + 4 * kLanes <= n; k += 4 * kLanes)
+        filter_block<Even, 4>(c, shifted, taps, out, k);
+      for (; k + kLanes <= n; k += kLanes)
+        filter_block<Even, 1>(c, shifted, taps, out, k);
+      for (; k < n; ++k)
+        out[k] = filter_one<Even>(c, shifted, taps, k);
     }
-    o[k] = sum;
+  }
+};
+
+// Output planes b = 0 .. count - 1 of a filter across planes, outs[b] from planes[b .. b + 2 radius].
+// The outputs go chunk by chunk, every output of a chunk before the next chunk: the input planes'
+// chunks come from memory once and serve all the outputs from the first-level cache, where plane
+// after plane would fetch every input plane 2 radius + 1 times.
+struct Across {
+  static constexpr int kMaxPlanes = 128; // 2 radius + count, at most (radius <= 60)
+  // The planes' addresses in a local array, which the stores through `outs` cannot reach: they
+  // stay in registers or are loaded once, not reloaded after every store.
+  const float* planes[kMaxPlanes];
+  float* const* outs;
+  std::size_t n;
+  int count;
+
+  template <bool Even, int R> [[gnu::always_inline]] void filter(const Taps<R>& taps) const {
+    const auto neighbours = [this, &taps](int b) {
+      const float* const* p = planes + b + taps.radius;
+      return [p](int t) { return std::pair{p[t], p[-t]}; };
+    };
+    const auto centre = [this, &taps](int b) { return planes[b + taps.radius]; };
+    std::size_t k = 0;
+    for (; k + 4 * kLanes <= n; k += 4 * kLanes)
+      for (int b = 0; b < count; ++b)
+        filter_block<Even, 4>(centre(b), neighbours(b), taps, outs[b], k);
+    for (; k + kLanes <= n; k += kLanes)
+      for (int b = 0; b < count; ++b)
+        filter_block<Even, 1>(centre(b), neighbours(b), taps, outs[b], k);
+    for (; k < n; ++k)
+      for (int b = 0; b < count; ++b)
+        outs[b][k] = filter_one<Even>(centre(b), neighbours(b), taps, k);
+  }
+};
+
+// job.filter<even, R>(Taps<R>) with the radius fixed when compiling for the radii of the usual
+// Gaussians (sigma up to 2: radius up to 6; sigma 3: radius 9) when no tap is 0; otherwise the
+// general loop. Each output is the same sum in the same order either way.
+template <int R, class Job> [[gnu::always_inline]] inline void filter_with(const Job& job, const Kernel& kernel) {
+  const Taps<R> taps(kernel);
+  if (kernel.symmetry == Symmetry::even)
+    job.template filter<true>(taps);
+  else
+    job.template filter<false>(taps);
+}
+
+template <class Job> [[gnu::always_inline]] inline void filter_any(const Job& job, const Kernel& kernel) {
+  const bool dense = std::find(kernel.half.begin() + 1, kernel.half.end(), 0.0f) == kernel.half.end();
+  switch (dense ? kernel.radius() : 0) {
+  case 1: return filter_with<1>(job, kernel);
+  case 2: return filter_with<2>(job, kernel);
+  case 3: return filter_with<3>(job, kernel);
+  case 4: return filter_with<4>(job, kernel);
+  case 5: return filter_with<5>(job, kernel);
+  case 6: return filter_with<6>(job, kernel);
+  case 9: return filter_with<9>(job, kernel);
+  default: return filter_with<0>(job, kernel);
   }
 }
 
@@ -77,27 +175,37 @@ template <bool Even, class Neighbours>
 GEOTANDEM_AVX2_CLONES void filter_line(const float* centre, std::ptrdiff_t stride, const Kernel& kernel,
                                        float* __restrict o, std::size_t n) {
   const auto neighbours = [centre, stride](int t) { return std::pair{centre + t * stride, centre - t * stride}; };
-  if (kernel.symmetry == Symmetry::even)
-    filter_outputs<true>(centre, neighbours, kernel, o, n);
-  else
-    filter_outputs<false>(centre, neighbours, kernel, o, n);
+  filter_any(Lines<decltype(neighbours)>{centre, neighbours, 0, 0, n, 1, o}, kernel);
 }
 
-// filter_line with the neighbours given as pointers (planes[radius +- t]) rather than a stride.
-GEOTANDEM_AVX2_CLONES void filter_across(const float* const* planes, const Kernel& kernel, float* __restrict o,
-                                         std::size_t n) {
-  const int radius = kernel.radius();
-  const auto neighbours = [planes, radius](int t) { return std::pair{planes[radius + t], planes[radius - t]}; };
-  if (kernel.symmetry == Symmetry::even)
-    filter_outputs<true>(planes[radius], neighbours, kernel, o, n);
-  else
-    filter_outputs<false>(planes[radius], neighbours, kernel, o, n);
+// `lines` lines along the innermost axis: line L's inputs start at centre + L line_in, its n
+// outputs go to o + L pitch (n may exceed pitch: see correlate).
+GEOTANDEM_AVX2_CLONES void filter_lines(const float* centre, std::size_t line_in, const Kernel& kernel,
+                                        float* __restrict o, std::size_t pitch, std::size_t n, std::size_t lines) {
+  const auto neighbours = [centre](int t) { return std::pair{centre + t, centre - t}; };
+  filter_any(Lines<decltype(neighbours)>{centre, neighbours, line_in, pitch, n, lines, o}, kernel);
+}
+
+GEOTANDEM_AVX2_CLONES void filter_across(const float* const* planes, const Kernel& kernel, float* const* outs,
+                                         std::size_t n, int count) {
+  const int span = 2 * kernel.radius();
+  if (span + count > Across::kMaxPlanes) { // more planes than the local array: in parts
+    const int part = Across::kMaxPlanes - span;
+    if (part < 1)
+      throw std::logic_error("filter across planes: radius " + std::to_string(kernel.radius()) + " is too large");
+    for (int b = 0; b < count; b += part)
+      filter_across(planes + b, kernel, outs + b, n, std::min(part, count - b));
+    return;
+  }
+  Across job{{}, outs, n, count};
+  std::copy(planes, planes + span + count, job.planes);
+  filter_any(job, kernel);
 }
 
 } // namespace
 
-void correlate_planes(const float* const* planes, const Kernel& kernel, float* out, std::size_t n) {
-  filter_across(planes, kernel, out, n);
+void correlate_planes(const float* const* planes, const Kernel& kernel, float* const* outs, std::size_t n, int count) {
+  filter_across(planes, kernel, outs, n, count);
 }
 
 int gaussian_radius(double sigma) {
@@ -192,11 +300,20 @@ volume::Index3 correlate(const float* in, const volume::Index3& in_shape, int ax
     }
     return shape;
   }
-  for (std::int64_t i = 0; i < shape[0]; ++i)
-    for (std::int64_t j = 0; j < shape[1]; ++j) {
-      filter_line(in + (i * in_nj + j) * in_nk + offset[2], stride, kernel, o, nk);
-      o += nk;
-    }
+  // Along the lines (line L starts at L in_nk in the input, L nk in the output). Short lines would
+  // leave many outputs to the one-at-a-time tail, so each line is rounded up to whole vectors where
+  // that stays inside both arrays: the extra outputs read the next line's first samples and land
+  // on the next line's first outputs, which that line writes again after (lines go in order, each
+  // output its own sum, so the bits do not change).
+  const auto lines = static_cast<std::size_t>(shape[0] * shape[1]);
+  const auto line_in = static_cast<std::size_t>(in_nk);
+  const std::size_t padded = (nk + kLanes - 1) / kLanes * kLanes;
+  std::size_t rounded = 0; // lines 0 .. rounded - 1 have room for `padded` outputs
+  while (rounded < lines && rounded * nk + padded <= lines * nk &&
+         rounded * line_in + padded + 2 * static_cast<std::size_t>(radius) <= lines * line_in)
+    ++rounded;
+  filter_lines(in + offset[2], line_in, kernel, out, nk, padded, rounded);
+  filter_lines(in + offset[2] + rounded * line_in, line_in, kernel, out + rounded * nk, nk, nk, lines - rounded);
   return shape;
 }
 

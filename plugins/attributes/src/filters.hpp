@@ -46,9 +46,10 @@ void correlate(const Array3& in, int axis, const Kernel& kernel, Array3& out);
 // is returned.
 volume::Index3 correlate(const float* in, const volume::Index3& in_shape, int axis, const Kernel& kernel, float* out);
 
-// One output plane of a filter across planes: planes[t] for t = 0 .. 2 radius are consecutive
-// planes of n samples each, the output's own plane being planes[radius]. Same sums in the same
-// order as correlate along axis 0, so streaming plane by plane gives the same bits.
-void correlate_planes(const float* const* planes, const Kernel& kernel, float* out, std::size_t n);
+// Output planes of a filter across planes: outs[b] for b = 0 .. count - 1 from the consecutive
+// planes planes[b .. b + 2 radius] of n samples each, its own plane being planes[b + radius]. Same
+// sums in the same order as correlate along axis 0, so streaming plane by plane gives the same
+// bits; several outputs at once read each input plane once for all of them.
+void correlate_planes(const float* const* planes, const Kernel& kernel, float* const* outs, std::size_t n, int count);
 
 } // namespace geotandem::attributes::detail

@@ -308,10 +308,14 @@ volume::Index3 correlate(const float* in, const volume::Index3& in_shape, int ax
   const auto lines = static_cast<std::size_t>(shape[0] * shape[1]);
   const auto line_in = static_cast<std::size_t>(in_nk);
   const std::size_t padded = (nk + kLanes - 1) / kLanes * kLanes;
-  std::size_t rounded = 0; // lines 0 .. rounded - 1 have room for `padded` outputs
-  while (rounded < lines && rounded * nk + padded <= lines * nk &&
-         rounded * line_in + padded + 2 * static_cast<std::size_t>(radius) <= lines * line_in)
-    ++rounded;
+  // Lines L with L step + reach <= total: the first ones.
+  const auto lines_within = [lines](std::size_t step, std::size_t reach, std::size_t total) {
+    return reach > total ? std::size_t{0} : std::min(lines, (total - reach) / step + 1);
+  };
+  // Lines 0 .. rounded - 1 have room for `padded` outputs, and for the inputs they read.
+  const std::size_t rounded =
+      std::min(lines_within(nk, padded, lines * nk),
+               lines_within(line_in, padded + 2 * static_cast<std::size_t>(radius), lines * line_in));
   filter_lines(in + offset[2], line_in, kernel, out, nk, padded, rounded);
   filter_lines(in + offset[2] + rounded * line_in, line_in, kernel, out + rounded * nk, nk, nk, lines - rounded);
   return shape;

@@ -135,6 +135,11 @@ void add_extract_command(CLI::App& app, Context& context, Runner& run) {
       // One worker per core unless told otherwise (no more than there are blocks; one block is
       // extracted in this process); --workers 0 extracts in this process.
       s.workers = a->workers.value_or(workflow::default_worker_count(cube->geometry(), s.block_size));
+      std::string copy; // beside the store, for a file that reads slowly by blocks
+      {
+        auto copying = context.progress();
+        copy = workflow::copy_input_for_blocks(*cube, a->out + ".input-copy", context.log, *copying, context.cancel);
+      }
       if (s.workers > 0) {
         s.volume_description =
             describe_cube_file(a->cube, a->nan, open.no_data, a->variable, a->segy, cube->reopen_hint());
@@ -155,6 +160,7 @@ void add_extract_command(CLI::App& app, Context& context, Runner& run) {
       auto store = store::ComponentStore::open_or_create(a->out, cube->geometry(), {"geotandem extract", a->cube});
       auto progress = context.progress();
       auto r = workflow::extract_to_store(*cube, store, s, context.log, *progress, context.cancel);
+      workflow::remove_input_copy(copy, context.log);
       std::cout << "extracted " << r.components << " components";
       if (r.duplicates) std::cout << " (" << r.duplicates << " already in the store)";
       if (s.workers > 0) {

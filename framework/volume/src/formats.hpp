@@ -41,6 +41,11 @@ void write_segy(const Volume& volume, const std::string& path, const WriteOption
 std::unique_ptr<Volume> open_raw(const std::string& path, const OpenOptions& options);
 void write_raw(const Volume& volume, const std::string& path, const WriteOptions& options, Progress& progress,
                const CancelToken& cancel);
+// The same, reading `volume` in slabs `thickness` samples thick along `axis` (0 or 1) and whole
+// along the other two: a file stored in chunks that thin along that axis is then decoded once.
+// Reports as `task`. A failed or cancelled write removes what it wrote.
+void write_raw_slabs(const Volume& volume, const std::string& path, int axis, std::int64_t thickness,
+                     const std::string& task, Progress& progress, const CancelToken& cancel);
 
 // Wraps a reader so that NaN and infinite samples follow the policy. (nan_guard.cpp)
 std::unique_ptr<Volume> guard_nan(std::unique_ptr<Volume> inner, const OpenOptions& options);

@@ -28,6 +28,10 @@ public:
   }
   std::optional<float> declared_no_data() const override { return inner_->declared_no_data(); }
   std::string reopen_hint() const override { return inner_->reopen_hint(); }
+  std::string use_block_copy(const std::string& directory, Progress* progress,
+                             const CancelToken& cancel) const override {
+    return inner_->use_block_copy(directory, progress, cancel);
+  }
 
 protected:
   void read_box(const Box& box, std::span<float> out) const override {

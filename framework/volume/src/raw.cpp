@@ -6,6 +6,7 @@
 #include <fcntl.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <bit>
 #include <cerrno>
 #include <cstdint>
@@ -144,6 +145,19 @@ private:
   Descriptor fd_;
 };
 
+void write_all_at(int fd, const float* data, std::size_t count, std::uint64_t offset, const std::string& path) {
+  const auto* bytes = reinterpret_cast<const char*>(data);
+  std::size_t left = count * sizeof(float);
+  while (left > 0) {
+    ssize_t put = ::pwrite(fd, bytes, left, static_cast<off_t>(offset));
+    if (put < 0 && errno == EINTR) continue;
+    if (put < 0) throw IoError(std::string("write failed: ") + std::strerror(errno), {path}, "check the free space");
+    bytes += put;
+    offset += static_cast<std::uint64_t>(put);
+    left -= static_cast<std::size_t>(put);
+  }
+}
+
 void write_all(int fd, const float* data, std::size_t count, const std::string& path) {
   const auto* bytes = reinterpret_cast<const char*>(data);
   std::size_t left = count * sizeof(float);
@@ -183,6 +197,12 @@ std::unique_ptr<Volume> open_raw(const std::string& path, const OpenOptions&) {
 
 void write_raw(const Volume& volume, const std::string& path, const WriteOptions&, Progress& progress,
                const CancelToken& cancel) {
+  write_raw_slabs(volume, path, 0, 1, "writing raw " + path, progress, cancel);
+}
+
+void write_raw_slabs(const Volume& volume, const std::string& path, int axis, std::int64_t thickness,
+                     const std::string& task, Progress& progress, const CancelToken& cancel) {
+  if (axis != 0 && axis != 1) throw InvalidArgument("raw slabs go along axis 0 or 1, not " + std::to_string(axis));
   const Geometry& g = volume.geometry();
   g.validate();
   const std::string sidecar = raw_sidecar_of(path), partial = sidecar + ".partial";
@@ -192,14 +212,29 @@ void write_raw(const Volume& volume, const std::string& path, const WriteOptions
                   "check that the directory exists and is writable");
   try {
     const std::int64_t ni = g.shape[0], nj = g.shape[1], nk = g.shape[2];
-    std::vector<float> slab(static_cast<std::size_t>(nj * nk));
-    progress.begin("writing raw " + path, static_cast<std::uint64_t>(ni), "inlines");
-    for (std::int64_t i = 0; i < ni; ++i) {
+    const std::int64_t along = g.shape[axis], t = std::clamp<std::int64_t>(thickness, 1, along);
+    const std::int64_t slabs = (along + t - 1) / t;
+    std::vector<float> slab;
+    progress.begin(task, static_cast<std::uint64_t>(slabs), axis == 0 ? "inline slabs" : "crossline slabs");
+    for (std::int64_t s = 0; s < slabs; ++s) {
       cancel.throw_if_cancelled();
-      volume.read(Box{{i, 0, 0}, {i + 1, nj, nk}}, slab);
+      const std::int64_t lo = s * t, hi = std::min(along, lo + t);
+      Box box{{0, 0, 0}, {ni, nj, nk}};
+      box.lo[axis] = lo;
+      box.hi[axis] = hi;
+      slab.resize(static_cast<std::size_t>(box.count()));
+      volume.read(box, slab);
       to_or_from_little_endian(slab);
-      write_all(fd.get(), slab.data(), slab.size(), path);
-      progress.update(static_cast<std::uint64_t>(i + 1));
+      if (axis == 0) {
+        write_all(fd.get(), slab.data(), slab.size(), path); // the slabs follow one another in the file
+      } else {
+        // Each inline's part of the slab is one run of the file.
+        const auto run = static_cast<std::size_t>((hi - lo) * nk);
+        for (std::int64_t i = 0; i < ni; ++i)
+          write_all_at(fd.get(), slab.data() + static_cast<std::size_t>(i) * run, run,
+                       static_cast<std::uint64_t>((i * nj + lo) * nk) * sizeof(float), path);
+      }
+      progress.update(static_cast<std::uint64_t>(s + 1));
     }
     if (fd.release_and_close() != 0)
       throw IoError(std::string("write failed on close: ") + std::strerror(errno), {path}, "check the free space");

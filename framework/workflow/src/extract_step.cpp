@@ -2,6 +2,7 @@
 
 #include <chrono>
 #include <cstdlib>
+#include <filesystem>
 #include <fstream>
 
 #include "geotandem/core/error.hpp"
@@ -150,6 +151,31 @@ void warn_if_empty(ExtractResult& result, const ExtractSettings& settings, Logge
     log.warning(warning);
     result.statistics["warnings"] = {warning};
   }
+}
+
+std::string copy_input_for_blocks(const volume::Volume& input, const std::string& directory, Logger& log,
+                                  Progress& progress, const CancelToken& cancel) {
+  try {
+    const std::string path = input.use_block_copy(directory, &progress, cancel);
+    if (!path.empty())
+      log.info("reading " + input.source() + " from its copy " + path +
+               " (one pass over the file: its chunks are too large for reads by blocks)");
+    return path;
+  } catch (const IoError& e) {
+    log.warning("cannot copy " + input.source() + " for reads by blocks (" + e.message() +
+                "); reading the file as it is, which decodes its chunks many times over");
+    return {};
+  }
+}
+
+void remove_input_copy(const std::string& path, Logger& log) {
+  if (path.empty()) return;
+  std::error_code ec;
+  std::filesystem::remove(path, ec);
+  std::filesystem::remove(path + ".json", ec);
+  const std::filesystem::path directory = std::filesystem::path(path).parent_path();
+  std::filesystem::remove(directory, ec); // when empty
+  log.info("removed the copy of the input " + path);
 }
 
 void require_cells(const volume::Geometry& geometry, const std::string& source) {

@@ -120,6 +120,7 @@ public:
       run_step(step);
     for (const StepSpec& step : recipe_.finish)
       run_step(step);
+    remove_input_copy(input_copy_, log_); // kept when the run stops early: a rerun takes it again
     return outcome_;
   }
 
@@ -165,6 +166,15 @@ private:
     if (store::ComponentStore::exists(store_dir_) && state_.fingerprint_of("extract") != print_)
       throw InvalidArgument("the output directory holds a store made with other inputs or parameters",
                             {store_dir_.string()}, "pass --fresh to replace it, or choose another output directory");
+    if (!state_.done("extract", print_)) {
+      // A file whose chunks reads by blocks decode many times over is copied once, for the
+      // attribute file and the extraction (and their workers, through the input hint).
+      auto copying = progress_of(settings_);
+      const auto t = Clock::now();
+      input_copy_ = copy_input_for_blocks(*volumes_.input, (out_dir_ / "input-copy").string(), log_, *copying, cancel_);
+      if (!input_copy_.empty())
+        report_.steps.push_back({"copy input", since(t), 0, 0, "read by blocks from " + input_copy_});
+    }
     write_attribute_file();
     store_.emplace(store::ComponentStore::open_or_create(store_dir_, volumes_.result->geometry(),
                                                          {"geotandem run-workflow", recipe_.path}));
@@ -310,6 +320,7 @@ private:
   State state_;
   nlohmann::json input_content_; // the input file's content fingerprint
   std::string print_;
+  std::string input_copy_; // the input's copy for reads by blocks, when it needed one
   std::optional<store::ComponentStore> store_;
   std::string selection_; // the newest selection: input of the next step and of exports
   ReportData report_;

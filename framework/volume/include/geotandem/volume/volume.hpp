@@ -9,6 +9,8 @@
 #include <string>
 #include <vector>
 
+#include "geotandem/core/cancel.hpp"
+#include "geotandem/core/progress.hpp"
 #include "geotandem/volume/box.hpp"
 #include "geotandem/volume/geometry.hpp"
 
@@ -28,7 +30,7 @@ class Volume;
 // The facts among a volume's format details that a command should print as warnings when it opens
 // the cube, as "PATH: text": geographic trace coordinates made local metres ("coordinates"), what
 // the file does not say and was assumed ("assumed"), lines missing from the survey
-// ("missing_lines").
+// ("missing_lines"), chunks that reads by blocks decode many times over ("slow_reads").
 std::vector<std::string> open_warnings(const Volume& volume);
 
 class Volume {
@@ -66,6 +68,19 @@ public:
   // passing on; only a SEG-Y survey whose grid took a pass over every trace header (irregular, or
   // padded with placeholders) has one.
   virtual std::string reopen_hint() const { return {}; }
+  // For a file whose chunks reads by blocks decode many times over (the format detail
+  // "slow_reads"): copies the cube once, reading each chunk once, into `directory` as raw float32
+  // (FILE.raw + FILE.raw.json, named after the file and its size and modification time), or takes
+  // the complete copy already there for the file as it is now, and reads the copy from then on;
+  // reopen_hint() then names it, so that other processes opening the file read it too. Returns the
+  // copy's path; empty when the volume has no such layout (nothing is written). Throws IoError
+  // when the copy cannot be written (a full disk; nothing is left behind and the volume still
+  // reads the file) and Cancelled. Call it before reads run on other threads.
+  virtual std::string use_block_copy(const std::string& directory, Progress* progress,
+                                     const CancelToken& cancel) const {
+    (void)directory, (void)progress, (void)cancel;
+    return {};
+  }
 
 protected:
   // Called by read() after the box was checked.

@@ -91,6 +91,15 @@ ExtractSettings extract_settings(const ParamValues& values);
 // again by extract_to_store.
 void require_cells(const volume::Geometry& geometry, const std::string& source);
 
+// The input cube read by blocks from a copy when its file's chunks make reads by blocks decode
+// each chunk many times over (Volume::use_block_copy; docs/formats-gdal.md, "Chunks"): makes or
+// reuses the copy in `directory` and logs it. Returns the copy's path, empty when the input needs
+// none. A copy that cannot be written (a full disk) is a warning, and the file is read as it is.
+// Called by the commands and the runner before the extraction, and remove_input_copy after it.
+std::string copy_input_for_blocks(const volume::Volume& input, const std::string& directory, Logger& log,
+                                  Progress& progress, const CancelToken& cancel);
+void remove_input_copy(const std::string& path, Logger& log);
+
 // Extracts the isosurface of `volume` at settings.iso into `store` (which must be writable and
 // have the volume's geometry), as one block or, with settings.block_size > 0, through the block
 // tree (tandem::extract_blocks). Components are committed as they finish, so an interrupted run

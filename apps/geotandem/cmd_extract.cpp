@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <filesystem>
 #include <iostream>
 #include <optional>
 #include <string>
@@ -135,10 +136,13 @@ void add_extract_command(CLI::App& app, Context& context, Runner& run) {
       // One worker per core unless told otherwise (no more than there are blocks; one block is
       // extracted in this process); --workers 0 extracts in this process.
       s.workers = a->workers.value_or(workflow::default_worker_count(cube->geometry(), s.block_size));
-      std::string copy; // beside the store, for a file that reads slowly by blocks
+      std::string copy; // beside the store (STORE.input-copy), for a file that reads slowly by blocks
       {
+        std::filesystem::path beside = std::filesystem::path(a->out).lexically_normal();
+        if (beside.filename().empty()) beside = beside.parent_path(); // "store/"
         auto copying = context.progress();
-        copy = workflow::copy_input_for_blocks(*cube, a->out + ".input-copy", context.log, *copying, context.cancel);
+        copy = workflow::copy_input_for_blocks(*cube, beside.string() + ".input-copy", context.log, *copying,
+                                               context.cancel);
       }
       if (s.workers > 0) {
         s.volume_description =

@@ -96,6 +96,14 @@ TEST(WorkflowInputCopy, AFileInInlineSlicesIsReadFromOneCopyByEveryWorker) {
   ASSERT_GT(keys.size(), 5u);
   EXPECT_EQ(keys_of(out_slices / "store"), keys) << "the same components from the copy";
 
+  // `geotandem extract` does the same beside its store, also given as "DIR/".
+  const fs::path extracted = dir.path() / "extracted";
+  auto cli = run_geotandem("extract " + slices + " --iso 0.8 --workers 2 --out " + extracted.string() + "/");
+  ASSERT_EQ(cli.exit_code, 0) << cli.err;
+  EXPECT_NE(cli.err.find("from its copy " + extracted.string() + ".input-copy/"), std::string::npos) << cli.err;
+  EXPECT_FALSE(fs::exists(extracted.string() + ".input-copy"));
+  EXPECT_EQ(keys_of(extracted), keys);
+
   // The workers read the copy the manager names: a copy already there (here made beforehand, then
   // zeroed) is taken as it is, and the extraction, all of it in the workers, finds nothing.
   const fs::path out_zero = dir.path() / "out-zero";

@@ -191,6 +191,14 @@ public:
       // A damaged copy of this very file: written again below.
     }
     if (!taken) {
+      // Not to fill the disk on the way to failing: the copy needs the whole cube, and a little room
+      // is left for the run's own output.
+      const std::uintmax_t bytes = geometry_.sample_count() * sizeof(float);
+      const fs::space_info space = fs::space(fs::absolute(directory), ec);
+      if (!ec && space.available < bytes + bytes / 16)
+        throw IoError("not enough free space for a copy of the input: it needs " + std::to_string(bytes >> 20) +
+                          " MiB, " + std::to_string(space.available >> 20) + " MiB are free",
+                      {directory}, "free some space, or rewrite the file in chunks of about 64 samples an axis");
       NullProgress quiet;
       write_raw_slabs(*this, path, slabs.axis, slabs.thickness,
                       "copying " + fs::path(path_).filename().string() + " for block reads",

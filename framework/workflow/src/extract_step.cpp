@@ -164,6 +164,8 @@ std::string copy_input_for_blocks(const volume::Volume& input, const std::string
   } catch (const IoError& e) {
     log.warning("cannot copy " + input.source() + " for reads by blocks (" + e.message() +
                 "); reading the file as it is, which decodes its chunks many times over");
+    std::error_code ec;
+    std::filesystem::remove(directory, ec); // when empty: the failed copy left nothing in it
     return {};
   }
 }

@@ -4,14 +4,17 @@
 # cube of 1626 x 7028 x 2000 samples with 2 local workers, and the same recipe on a cube read from
 # a netCDF-4 file on disk against the same cube generated procedurally.
 #
-#   bench/paper_cube.sh [--fraction F] [--netcdf-edge N] [--workers W] [--bin GEOTANDEM] [--out DIR]
-#                       [--skip-paper] [--skip-netcdf] [--set KEY=VALUE ...]
+#   bench/paper_cube.sh [--fraction F] [--netcdf-edge N] [--netcdf-slices] [--workers W] [--bin GEOTANDEM]
+#                       [--out DIR] [--skip-paper] [--skip-netcdf] [--set KEY=VALUE ...]
 #
 #   --fraction F      run on 1/F of the paper cube's volume: inlines and crosslines divided by
 #                     sqrt(F), the 2000 samples per trace kept (default 16: 406 x 1757 x 2000;
 #                     1 is the whole cube, 22.9 G samples)
 #   --netcdf-edge N   edge of the cube for the file-against-procedural comparison (default 512;
 #                     the issue asks 1024, which needs 4 GiB of disk and about 4x the time)
+#   --netcdf-slices   also the same cube rewritten in whole inline slices with deflate (a file
+#                     written inline by inline along an unlimited dimension; bench_netcdf_slices),
+#                     which the run copies once for reads by blocks (docs/formats-gdal.md, "Chunks")
 #   --workers W       local workers (default 2)
 #   --set KEY=VALUE   passed on to every run's `geotandem run-workflow` (repeatable), to measure a
 #                     recipe setting: --set steps.extract.block_size=256
@@ -40,6 +43,7 @@ edge=512
 workers=2
 skip_paper=0
 skip_netcdf=0
+slices=0
 overrides=()
 while [[ $# -gt 0 ]]; do
   case "$1" in
@@ -50,6 +54,7 @@ while [[ $# -gt 0 ]]; do
     --out) out="$2"; shift 2 ;;
     --skip-paper) skip_paper=1; shift ;;
     --skip-netcdf) skip_netcdf=1; shift ;;
+    --netcdf-slices) slices=1; shift ;;
     --set) [[ $# -ge 2 ]] || { echo "bench/paper_cube.sh: --set needs KEY=VALUE" >&2; exit 2; }
       overrides+=(--set "$2"); shift 2 ;;
     -h|--help) awk 'NR > 1 && !/^#/ { exit } NR > 1 { sub(/^# ?/, ""); print }' "$0"; exit 0 ;;
@@ -252,6 +257,24 @@ p = open(sys.argv[1]).read().split()
 f = open(sys.argv[2]).read().split()
 print(f"  netCDF / procedural: wall {float(f[1]) / float(p[1]):.2f}, CPU {float(f[4]) / float(p[4]):.2f} (target <= 1.2)")
 PY
+  if [[ "$slices" == 1 ]]; then
+    sliced="$out/cube-$edge-slices.nc"
+    slicer="$(dirname "$bin")/bench_netcdf_slices"
+    [[ -x "$slicer" ]] || { echo "bench/paper_cube.sh: no bench_netcdf_slices beside $bin" >&2; exit 2; }
+    t0=$(date +%s.%N)
+    "$slicer" "$cube" "$sliced" 1 >/dev/null
+    echo "  writing $sliced (whole inline slices, deflate): $(python3 -c "print(f'{$(date +%s.%N) - $t0:.1f}')") s, $(du -h "$sliced" | cut -f1)"
+    sed "s#^  file: .*#  file: $sliced#" "$file_recipe" > "$out/quickstart-slices.yaml"
+    run "slices-$edge" "$bin" --log-level debug run-workflow "$out/quickstart-slices.yaml" --fresh \
+      --set "output.directory=$out/slices-$edge" --set execution.scheduler=local --set "execution.workers=$workers" "${overrides[@]}"
+    grep -h "for block reads: .* done\|from its copy" "$out/slices-$edge/stderr" 2>/dev/null | sed 's/^/  /' | cut -c1-200 || true
+    python3 - "$out/procedural-$edge/summary" "$out/slices-$edge/summary" <<'PY'
+import sys
+p = open(sys.argv[1]).read().split()
+f = open(sys.argv[2]).read().split()
+print(f"  slices / procedural: wall {float(f[1]) / float(p[1]):.2f}, CPU {float(f[4]) / float(p[4]):.2f}")
+PY
+  fi
 fi
 echo
 echo "load after: $(cut -d' ' -f1-3 /proc/loadavg)"

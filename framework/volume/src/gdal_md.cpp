@@ -65,7 +65,9 @@ std::string copy_name(const std::string& path, const std::string& array_name) {
   }
   char digest[17];
   std::snprintf(digest, sizeof digest, "%016llx", static_cast<unsigned long long>(hash));
-  return std::filesystem::path(path).filename().string() + "." + digest + ".raw";
+  std::filesystem::path file = std::filesystem::path(path).lexically_normal();
+  if (file.filename().empty()) file = file.parent_path(); // a Zarr directory given as "cube.zarr/"
+  return file.filename().string() + "." + digest + ".raw";
 }
 
 ChunkLayout chunk_layout(const GDALMDArray& stored) {

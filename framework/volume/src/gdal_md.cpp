@@ -201,6 +201,8 @@ public:
         throw IoError("not enough free space for a copy of the input: it needs " + std::to_string(bytes >> 20) +
                           " MiB, " + std::to_string(space.available >> 20) + " MiB are free",
                       {directory}, "free some space, or rewrite the file in chunks of about 64 samples an axis");
+      // A damaged copy's sidecar goes first: until the new one appears, nobody takes the half-written copy.
+      fs::remove(raw_sidecar_of(path), ec);
       NullProgress quiet;
       write_raw_slabs(*this, path, slabs.axis, slabs.thickness,
                       "copying " + fs::path(path_).filename().string() + " for block reads",

@@ -283,6 +283,44 @@ TEST(GdalMdForeign, AFileInSlicesIsReadFromOneCopyMadeOnce) {
   EXPECT_FALSE(fs::exists(none));
 }
 
+// A CF-style file stored [time, y, x] with time unlimited is chunked in time slices: the copy then
+// reads slabs along the samples, and reads what the file holds.
+TEST(GdalMdForeign, AFileInTimeSlicesIsCopiedAlongTheSamples) {
+  ScratchDir dir;
+  const std::string path = dir.file("time-slices.nc");
+  write_foreign(path, "netCDF", [](GDALGroup& root) {
+    auto tw = root.CreateDimension("twt", "", "", 130);
+    auto xl = root.CreateDimension("xline", "", "", 300);
+    auto il = root.CreateDimension("iline", "", "", 260);
+    const char* options[] = {"BLOCKSIZE=1,300,260", "COMPRESS=DEFLATE", nullptr};
+    auto array = root.CreateMDArray("seismic", {tw, xl, il}, GDALExtendedDataType::Create(GDT_Float32),
+                                    const_cast<char**>(options));
+    ASSERT_NE(array, nullptr);
+    // Written as Float32 (fill_array's Float64 goes sample by sample through netCDF: slow at this size).
+    std::vector<float> values(130 * 300 * 260);
+    std::size_t n = 0;
+    for (std::int64_t k = 0; k < 130; ++k)
+      for (std::int64_t j = 0; j < 300; ++j)
+        for (std::int64_t i = 0; i < 260; ++i)
+          values[n++] = value_at(i, j, k);
+    const GUInt64 start[3] = {0, 0, 0};
+    const std::size_t count[3] = {130, 300, 260};
+    ASSERT_TRUE(array->Write(start, count, nullptr, nullptr, GDALExtendedDataType::Create(GDT_Float32), values.data()));
+  });
+  const auto cube = gv::open_volume(path);
+  ASSERT_EQ(cube->geometry().shape, (gv::Index3{260, 300, 130}));
+  const std::vector<std::string> warnings = gv::open_warnings(*cube);
+  ASSERT_EQ(warnings.size(), 1u);
+  EXPECT_NE(warnings[0].find("chunks of 1 x 300 x 260 samples (twt x xline x iline), deflate"), std::string::npos)
+      << warnings[0];
+  EXPECT_NE(warnings[0].find("copy it once (39 MiB"), std::string::npos) << warnings[0];
+  const std::string copy = cube->use_block_copy(dir.file("copies"), nullptr, {});
+  ASSERT_FALSE(copy.empty());
+  EXPECT_EQ(fs::file_size(copy), 260u * 300u * 130u * sizeof(float));
+  expect_formula(cube->read(cube->geometry().bounds()), cube->geometry().bounds());
+  expect_formula(cube->read({{7, 100, 60}, {150, 290, 129}}), {{7, 100, 60}, {150, 290, 129}});
+}
+
 TEST(GdalMdForeign, Hdf5CopyOfANetcdfFileOpensAsHdf5) {
   ScratchDir dir;
   const auto source = make_cube(test_geometry({12, 10, 21}));

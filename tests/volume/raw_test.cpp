@@ -9,6 +9,7 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
+#include "formats.hpp" // detail::write_raw_slabs
 #include "geotandem/core/error.hpp"
 #include "geotandem/volume/io.hpp"
 #include "io_fixtures.hpp"
@@ -68,6 +69,34 @@ TEST(Raw, RoundTripKeepsEveryGeometryFieldAndSample) {
   EXPECT_EQ(whole, cube->samples());
   for (const Box& box : probe_boxes(g.shape))
     EXPECT_EQ(back->read(box), formula_samples(box)) << box.to_string();
+}
+
+// The copy of an input for reads by blocks (Volume::use_block_copy) writes raw files slab by slab
+// along any axis: every axis and thickness, the last slab short or not, gives the bytes that
+// write_volume gives, and a cancelled write leaves no file.
+TEST(Raw, SlabsAlongEveryAxisWriteTheSameFile) {
+  ScratchDir dir;
+  const Geometry g = sample_geometry({5, 7, 11});
+  auto cube = formula_cube(g);
+  const std::string reference = dir.file("reference.raw");
+  write_volume(*cube, reference);
+  const std::string expected = read_bytes(reference);
+  ASSERT_EQ(expected.size(), 5u * 7u * 11u * sizeof(float));
+  NullProgress quiet;
+  for (int axis = 0; axis < 3; ++axis)
+    for (std::int64_t thickness : {1, 2, 3, 4, 100}) {
+      const std::string path = dir.file("slabs" + std::to_string(axis) + "-" + std::to_string(thickness) + ".raw");
+      detail::write_raw_slabs(*cube, path, axis, thickness, "test", quiet, {});
+      EXPECT_EQ(read_bytes(path), expected) << "axis " << axis << ", thickness " << thickness;
+      EXPECT_EQ(open_volume(path)->geometry(), g);
+    }
+  CancelToken cancel;
+  cancel.cancel();
+  const std::string cancelled = dir.file("cancelled.raw");
+  EXPECT_THROW(detail::write_raw_slabs(*cube, cancelled, 2, 3, "test", quiet, cancel), Cancelled);
+  EXPECT_FALSE(fs::exists(cancelled));
+  EXPECT_FALSE(fs::exists(cancelled + ".json"));
+  EXPECT_THROW(detail::write_raw_slabs(*cube, dir.file("bad.raw"), 3, 1, "test", quiet, {}), InvalidArgument);
 }
 
 TEST(Raw, BoxesOfACubeLargerThanOneReadSpan) {

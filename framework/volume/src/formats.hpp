@@ -41,8 +41,9 @@ void write_segy(const Volume& volume, const std::string& path, const WriteOption
 std::unique_ptr<Volume> open_raw(const std::string& path, const OpenOptions& options);
 void write_raw(const Volume& volume, const std::string& path, const WriteOptions& options, Progress& progress,
                const CancelToken& cancel);
-// The same, reading `volume` in slabs `thickness` samples thick along `axis` (0 or 1) and whole
+// The same, reading `volume` in slabs `thickness` samples thick along `axis` (0, 1 or 2) and whole
 // along the other two: a file stored in chunks that thin along that axis is then decoded once.
+// Along axis 2 the file is written in runs of `thickness` samples, one per trace.
 // Reports as `task`. A failed or cancelled write removes what it wrote.
 void write_raw_slabs(const Volume& volume, const std::string& path, int axis, std::int64_t thickness,
                      const std::string& task, Progress& progress, const CancelToken& cancel);

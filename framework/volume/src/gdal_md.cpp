@@ -249,9 +249,12 @@ protected:
   }
 
 private:
-  // How use_block_copy reads the file: slabs `thickness` samples thick along cube axis `axis` (0 or
-  // 1, so that the copy is written in long runs), whole chunks thick, so that each chunk is decoded
-  // once; axis -1: no copy (the layout reads well by blocks, or even one slab is too large).
+  // How use_block_copy reads the file: slabs `thickness` samples thick along cube axis `axis`, a
+  // whole number of chunks thick, so that each chunk is decoded once; the axis whose chunk-thick
+  // slab is smallest (one inline slice for inline-slice chunks, one time slice for time slices).
+  // Along the sample axis the copy is written in runs as long as the slab is thick, so the slab
+  // takes up to kMaxSlabBytes / 4 of chunks. axis -1: no copy (the layout reads well by blocks, or
+  // even one slab would exceed kMaxSlabBytes).
   struct Slabs {
     int axis = -1;
     std::int64_t thickness = 0;
@@ -262,19 +265,19 @@ private:
     const std::vector<GUInt64> chunk = array_->GetBlockSize(); // in cube order: array_ is the cube's view
     if (chunk.size() != 3) return best;
     double least = kMaxSlabBytes;
-    for (int axis = 0; axis < 2; ++axis) {
+    for (int axis = 0; axis < 3; ++axis) {
+      const auto a = static_cast<std::size_t>(axis);
       const std::int64_t n = geometry_.shape[axis];
-      const std::int64_t c =
-          chunk[static_cast<std::size_t>(axis)] == 0
-              ? n
-              : std::min<std::int64_t>(n, static_cast<std::int64_t>(chunk[static_cast<std::size_t>(axis)]));
-      const double bytes = static_cast<double>(c) *
-                           static_cast<double>(geometry_.sample_count() / static_cast<std::uint64_t>(n)) *
-                           sizeof(float);
-      if (bytes <= least) {
-        least = bytes;
-        best = {axis, c};
-      }
+      const std::int64_t c = chunk[a] == 0 ? n : std::min<std::int64_t>(n, static_cast<std::int64_t>(chunk[a]));
+      const double plane =
+          static_cast<double>(geometry_.sample_count() / static_cast<std::uint64_t>(n)) * sizeof(float);
+      const double bytes = static_cast<double>(c) * plane;
+      if (bytes > least || (best.axis >= 0 && bytes == least)) continue; // ties: the slower axis
+      least = bytes;
+      std::int64_t thickness = c;
+      if (axis == 2)
+        thickness = std::min(n, c * std::max<std::int64_t>(1, static_cast<std::int64_t>(kMaxSlabBytes / 4 / bytes)));
+      best = {axis, thickness};
     }
     return best;
   }

@@ -202,7 +202,7 @@ void write_raw(const Volume& volume, const std::string& path, const WriteOptions
 
 void write_raw_slabs(const Volume& volume, const std::string& path, int axis, std::int64_t thickness,
                      const std::string& task, Progress& progress, const CancelToken& cancel) {
-  if (axis != 0 && axis != 1) throw InvalidArgument("raw slabs go along axis 0 or 1, not " + std::to_string(axis));
+  if (axis < 0 || axis > 2) throw InvalidArgument("raw slabs go along axis 0, 1 or 2, not " + std::to_string(axis));
   const Geometry& g = volume.geometry();
   g.validate();
   const std::string sidecar = raw_sidecar_of(path), partial = sidecar + ".partial";
@@ -215,7 +215,8 @@ void write_raw_slabs(const Volume& volume, const std::string& path, int axis, st
     const std::int64_t along = g.shape[axis], t = std::clamp<std::int64_t>(thickness, 1, along);
     const std::int64_t slabs = (along + t - 1) / t;
     std::vector<float> slab;
-    progress.begin(task, static_cast<std::uint64_t>(slabs), axis == 0 ? "inline slabs" : "crossline slabs");
+    const char* units[3] = {"inline slabs", "crossline slabs", "sample slabs"};
+    progress.begin(task, static_cast<std::uint64_t>(slabs), units[axis]);
     for (std::int64_t s = 0; s < slabs; ++s) {
       cancel.throw_if_cancelled();
       const std::int64_t lo = s * t, hi = std::min(along, lo + t);
@@ -227,12 +228,18 @@ void write_raw_slabs(const Volume& volume, const std::string& path, int axis, st
       to_or_from_little_endian(slab);
       if (axis == 0) {
         write_all(fd.get(), slab.data(), slab.size(), path); // the slabs follow one another in the file
-      } else {
+      } else if (axis == 1) {
         // Each inline's part of the slab is one run of the file.
         const auto run = static_cast<std::size_t>((hi - lo) * nk);
         for (std::int64_t i = 0; i < ni; ++i)
           write_all_at(fd.get(), slab.data() + static_cast<std::size_t>(i) * run, run,
                        static_cast<std::uint64_t>((i * nj + lo) * nk) * sizeof(float), path);
+      } else {
+        // Each trace's part of the slab is one run of the file.
+        const auto run = static_cast<std::size_t>(hi - lo);
+        for (std::int64_t trace = 0; trace < ni * nj; ++trace)
+          write_all_at(fd.get(), slab.data() + static_cast<std::size_t>(trace) * run, run,
+                       static_cast<std::uint64_t>(trace * nk + lo) * sizeof(float), path);
       }
       progress.update(static_cast<std::uint64_t>(s + 1));
     }

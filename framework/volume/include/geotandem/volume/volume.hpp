@@ -65,13 +65,14 @@ public:
   virtual Index3 source_halo() const { return {0, 0, 0}; }
   // What opening this file again needs and opening it found (OpenOptions::reopen_hint): another
   // process that opens the same file with it skips that work. Empty when there is nothing worth
-  // passing on; only a SEG-Y survey whose grid took a pass over every trace header (irregular, or
-  // padded with placeholders) has one.
+  // passing on. Two kinds of volume have one: a SEG-Y survey whose grid took a pass over every
+  // trace header (irregular, or padded with placeholders), and a file read from its copy for reads
+  // by blocks (use_block_copy).
   virtual std::string reopen_hint() const { return {}; }
   // For a file whose chunks reads by blocks decode many times over (the format detail
   // "slow_reads"): copies the cube once, reading each chunk once, into `directory` as raw float32
-  // (FILE.raw + FILE.raw.json, named after the file and its size and modification time), or takes
-  // the complete copy already there for the file as it is now, and reads the copy from then on;
+  // (FILE.raw + FILE.raw.json, named after the file and a digest of its content fingerprint), or
+  // takes the complete copy already there for the file as it is now, and reads the copy from then on;
   // reopen_hint() then names it, so that other processes opening the file read it too. Returns the
   // copy's path; empty when the volume has no such layout (nothing is written). Throws IoError
   // when the copy cannot be written (a full disk; nothing is left behind and the volume still

@@ -3,9 +3,6 @@
 
 #include <algorithm>
 #include <array>
-#include <cctype>
-#include <cmath>
-#include <cstdio>
 #include <filesystem>
 #include <limits>
 #include <optional>
@@ -14,10 +11,10 @@
 
 #include "formats.hpp"
 #include "gdal_common.hpp"
+#include "gdal_md_chunks.hpp"
 #include "gdal_md_inspect.hpp"
 #include "gdal_module.hpp"
 #include "geotandem/core/error.hpp"
-#include "geotandem/volume/fingerprint.hpp"
 #include "raw_sidecar.hpp"
 
 namespace geotandem::volume::detail {
@@ -30,96 +27,6 @@ const char* driver_of(Format format) {
   case Format::zarr: return "Zarr";
   default: return nullptr;
   }
-}
-
-// How the stored array is chunked, and what that does to reads by blocks. The extraction reads the
-// cube in blocks of about kBlockEdge samples an axis (its default leaf; the attributes' halos add a
-// few), and a chunk is read, and decoded when compressed, by every block it spans: about
-// reads_per_chunk times over. Whole inline slices (netCDF's default chunking for an unlimited first
-// dimension, as a tool writing inline by inline leaves a file) make that the number of blocks in a
-// slice: 16 at 512^3, 64 at 1024^3 (docs/formats-gdal.md, "Chunks").
-struct ChunkLayout {
-  std::string text;           // "1 x 512 x 512 samples (iline x xline x twt), deflate"; empty: contiguous
-  double reads_per_chunk = 1; // blocks of kBlockEdge^3 that read each chunk
-  std::vector<std::string> dimensions;
-};
-constexpr double kBlockEdge = 128.0;
-// From this many reads of each chunk on, opening the file warns (format detail "slow_reads") and
-// a run copies it for block reads (Volume::use_block_copy).
-constexpr double kSlowReads = 8.0;
-// The copy reads slabs of whole chunks; a layout whose thinnest such slab is larger than this is
-// left as it is (only warned about).
-constexpr double kMaxSlabBytes = 1024.0 * 1024.0 * 1024.0;
-// How reopen_hint() names the copy.
-constexpr const char* kCopyHint = "block copy: ";
-
-// The copy's file name: the file's name with a digest of its content fingerprint (size,
-// modification time, sampled checksum: volume::input_fingerprint) and of the array read, so that a
-// copy is only ever taken for the file it was made from, as it is now.
-std::string copy_name(const std::string& path, const std::string& array_name) {
-  const std::string identity = input_fingerprint(path).dump() + "\n" + array_name;
-  std::uint64_t hash = 14695981039346656037ull; // FNV-1a
-  for (unsigned char c : identity) {
-    hash ^= c;
-    hash *= 1099511628211ull;
-  }
-  char digest[17];
-  std::snprintf(digest, sizeof digest, "%016llx", static_cast<unsigned long long>(hash));
-  std::filesystem::path file = std::filesystem::path(path).lexically_normal();
-  if (file.filename().empty()) file = file.parent_path(); // a Zarr directory given as "cube.zarr/"
-  return file.filename().string() + "." + digest + ".raw";
-}
-
-ChunkLayout chunk_layout(const GDALMDArray& stored) {
-  ChunkLayout out;
-  const std::vector<GUInt64> chunks = stored.GetBlockSize();
-  const auto& dims = stored.GetDimensions();
-  if (chunks.size() != dims.size() || std::find(chunks.begin(), chunks.end(), GUInt64{0}) != chunks.end())
-    return out; // contiguous (read in place, never decoded whole) or not said
-  std::string sizes, names;
-  for (std::size_t d = 0; d < dims.size(); ++d) {
-    const GUInt64 extent = std::min(chunks[d], dims[d]->GetSize());
-    out.reads_per_chunk *= std::ceil(static_cast<double>(extent) / kBlockEdge);
-    sizes += (d ? " x " : "") + std::to_string(chunks[d]);
-    names += (d ? " x " : "") + dims[d]->GetName();
-    out.dimensions.push_back(dims[d]->GetName());
-  }
-  out.text = sizes + " samples (" + names + ")";
-  CSLConstList info = stored.GetStructuralInfo();
-  if (const char* method = CSLFetchNameValue(info, "COMPRESS")) {
-    std::string lower = method;
-    std::transform(lower.begin(), lower.end(), lower.begin(), [](unsigned char c) { return std::tolower(c); });
-    out.text += ", " + lower;
-  } else if (CSLFetchNameValue(info, "COMPRESSOR")) {
-    out.text += ", compressed";
-  }
-  return out;
-}
-
-// The warning for a layout that blocks read many times over: what run-workflow and extract do
-// about it (`copy_bytes`: the size of the copy they make; 0 when the layout allows none) and how to
-// rewrite the file.
-std::string slow_reads_text(const ChunkLayout& layout, const std::string& format, double copy_bytes) {
-  std::string text = "stored in chunks of " + layout.text + ": blocks of " +
-                     std::to_string(static_cast<int>(kBlockEdge)) + " samples an axis read each chunk about " +
-                     std::to_string(static_cast<long long>(layout.reads_per_chunk)) + " times";
-  if (copy_bytes > 0) {
-    char size[32];
-    if (copy_bytes < 1024.0 * 1024.0 * 1024.0)
-      std::snprintf(size, sizeof size, "%.0f MiB", copy_bytes / (1024.0 * 1024.0));
-    else
-      std::snprintf(size, sizeof size, "%.1f GiB", copy_bytes / (1024.0 * 1024.0 * 1024.0));
-    text += std::string("; run-workflow and extract copy it once (") + size +
-            " of raw float32 beside their output, removed at the end) and read the copy";
-  }
-  text += "; rewriting the file once in chunks of about 64 samples an axis saves that";
-  if (format == format_name(Format::netcdf)) {
-    std::string spec;
-    for (const std::string& name : layout.dimensions)
-      spec += (spec.empty() ? "" : ",") + name + "/64";
-    text += " (netCDF-4: nccopy -c " + spec + " IN.nc OUT.nc, from Debian's netcdf-bin)";
-  }
-  return text;
 }
 
 // Reads boxes as hyperslabs of one array. Owns its dataset: GDAL datasets are not thread-safe, so
@@ -156,8 +63,9 @@ public:
     std::vector<FormatDetail> details{{"array", array_name_}}; // which of the file's arrays is read
     if (!chunks_.text.empty()) details.push_back({"chunks", chunks_.text});
     if (chunks_.reads_per_chunk >= kSlowReads) {
-      const double copy_bytes =
-          copy_slabs().axis >= 0 ? static_cast<double>(geometry_.sample_count()) * sizeof(float) : 0.0;
+      const double copy_bytes = copy_slabs(chunks_, geometry_.shape).axis >= 0
+                                    ? static_cast<double>(geometry_.sample_count()) * sizeof(float)
+                                    : 0.0;
       details.push_back({"slow_reads", slow_reads_text(chunks_, format_, copy_bytes)});
     }
     if (no_data_) details.push_back(gdal::no_data_detail(*no_data_));
@@ -176,7 +84,7 @@ public:
   std::string use_block_copy(const std::string& directory, Progress* progress,
                              const CancelToken& cancel) const override {
     if (copy_) return copy_path_;
-    const Slabs slabs = copy_slabs();
+    const CopySlabs slabs = copy_slabs(chunks_, geometry_.shape);
     if (slabs.axis < 0) return {};
     namespace fs = std::filesystem;
     std::error_code ec;
@@ -185,7 +93,8 @@ public:
       throw IoError("cannot make the directory for a copy of the input: " + ec.message(), {directory},
                     "check that the output directory is writable");
     // Absolute: workers started elsewhere (a cluster job's directory) find it by this name.
-    const std::string path = (fs::absolute(directory) / copy_name(path_, array_name_)).string();
+    const fs::path where = fs::absolute(directory);
+    const std::string path = (where / copy_name(path_, array_name_)).string();
     bool taken = false;
     try {
       taken = take_copy(path);
@@ -196,7 +105,7 @@ public:
       // Not to fill the disk on the way to failing: the copy needs the whole cube, and a little room
       // is left for the run's own output.
       const std::uintmax_t bytes = geometry_.sample_count() * sizeof(float);
-      const fs::space_info space = fs::space(fs::absolute(directory), ec);
+      const fs::space_info space = fs::space(where, ec);
       if (!ec && space.available < bytes + bytes / 16)
         throw IoError("not enough free space for a copy of the input: it needs " + std::to_string(bytes >> 20) +
                           " MiB, " + std::to_string(space.available >> 20) + " MiB are free",
@@ -249,38 +158,6 @@ protected:
   }
 
 private:
-  // How use_block_copy reads the file: slabs `thickness` samples thick along cube axis `axis`, a
-  // whole number of chunks thick, so that each chunk is decoded once; the axis whose chunk-thick
-  // slab is smallest (one inline slice for inline-slice chunks, one time slice for time slices).
-  // Along the sample axis the copy is written in runs as long as the slab is thick, so the slab
-  // takes up to kMaxSlabBytes / 4 of chunks. axis -1: no copy (the layout reads well by blocks, or
-  // even one slab would exceed kMaxSlabBytes).
-  struct Slabs {
-    int axis = -1;
-    std::int64_t thickness = 0;
-  };
-  Slabs copy_slabs() const {
-    Slabs best;
-    if (chunks_.reads_per_chunk < kSlowReads) return best;
-    const std::vector<GUInt64> chunk = array_->GetBlockSize(); // in cube order: array_ is the cube's view
-    if (chunk.size() != 3) return best;
-    double least = kMaxSlabBytes;
-    for (int axis = 0; axis < 3; ++axis) {
-      const auto a = static_cast<std::size_t>(axis);
-      const std::int64_t n = geometry_.shape[axis];
-      const std::int64_t c = chunk[a] == 0 ? n : std::min<std::int64_t>(n, static_cast<std::int64_t>(chunk[a]));
-      const double plane =
-          static_cast<double>(geometry_.sample_count() / static_cast<std::uint64_t>(n)) * sizeof(float);
-      const double bytes = static_cast<double>(c) * plane;
-      if (bytes > least || (best.axis >= 0 && bytes == least)) continue; // ties: the slower axis
-      least = bytes;
-      std::int64_t thickness = c;
-      if (axis == 2)
-        thickness = std::min(n, c * std::max<std::int64_t>(1, static_cast<std::int64_t>(kMaxSlabBytes / 4 / bytes)));
-      best = {axis, thickness};
-    }
-    return best;
-  }
   // Reads from the raw copy at `path` when it is complete (its sidecar is written last) and holds
   // this cube's shape; false when there is none. Throws what opening a damaged copy throws.
   bool take_copy(const std::string& path) const {
@@ -378,7 +255,7 @@ std::unique_ptr<Volume> volume_of(gdal::DatasetPtr dataset, const std::string& p
   bool declared = false;
   const double no_data = stored->GetNoDataValueAsDouble(&declared);
   std::string array_name = stored->GetFullName();
-  ChunkLayout chunks = chunk_layout(*stored);
+  ChunkLayout chunks = chunk_layout(*stored, *cube);
   stored.reset();
   auto volume = std::make_unique<GdalMdVolume>(path, std::move(name), std::move(dataset), std::move(root),
                                                std::move(cube), std::move(array_name), std::move(geometry),

@@ -4,5 +4,6 @@ add_executable(bench_simplify_quality ${CMAKE_CURRENT_SOURCE_DIR}/simplify_quali
 target_link_libraries(bench_simplify_quality PRIVATE geotandem::tandem geotandem::mesh)
 geotandem_target_defaults(bench_simplify_quality)
 add_executable(bench_simplify_throughput ${CMAKE_CURRENT_SOURCE_DIR}/simplify_throughput.cpp)
-target_link_libraries(bench_simplify_throughput PRIVATE geotandem::tandem geotandem::mesh)
+target_link_libraries(bench_simplify_throughput PRIVATE geotandem::tandem geotandem::mesh geotandem::attributes
+                                                        geotandem::synth)
 geotandem_target_defaults(bench_simplify_throughput)

@@ -180,8 +180,9 @@ void add_extract_command(CLI::App& app, Context& context, Runner& run) {
         return 0;
       }
       std::cout << " from " << r.input_triangles << " marching-cubes triangles in " << seconds_text(r.seconds) << " s; "
-                << r.collapses << " collapses; at most " << r.peak_triangles << " triangles in memory; peak memory "
-                << r.peak_rss_kb / 1024 << " MiB\n";
+                << r.collapses << " collapses (" << r.counters.rejected_distance
+                << " candidates refused by the E0 distance bound); at most " << r.peak_triangles
+                << " triangles in memory; peak memory " << r.peak_rss_kb / 1024 << " MiB\n";
       if (s.block_size > 0) {
         const auto& b = r.blocks;
         std::cout << "blocks: " << b["leaves"] << " leaves, " << b["merges"] << " merges (" << b["seam_collapses"]

@@ -7,6 +7,7 @@
 #include <cstring>
 #include <random>
 
+#include "geotandem/runtime/manager.hpp"
 #include "geotandem/runtime/protocol.hpp"
 #include "geotandem/runtime/surface_chunks.hpp"
 
@@ -158,6 +159,31 @@ TEST(Protocol, ACorruptCountDoesNotAllocateWildly) {
     FAIL() << "a count of 2^60 entries was accepted";
   } catch (const ProtocolError& e) {
     EXPECT_NE(std::string(e.what()).find("does not fit"), std::string::npos) << e.what();
+  }
+}
+
+// The collapse counters a worker's last DONE carries: each by its name, distinct values so that a
+// swapped pair shows; a key this build does not know (a newer worker) is ignored, a missing one is
+// 0, and text that is not an object of counts is refused with what it was.
+TEST(Protocol, CollapseCountersSurviveTheirTextAndBadTextIsRefused) {
+  tandem::SimplifyCounters c;
+  std::uint64_t value = 1000;
+  for (auto field : tandem::SimplifyCounters::all)
+    c.*field = value += 7;
+  const tandem::SimplifyCounters back = counters_from_json(counters_to_json(c));
+  for (std::size_t i = 0; i < tandem::SimplifyCounters::all.size(); ++i)
+    EXPECT_EQ(back.*tandem::SimplifyCounters::all[i], c.*tandem::SimplifyCounters::all[i])
+        << tandem::SimplifyCounters::names[i];
+  const tandem::SimplifyCounters partial = counters_from_json(R"({"collapses": 5, "a_newer_counter": 9})");
+  EXPECT_EQ(partial.collapses, 5u);
+  EXPECT_EQ(partial.evaluations, 0u);
+  for (const char* bad : {"", "[1, 2]", "{\"collapses\": -3}", "{\"collapses\": \"many\"}", "{\"collapses\": 1"}) {
+    try {
+      counters_from_json(bad);
+      ADD_FAILURE() << "accepted: " << bad;
+    } catch (const ProtocolError& e) {
+      EXPECT_NE(std::string(e.what()).find("collapse counter"), std::string::npos) << e.what();
+    }
   }
 }
 

@@ -74,6 +74,17 @@ TEST(Workers, OneTwoAndFourWorkersGiveTheComponentsOfTheInProcessRun) {
     const nlohmann::json got = stats(out), ref = stats("ref");
     EXPECT_EQ(got.at("input_triangles").get<std::uint64_t>(), ref.at("input_triangles").get<std::uint64_t>()) << out;
     EXPECT_GT(got.at("collapses").get<std::uint64_t>(), got.at("input_triangles").get<std::uint64_t>() / 4) << out;
+    // Every counter of the collapse loop comes back with them (the DONE after FINISHED), and holds
+    // what a loop's counters hold: the same triangles and collapses, every collapse evaluated first,
+    // every component dumped counted, as in the in-process run.
+    for (const nlohmann::json* run : {&got, &ref}) {
+      const nlohmann::json& c = run->at("counters");
+      EXPECT_EQ(c.at("input_triangles"), run->at("input_triangles")) << out;
+      EXPECT_EQ(c.at("collapses"), run->at("collapses")) << out;
+      EXPECT_GE(c.at("evaluations").get<std::uint64_t>(), c.at("collapses").get<std::uint64_t>()) << out;
+      EXPECT_EQ(c.at("components_dumped"), run->at("components")) << out;
+      EXPECT_GT(c.at("blocked_by_faces").get<std::uint64_t>(), 0u) << out << ": blocks of 8 park edges at their faces";
+    }
     // The triangles the workers held together, as each reported after its tasks: some (the block
     // faces keep surfaces waiting for their brothers), never more than marching cubes made.
     const auto held = got.at("peak_held_triangles").get<std::uint64_t>();

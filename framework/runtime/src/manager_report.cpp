@@ -2,6 +2,7 @@
 #include <nlohmann/json.hpp>
 
 #include "geotandem/runtime/manager.hpp"
+#include "geotandem/runtime/protocol.hpp"
 
 namespace geotandem::runtime {
 
@@ -29,8 +30,31 @@ std::string ManagerReport::to_json() const {
       {"worker_peak_rss_kb", worker_peak_rss_kb},
       {"input_triangles", input_triangles},
       {"collapses", collapses},
-      {"peak_held_triangles", peak_held_triangles}};
+      {"peak_held_triangles", peak_held_triangles},
+      {"counters", nlohmann::json::parse(counters_to_json(counters))}};
   return j.dump();
+}
+
+std::string counters_to_json(const tandem::SimplifyCounters& counters) {
+  nlohmann::json j = nlohmann::json::object();
+  for (std::size_t i = 0; i < tandem::SimplifyCounters::all.size(); ++i)
+    j[tandem::SimplifyCounters::names[i]] = counters.*tandem::SimplifyCounters::all[i];
+  return j.dump();
+}
+
+tandem::SimplifyCounters counters_from_json(const std::string& text) {
+  const nlohmann::json j = nlohmann::json::parse(text, nullptr, false);
+  if (!j.is_object()) throw ProtocolError("the collapse counters are not a JSON object: " + text.substr(0, 80));
+  tandem::SimplifyCounters counters;
+  for (std::size_t i = 0; i < tandem::SimplifyCounters::all.size(); ++i) {
+    const auto it = j.find(tandem::SimplifyCounters::names[i]);
+    if (it == j.end()) continue;
+    if (!it->is_number_unsigned())
+      throw ProtocolError(std::string("the collapse counter ") + tandem::SimplifyCounters::names[i] +
+                          " is not a count: " + it->dump());
+    counters.*tandem::SimplifyCounters::all[i] = it->get<std::uint64_t>();
+  }
+  return counters;
 }
 
 } // namespace geotandem::runtime

@@ -92,6 +92,11 @@ void Manager::Impl::task_done(Peer& p, const Message& m) {
     ++report.finish, report.seconds_finish += s, advance();
     report.input_triangles = static_cast<std::uint64_t>(m.box[2]);
     report.collapses = static_cast<std::uint64_t>(m.box[3]);
+    try {
+      if (!m.text.empty()) report.counters = counters_from_json(m.text);
+    } catch (const ProtocolError& e) { // statistics only: the run goes on without them
+      log.warning("worker " + p.token + ": " + e.what() + "; the run's collapse counters are left out");
+    }
     break;
   default: break;
   }

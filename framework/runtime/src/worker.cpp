@@ -14,6 +14,7 @@
 
 #include "geotandem/core/error.hpp"
 #include "geotandem/runtime/launcher.hpp"
+#include "geotandem/runtime/manager.hpp"
 #include "geotandem/runtime/surface_chunks.hpp"
 #include "geotandem/store/shard.hpp"
 #include "geotandem/tandem/marching_cubes.hpp"
@@ -181,7 +182,7 @@ private:
     if (!c.entries.empty()) link_.send(c);
   }
 
-  void report(const Message& task, Clock::time_point start) {
+  void report(const Message& task, Clock::time_point start, bool final = false) {
     send_commit(task.lease);
     Message d;
     d.kind = MessageKind::done;
@@ -197,6 +198,7 @@ private:
     d.box[3] = static_cast<std::int64_t>(totals_.collapses);
     // 4: the triangles this worker's surface holds after the task (the run's triangles held).
     d.box[4] = surface_ ? static_cast<std::int64_t>(surface_->triangle_count()) : 0;
+    if (final) d.text = counters_to_json(totals_); // every counter of the whole surface
     link_.send(d);
   }
 
@@ -307,7 +309,7 @@ private:
       totals_ = surface_->counters();
     }
     surface_.reset();
-    report(m, start);
+    report(m, start, true);
   }
 
   WorkerOptions options_;

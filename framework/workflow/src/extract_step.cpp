@@ -7,6 +7,7 @@
 
 #include "geotandem/core/error.hpp"
 #include "geotandem/core/params.hpp"
+#include "geotandem/runtime/manager.hpp"
 #include "geotandem/store/local_sink.hpp"
 #include "geotandem/tandem/blocks.hpp"
 #include "geotandem/tandem/marching_cubes.hpp"
@@ -255,6 +256,7 @@ ExtractResult extract_to_store(const volume::Volume& volume, store::ComponentSto
   simplify_s += stats.final_pass.seconds_simplify;
   dump_s += stats.final_pass.seconds_dump;
   result.collapses = stats.counters.collapses; // leaves, seams and the final pass
+  result.counters = stats.counters;
   result.peak_triangles = stats.peak_triangles;
   result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   result.peak_rss_kb = peak_rss_kb();
@@ -273,6 +275,7 @@ ExtractResult extract_to_store(const volume::Volume& volume, store::ComponentSto
                        {"input_triangles", result.input_triangles},
                        {"peak_triangles", result.peak_triangles},
                        {"collapses", result.collapses},
+                       {"counters", nlohmann::json::parse(runtime::counters_to_json(result.counters))},
                        {"triangles_per_layer", result.triangles_per_layer},
                        {"blocks", result.blocks},
                        {"seconds",

@@ -129,6 +129,7 @@ ExtractResult extract_with_workers(const volume::Volume& volume, store::Componen
   result.duplicates = report.duplicates;
   result.input_triangles = report.input_triangles;
   result.collapses = report.collapses;
+  result.counters = report.counters;
   // Resumed: what the finished blocks hold was in the store already, as what was found again.
   if (report.skipped_leaves > 0) result.duplicates = std::max<std::uint64_t>(result.duplicates, rows_before);
   result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

@@ -89,6 +89,12 @@ std::string content_suffix(const nlohmann::json& content) {
          "-" + std::to_string(content.value("mtime_ns", 0LL));
 }
 
+// What the E0 guarantee held back, for the report: a larger max_error simplifies more.
+std::string refused_of(const ExtractResult& r) {
+  if (r.counters.rejected_distance == 0) return {};
+  return " (" + std::to_string(r.counters.rejected_distance) + " candidates refused by the E0 distance bound)";
+}
+
 // The extraction's warnings (no component: an isovalue outside the data?), for the report.
 std::string warnings_of(const ExtractResult& r) {
   std::string text;
@@ -231,7 +237,7 @@ private:
       report_.steps.push_back({step.name, since(t), 0, store_->size(),
                                (step.params.count("mode") ? step.params.at("mode").text + ", " : std::string()) +
                                    std::to_string(r.input_triangles) + " marching-cubes triangles, " +
-                                   std::to_string(r.collapses) + " collapses" + warnings_of(r)});
+                                   std::to_string(r.collapses) + " collapses" + refused_of(r) + warnings_of(r)});
     }
     outcome_.components = outcome_.kept = store_->size();
     report_.volume_unit = store_->geometry().z_unit == volume::SampleUnit::milliseconds ? "m^2*ms" : "m^3";

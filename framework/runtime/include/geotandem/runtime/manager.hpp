@@ -18,6 +18,7 @@
 #include "geotandem/runtime/protocol.hpp"
 #include "geotandem/runtime/run_settings.hpp"
 #include "geotandem/store/store.hpp"
+#include "geotandem/tandem/simplify.hpp"
 
 namespace geotandem::runtime {
 
@@ -66,12 +67,20 @@ struct ManagerReport {
   // Of the whole surface, as the final worker reports it (totals travel with the partial surfaces):
   // marching-cubes triangles and collapses of every leaf extracted in this run.
   std::uint64_t input_triangles = 0, collapses = 0;
+  // Every counter of the collapse loop of that surface (input_triangles and collapses among them).
+  tandem::SimplifyCounters counters;
   // The most triangles the workers' surfaces held together, as they reported after each task
   // (surfaces on their way between workers are not counted).
   std::uint64_t peak_held_triangles = 0;
 
   std::string to_json() const;
 };
+
+// The collapse loop's counters as a JSON object keyed by SimplifyCounters::names: the text of a
+// worker's DONE after FINISHED, and the run statistics' "counters". Back from it: unknown keys are
+// ignored and missing ones stay 0; throws ProtocolError when the text is not such an object.
+std::string counters_to_json(const tandem::SimplifyCounters& counters);
+tandem::SimplifyCounters counters_from_json(const std::string& text);
 
 class Manager {
 public:

@@ -107,6 +107,12 @@ struct SimplifyCounters {
       &SimplifyCounters::rejected_border,  &SimplifyCounters::rejected_distance,  &SimplifyCounters::retried,
       &SimplifyCounters::distrusted,       &SimplifyCounters::blocked_by_faces,   &SimplifyCounters::components_dumped,
       &SimplifyCounters::triangles_dumped, &SimplifyCounters::garbage_collections};
+  // Their names, in the same order: the keys of the run statistics' "counters" (docs/store-format.md).
+  static constexpr std::array<const char*, 14> names = {"input_triangles",  "collapses",          "evaluations",
+                                                        "rejected_shape",   "rejected_link",      "rejected_flip",
+                                                        "rejected_border",  "rejected_distance",  "retried",
+                                                        "distrusted",       "blocked_by_faces",   "components_dumped",
+                                                        "triangles_dumped", "garbage_collections"};
 
   SimplifyCounters& operator+=(const SimplifyCounters& other) {
     for (auto field : all)

@@ -66,6 +66,9 @@ struct ExtractResult {
   std::uint64_t input_triangles = 0; // produced by marching cubes
   std::uint64_t peak_triangles = 0;  // most held in memory at a layer boundary
   std::uint64_t collapses = 0;
+  // Every counter of the collapse loop (cost evaluations, refusals by reason: rejected_distance is
+  // what the E0 guarantee refused), of the whole surface.
+  tandem::SimplifyCounters counters;
   std::vector<std::uint64_t> triangles_per_layer; // with blocks: every leaf's layers in tree order
   nlohmann::json blocks;                          // leaves, merges, seam collapses, bytes shipped, seconds per phase
   double seconds = 0.0;

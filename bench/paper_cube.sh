@@ -28,7 +28,8 @@
 # cube (--fraction 1, over an hour; add --set 'output.exports=[]' to keep its disk use to the store)
 # measures it (docs/algorithm.md). The targets: <= 20 min and <= 4 GiB for the whole cube, file
 # within 1.2x of procedural.
-# It also prints the disk the store and the exports take, and that figure extrapolated too: at the
+# With the components it prints the collapse loop's counters from the run's statistics (cost
+# evaluations, candidates the E0 bound refused). It also prints the disk the store and the exports take, and that figure extrapolated too: at the
 # whole cube it can exceed the free space (the three exports of the recipe hold every triangle kept).
 # Triangles held over time: the manager logs (at debug level) what the workers' surfaces hold
 # together after each task; the script prints the largest figure of each tenth of the extraction.
@@ -145,6 +146,7 @@ PY
     return 1
   fi
   "$bin" store selections "$dir/store" --json >"$dir/selections.json"
+  "$bin" store runs "$dir/store" --json >"$dir/runs.json"
   python3 - "$dir" "$name" <<'PY'
 import json, re, sys
 dir, name = sys.argv[1], sys.argv[2]
@@ -176,6 +178,13 @@ for label, a, b in phases:
 print(f"  {'wall, whole run':<28} {t_end:8.1f} s (CPU of all processes {float(cpu):.1f} s)")
 print(f"  peak RSS, all processes     {int(peak) / 2**20:8.0f} MiB ({procs} processes at the peak)")
 print(f"  extracted                   {state['extract']['components']:8d} components")
+runs = json.load(open(dir + "/runs.json"))
+stats = runs[-1]["statistics"] if runs else {}
+counters = (json.loads(stats) if isinstance(stats, str) else stats).get("counters")
+if counters:
+    print(f"  collapse loop                {counters['input_triangles']:9d} marching-cubes triangles, "
+          f"{counters['collapses']} collapses, {counters['evaluations']} cost evaluations, "
+          f"{counters['rejected_distance']} refused by the E0 bound")
 before = state["extract"]["components"]
 for s in sels:
     p = s["parameters"]

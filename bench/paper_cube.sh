@@ -29,8 +29,9 @@
 # measures it (docs/algorithm.md). The targets: <= 20 min and <= 4 GiB for the whole cube, file
 # within 1.2x of procedural.
 # With the components it prints the collapse loop's counters from the run's statistics (cost
-# evaluations, candidates the E0 bound refused). It also prints the disk the store and the exports take, and that figure extrapolated too: at the
-# whole cube it can exceed the free space (the three exports of the recipe hold every triangle kept).
+# evaluations, candidates the E0 bound refused). It also prints the disk the store and the exports
+# take, and that figure extrapolated too: at the whole cube it can exceed the free space (the three
+# exports of the recipe hold every triangle kept).
 # Triangles held over time: the manager logs (at debug level) what the workers' surfaces hold
 # together after each task; the script prints the largest figure of each tenth of the extraction.
 # The RSS timeline is in rss.tsv in each run's directory.

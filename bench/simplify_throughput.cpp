@@ -2,7 +2,7 @@
 // force (extract everything, then simplify once with the same cost), on generated fields; "seed" is
 // the tandem without the E0 guarantee (SimplifyOptions::guarantee_distance off), for its cost.
 //
-//   bench_simplify_throughput [n=256] [fields=blobs,smooth] [E0=0.5] [modes=tandem,brute,seed]
+//   bench_simplify_throughput [n=256] [fields=blobs,smooth,seismic] [E0=0.5] [modes=tandem,brute,seed]
 //                             [compaction_min_dead=16384]
 //
 // Fields: blobs (Gaussian blobs and uniform noise, iso 0.5), smooth (a few dozen large blobs, iso
@@ -137,7 +137,7 @@ public:
 
 int bench_main(int argc, char** argv) {
   const geotandem::bench::Args args(argc, argv,
-                                    "bench_simplify_throughput [n=256] [fields=blobs,smooth] [E0=0.5] "
+                                    "bench_simplify_throughput [n=256] [fields=blobs,smooth,seismic] [E0=0.5] "
                                     "[modes=tandem,brute,seed] [compaction_min_dead=16384]");
   const std::int64_t n = args.integer(1, 256, 2);
   const std::vector<std::string> fields = args.words(2, "blobs,smooth", {"blobs", "smooth", "seismic"});

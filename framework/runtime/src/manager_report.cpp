@@ -6,6 +6,15 @@
 
 namespace geotandem::runtime {
 
+namespace {
+nlohmann::json counters_object(const tandem::SimplifyCounters& counters) {
+  nlohmann::json j = nlohmann::json::object();
+  for (std::size_t i = 0; i < tandem::SimplifyCounters::all.size(); ++i)
+    j[tandem::SimplifyCounters::names[i]] = counters.*tandem::SimplifyCounters::all[i];
+  return j;
+}
+} // namespace
+
 std::string ManagerReport::to_json() const {
   const nlohmann::json j = {
       {"workers", workers},
@@ -28,18 +37,15 @@ std::string ManagerReport::to_json() const {
       {"repaired", repaired},
       {"manager", {{"cpu_seconds", manager_cpu_seconds}, {"peak_rss_kb", manager_peak_rss_kb}}},
       {"worker_peak_rss_kb", worker_peak_rss_kb},
-      {"input_triangles", input_triangles},
-      {"collapses", collapses},
+      {"input_triangles", counters.input_triangles},
+      {"collapses", counters.collapses},
       {"peak_held_triangles", peak_held_triangles},
-      {"counters", nlohmann::json::parse(counters_to_json(counters))}};
+      {"counters", counters_object(counters)}};
   return j.dump();
 }
 
 std::string counters_to_json(const tandem::SimplifyCounters& counters) {
-  nlohmann::json j = nlohmann::json::object();
-  for (std::size_t i = 0; i < tandem::SimplifyCounters::all.size(); ++i)
-    j[tandem::SimplifyCounters::names[i]] = counters.*tandem::SimplifyCounters::all[i];
-  return j.dump();
+  return counters_object(counters).dump();
 }
 
 tandem::SimplifyCounters counters_from_json(const std::string& text) {

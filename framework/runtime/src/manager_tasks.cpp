@@ -90,8 +90,10 @@ void Manager::Impl::task_done(Peer& p, const Message& m) {
   case TaskKind::merge: ++report.merge, report.seconds_merge += s; break;
   case TaskKind::finished:
     ++report.finish, report.seconds_finish += s, advance();
-    report.input_triangles = static_cast<std::uint64_t>(m.box[2]);
-    report.collapses = static_cast<std::uint64_t>(m.box[3]);
+    // The two totals of box[2] and box[3], then every counter from the text when it is there.
+    report.counters = {};
+    report.counters.input_triangles = static_cast<std::uint64_t>(m.box[2]);
+    report.counters.collapses = static_cast<std::uint64_t>(m.box[3]);
     try {
       if (!m.text.empty()) report.counters = counters_from_json(m.text);
     } catch (const ProtocolError& e) { // statistics only: the run goes on without them

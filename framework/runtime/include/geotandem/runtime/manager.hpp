@@ -65,9 +65,8 @@ struct ManagerReport {
   std::int64_t manager_peak_rss_kb = 0;        // of the manager's process, so far
   std::int64_t worker_peak_rss_kb = 0;         // the largest over the workers
   // Of the whole surface, as the final worker reports it (totals travel with the partial surfaces):
-  // marching-cubes triangles and collapses of every leaf extracted in this run.
-  std::uint64_t input_triangles = 0, collapses = 0;
-  // Every counter of the collapse loop of that surface (input_triangles and collapses among them).
+  // every counter of the collapse loop over every leaf extracted in this run, among them its
+  // marching-cubes triangles (counters.input_triangles) and collapses (counters.collapses).
   tandem::SimplifyCounters counters;
   // The most triangles the workers' surfaces held together, as they reported after each task
   // (surfaces on their way between workers are not counted).

@@ -30,7 +30,6 @@
 
 #include "bench_args.hpp"
 #include "geotandem/builtin/register.hpp"
-#include "geotandem/core/error.hpp"
 #include "geotandem/mesh/component.hpp"
 #include "geotandem/tandem/marching_cubes.hpp"
 #include "geotandem/tandem/tandem.hpp"
@@ -78,25 +77,21 @@ void add_blob(std::vector<float>& f, std::int64_t n, const double c[3], double s
 // The quickstart recipe's attribute on an n^3 cube, and the isovalue its extract step uses. The
 // recipe is read from the source tree when the bench runs (only its shape is changed), so the field
 // is always the one the quickstart computes.
-struct RecipeField {
+struct Field {
   std::vector<float> values;
   float iso = 0.0f;
 };
-RecipeField quickstart_field(std::int64_t n) {
+Field quickstart_field(std::int64_t n) {
   workflow::PluginRegistry registry;
   builtin::register_builtins(registry);
   const std::string edge = std::to_string(n);
   const workflow::Recipe recipe = workflow::load_recipe(
       GEOTANDEM_QUICKSTART_RECIPE, registry, {"input.synthetic.shape=[" + edge + "," + edge + "," + edge + "]"});
-  RecipeField field;
-  bool found = false;
-  for (const workflow::StepSpec& step : recipe.steps)
-    if (step.name == "extract") {
-      field.iso = static_cast<float>(step.params.at("iso").real);
-      found = true;
-    }
-  if (!found) throw InvalidArgument(std::string(GEOTANDEM_QUICKSTART_RECIPE) + " has no extract step");
-  const auto volume = workflow::open_chain_volume(workflow::describe_chain(recipe, registry), registry);
+  // describe_chain refuses a recipe without an extract step; its parameters are validated text.
+  const workflow::ChainDescription chain = workflow::describe_chain(recipe, registry);
+  Field field;
+  field.iso = std::stof(chain.extract_step().params.at("iso"));
+  const auto volume = workflow::open_chain_volume(chain, registry);
   field.values = volume->read(volume::Box::of_shape({n, n, n}));
   return field;
 }
@@ -154,7 +149,7 @@ int bench_main(int argc, char** argv) {
   for (const std::string& kind : fields) {
     volume::Geometry g;
     g.shape = {n, n, n};
-    RecipeField field;
+    Field field;
     if (kind == "seismic")
       field = quickstart_field(n);
     else

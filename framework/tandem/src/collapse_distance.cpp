@@ -16,12 +16,6 @@ double CollapseDistance::simplicial(const Vec3& a, double da, const Vec3& b, dou
   return std::max(da + norm(a - c), db + norm(b - c));
 }
 
-int CollapseDistance::add(VH v, const HalfedgeMesh::Point* points, const VertexRecord* records) {
-  points_.push_back(to_vec(points[v.idx()]));
-  tolerances_.push_back(records[v.idx()].tolerance);
-  return static_cast<int>(points_.size() - 1);
-}
-
 void CollapseDistance::gather(const HalfedgeMesh& mesh, HH h, const HalfedgeMesh::Point* points,
                               const VertexRecord* records) {
   const VH a = mesh.from_vertex_handle(h), b = mesh.to_vertex_handle(h);
@@ -32,107 +26,159 @@ void CollapseDistance::gather(const HalfedgeMesh& mesh, HH h, const HalfedgeMesh
   da_ = da;
   db_ = db;
   boundary_ = mesh.is_boundary(a) || mesh.is_boundary(b);
+  n_points_ = n_old_ = n_new_ = n_edges_ = 0;
   if (boundary_) return;
   // a and b are interior, so both triangles of ab exist; x and y, opposite ab, are their only
   // common neighbours (the link condition was checked).
   const VH x = mesh.to_vertex_handle(mesh.next_halfedge_handle(h));
   const VH y = mesh.to_vertex_handle(mesh.next_halfedge_handle(mesh.opposite_halfedge_handle(h)));
-  points_.assign({pa, pb, Vec3{}}); // c goes in its place in bound()
-  tolerances_.assign({da, db, 0.0});
-  old_triangles_.clear();
-  new_triangles_.clear();
-  old_edges_.clear();
-  int ix = -1, iy = -1;
+  // The two rings, as vertices in rotation order; the triangle at step i is (v, p_i, p_(i-1)).
+  std::size_t ring_end[2];
+  std::size_t n_ring = 0;
   for (const VH v : {a, b}) {
-    const int iv = v == a ? 0 : 1;
-    // The neighbours in rotation order; the triangle at step i is (v, p_i, p_(i-1)).
-    ring_.clear();
     const HH start = mesh.halfedge_handle(v);
     HH s = start;
     do {
-      const VH p = mesh.to_vertex_handle(s);
-      int ip;
-      if (p == a) {
-        ip = 0;
-      } else if (p == b) {
-        ip = 1;
-      } else if (p == x) {
-        ip = ix < 0 ? (ix = add(p, points, records)) : ix;
-      } else if (p == y) {
-        ip = iy < 0 ? (iy = add(p, points, records)) : iy;
-      } else {
-        ip = add(p, points, records);
-      }
-      ring_.push_back(ip);
+      if (n_ring == ring_.size()) ring_.resize(2 * n_ring + 16);
+      ring_[n_ring++] = mesh.to_vertex_handle(s);
       s = next_outgoing(mesh, s);
     } while (s != start);
-    for (std::size_t k = 0; k < ring_.size(); ++k) {
-      const int ip = ring_[k], iq = ring_[k == 0 ? ring_.size() - 1 : k - 1];
+    ring_end[v == a ? 0 : 1] = n_ring;
+  }
+  // Every array below holds at most one entry per ring step (points three more): room once.
+  grow(points_, n_ring + 3);
+  grow(tolerances_, n_ring + 3);
+  grow(local_, n_ring);
+  grow(old_triangles_, n_ring);
+  grow(new_triangles_, n_ring);
+  grow(old_edges_, n_ring);
+  grow(fan_next_, n_ring + 3);
+  points_[0] = pa;
+  points_[1] = pb;
+  points_[2] = pa; // c's entry, framed as a's: its share of the scale below is a's
+  tolerances_[0] = da;
+  tolerances_[1] = db;
+  tolerances_[2] = 0.0;
+  int n_points = 3;
+  int ix = -1, iy = -1;
+  for (std::size_t k = 0; k < n_ring; ++k) { // the local numbers
+    const VH p = ring_[k];
+    int ip;
+    if (p == a) {
+      ip = 0;
+    } else if (p == b) {
+      ip = 1;
+    } else if ((p == x && ix >= 0) || (p == y && iy >= 0)) {
+      ip = p == x ? ix : iy;
+    } else {
+      ip = n_points++;
+      points_[static_cast<std::size_t>(ip)] = to_vec(points[p.idx()]);
+      tolerances_[static_cast<std::size_t>(ip)] = records[p.idx()].tolerance;
+      if (p == x) ix = ip;
+      if (p == y) iy = ip;
+    }
+    local_[k] = ip;
+  }
+  n_points_ = static_cast<std::size_t>(n_points);
+  for (int iv = 0; iv < 2; ++iv) {
+    const std::size_t first = iv == 0 ? 0 : ring_end[0], last = ring_end[iv];
+    for (std::size_t k = first; k < last; ++k) {
+      const int ip = local_[k], iq = local_[k == first ? last - 1 : k - 1];
       if (iv == 0 || (ip != 0 && iq != 0)) { // each triangle once
-        old_triangles_.push_back({iv, ip, iq});
-        if (ip > 1 && iq > 1) new_triangles_.push_back({2, ip, iq}); // abx and aby vanish
+        old_triangles_[n_old_++] = {iv, ip, iq};
+        if (ip > 1 && iq > 1) new_triangles_[n_new_++] = {2, ip, iq}; // abx and aby vanish
       }
       if (ip > 1)
-        old_edges_.push_back({iv, ip});
+        old_edges_[n_edges_++] = {iv, ip};
       else if (iv == 0)
-        old_edges_.push_back({0, 1});
+        old_edges_[n_edges_++] = {0, 1};
     }
   }
   // The link in counter-clockwise order around c (seen from the side the patch faces): each new
   // triangle (c, p, q) is one step p -> q of it.
-  fan_next_.assign(points_.size(), -1);
-  for (const auto& t : new_triangles_)
-    fan_next_[static_cast<std::size_t>(t[1])] = t[2];
+  std::fill_n(fan_next_.begin(), n_points_, -1);
+  for (std::size_t i = 0; i < n_new_; ++i)
+    fan_next_[static_cast<std::size_t>(new_triangles_[i][1])] = new_triangles_[i][2];
   // The vector area of the patch (the same before and after: it depends on the boundary only; c
   // is not in the old triangles) and the frame of the projection.
   Vec3 n{0.0, 0.0, 0.0};
-  for (const auto& t : old_triangles_)
+  for (std::size_t i = 0; i < n_old_; ++i) {
+    const auto& t = old_triangles_[i];
     n = n + cross(points_[static_cast<std::size_t>(t[1])] - points_[static_cast<std::size_t>(t[0])],
                   points_[static_cast<std::size_t>(t[2])] - points_[static_cast<std::size_t>(t[0])]);
+  }
   area_length_ = norm(n);
-  if (!(area_length_ > 0.0)) return;
+  if (!(area_length_ > 0.0)) return; // projected() gives up
   n_ = (1.0 / area_length_) * n;
   Vec3 u = std::fabs(n_[0]) < 0.6 ? cross(n_, Vec3{1.0, 0.0, 0.0}) : cross(n_, Vec3{0.0, 1.0, 0.0});
   u_ = (1.0 / norm(u)) * u;
   v_ = cross(n_, u_);
+  // The patch in the frame, from a: each position tried then only shifts it by its own image
+  // (the frame does not depend on c).
+  grow(framed_, n_points_);
+  grow(projected_, n_points_);
+  for (std::size_t i = 0; i < n_points_; ++i) {
+    const Vec3 d = points_[i] - pa;
+    framed_[i] = {dot(d, u_), dot(d, v_), dot(d, n_)};
+  }
 }
 
 double CollapseDistance::bound(const Vec3& c, double limit) {
   const double simple = simplicial(a_, da_, b_, db_, c);
   if (boundary_) return simple;
-  points_[2] = c;
   const double d = projected(c, std::min(simple, limit));
   return d >= 0.0 && d < simple ? d : simple;
 }
 
 double CollapseDistance::projected(const Vec3& c, double limit) {
+  // The patch seen from c: its image in the frame (from a) shifted by c's. The frame is
+  // orthonormal, so the largest squared distance to c (the scale of the tolerances below) is
+  // read there too.
+  if (!(area_length_ > 0.0)) return -1.0; // also: the patch was not framed
+  const Vec3 dc = c - a_;
+  const Point2 origin{dot(dc, u_), dot(dc, v_), dot(dc, n_)};
   double scale2 = 0.0;
-  for (const Vec3& p : points_)
-    scale2 = std::max(scale2, norm2(p - c));
-  if (!(area_length_ > 1e-9 * scale2)) return -1.0;
-  const Vec3 &u = u_, &v = v_, &n = n_;
-  projected_.resize(points_.size());
-  for (std::size_t i = 0; i < points_.size(); ++i) {
-    const Vec3 d = points_[i] - c;
-    projected_[i] = {dot(d, u), dot(d, v), dot(d, n)};
+  for (std::size_t i = 0; i < n_points_; ++i) {
+    const Point2 q{framed_[i].u - origin.u, framed_[i].v - origin.v, framed_[i].z - origin.z};
+    projected_[i] = q;
+    scale2 = std::max(scale2, q.u * q.u + q.v * q.v + q.z * q.z);
   }
+  projected_[2] = Point2{};
+  if (!(area_length_ > 1e-9 * scale2)) return -1.0;
   const auto at = [this](int i) -> const Point2& { return projected_[static_cast<std::size_t>(i)]; };
 
+  // Whether a triangle holds a point, from its doubled area and the point's two cross products
+  // (s1 / area and s2 / area are the weights of the second and third corners, set in w).
+  const auto holds = [](double area, double s1, double s2, double w[3]) {
+    // Clearly outside (a weight below twice the slack) without dividing: most triangles tried.
+    constexpr double slack = -1e-9;
+    const double margin = -2.0 * slack * std::fabs(area);
+    if ((area > 0.0 && (s1 < -margin || s2 < -margin)) || (area < 0.0 && (s1 > margin || s2 > margin))) return false;
+    w[1] = s1 / area;
+    w[2] = s2 / area;
+    w[0] = 1.0 - w[1] - w[2];
+    return w[0] >= slack && w[1] >= slack && w[2] >= slack;
+  };
   // The triangle of a triangulation that holds a point, and the point's barycentric weights.
-  const auto locate = [&](const std::vector<std::array<int, 3>>& triangles, const Point2& x, double w[3]) {
-    for (const auto& t : triangles) {
+  const auto locate = [&](const std::vector<std::array<int, 3>>& triangles, std::size_t count, const Point2& x,
+                          double w[3]) {
+    for (std::size_t i = 0; i < count; ++i) {
+      const auto& t = triangles[i];
       const Point2 &p = at(t[0]), &q = at(t[1]), &r = at(t[2]);
       const double area = cross2(q.u - p.u, q.v - p.v, r.u - p.u, r.v - p.v);
       const double s1 = cross2(x.u - p.u, x.v - p.v, r.u - p.u, r.v - p.v);
       const double s2 = cross2(q.u - p.u, q.v - p.v, x.u - p.u, x.v - p.v);
-      // Clearly outside (a weight below twice the slack) without dividing: most triangles tried.
-      constexpr double slack = -1e-9;
-      const double margin = -2.0 * slack * std::fabs(area);
-      if ((area > 0.0 && (s1 < -margin || s2 < -margin)) || (area < 0.0 && (s1 > margin || s2 > margin))) continue;
-      w[1] = s1 / area;
-      w[2] = s2 / area;
-      w[0] = 1.0 - w[1] - w[2];
-      if (w[0] >= slack && w[1] >= slack && w[2] >= slack) return &t;
+      if (holds(area, s1, s2, w)) return &t;
+    }
+    return static_cast<const std::array<int, 3>*>(nullptr);
+  };
+  // The same in the fan around c, whose triangles start at c, the origin: subtracting it changes
+  // no bit, so it is left out.
+  const auto locate_in_fan = [&](const Point2& x, double w[3]) {
+    for (std::size_t i = 0; i < n_new_; ++i) {
+      const auto& t = new_triangles_[i];
+      const Point2 &q = at(t[1]), &r = at(t[2]);
+      if (holds(cross2(q.u, q.v, r.u, r.v), cross2(x.u, x.v, r.u, r.v), cross2(q.u, q.v, x.u, x.v), w)) return &t;
     }
     return static_cast<const std::array<int, 3>*>(nullptr);
   };
@@ -153,7 +199,7 @@ double CollapseDistance::projected(const Vec3& c, double limit) {
   // clockwise side.
   int sector[2];
   for (int i = 0; i < 2; ++i) { // a and b, in the new patch (c is its triangles' first corner)
-    const auto* t = locate(new_triangles_, at(i), w);
+    const auto* t = locate_in_fan(at(i), w);
     if (!t) return -1.0;
     sector[i] = (*t)[1];
     const double z = w[0] * at(2).z + w[1] * at((*t)[1]).z + w[2] * at((*t)[2]).z;
@@ -166,12 +212,13 @@ double CollapseDistance::projected(const Vec3& c, double limit) {
     const Point2 &p = at(t[0]), &q = at(t[1]), &r = at(t[2]);
     return cross2(q.u - p.u, q.v - p.v, r.u - p.u, r.v - p.v) > tiny;
   };
-  for (const auto& t : old_triangles_)
-    if (!positive(t)) return -1.0;
+  for (std::size_t i = 0; i < n_old_; ++i)
+    if (!positive(old_triangles_[i])) return -1.0;
   // With every sector (c, p, q) turning by less than pi, the fan's winding number is how many of
   // them hold the direction (1, 0) (half-open, so that one on a ray counts once).
   int winding = 0;
-  for (const auto& t : new_triangles_) {
+  for (std::size_t i = 0; i < n_new_; ++i) {
+    const auto& t = new_triangles_[i];
     if (!positive(t)) return -1.0;
     const Point2 &p = at(t[1]), &q = at(t[2]);
     if (-p.v >= 0.0 && q.v > 0.0) ++winding; // cross2(p, (1, 0)) >= 0 and cross2((1, 0), q) > 0
@@ -179,7 +226,7 @@ double CollapseDistance::projected(const Vec3& c, double limit) {
   if (winding != 1) return -1.0;
 
   { // c, in the old patch
-    const auto* t = locate(old_triangles_, at(2), w);
+    const auto* t = locate(old_triangles_, n_old_, at(2), w);
     if (!t) return -1.0;
     double z = 0.0, old = 0.0;
     for (int k = 0; k < 3; ++k) {
@@ -194,9 +241,10 @@ double CollapseDistance::projected(const Vec3& c, double limit) {
   // the link from the sector holding p to q (or to the sector holding b). Both ends of the run are
   // taken with their sectors' sides, and the crossings are then computed exactly; p q nearly in
   // line with c tries every x.
-  const int n_points = static_cast<int>(projected_.size());
-  hits_.resize(projected_.size() + 1);
-  for (const auto& e : old_edges_) {
+  const int n_points = static_cast<int>(n_points_);
+  grow(hits_, n_points_ + 1);
+  for (std::size_t i = 0; i < n_edges_; ++i) {
+    const auto& e = old_edges_[i];
     const Point2 &p = at(e[0]), &q = at(e[1]);
     const double du = q.u - p.u, dv = q.v - p.v;
     const double turn = cross2(p.u, p.v, q.u, q.v);

@@ -23,7 +23,10 @@
 //   bound on d_c. Tangential motion is free, which lets a flat or gently curved patch simplify.
 // Collapses at the surface's boundary (cube faces, open block faces) use the simplicial map.
 
+#include <algorithm>
+#include <array>
 #include <limits>
+#include <vector>
 
 #include "working_mesh.hpp"
 
@@ -58,15 +61,23 @@ private:
   struct Point2 {
     double u = 0.0, v = 0.0, z = 0.0;
   };
-  std::vector<int> ring_; // scratch: one vertex's neighbours, as local numbers
-  std::vector<int> hits_; // scratch: the link vertices whose new edge may cross an old one
+  // Scratch arrays that only grow: a gather fills their first entries and keeps the counts, so
+  // that reading a patch allocates nothing once the largest patch has been seen.
+  template <class T> static void grow(std::vector<T>& v, std::size_t n) {
+    if (v.size() < n) v.resize(std::max(n, 2 * v.size()));
+  }
+  std::vector<VH> ring_;   // a's ring then b's, in rotation order
+  std::vector<int> local_; // the same as local numbers
+  std::vector<int> hits_;  // the link vertices whose new edge may cross an old one
   std::vector<Vec3> points_;
   std::vector<double> tolerances_;
-  std::vector<Point2> projected_;
+  std::vector<Point2> framed_;    // the patch in the frame (u, v, n), from a (c's entry: a's)
+  std::vector<Point2> projected_; // the same from c
   std::vector<std::array<int, 3>> old_triangles_;
   std::vector<std::array<int, 3>> new_triangles_;
   std::vector<std::array<int, 2>> old_edges_; // interior edges of the old patch (at a or b)
   std::vector<int> fan_next_;                 // per link vertex, the next one counter-clockwise around c
+  std::size_t n_points_ = 0, n_old_ = 0, n_new_ = 0, n_edges_ = 0;
   // The gathered patch: a and b with their bounds, whether either is on the surface's boundary,
   // and the patch's vector area with the frame (u, v, n) of the projection.
   Vec3 a_{}, b_{};
@@ -74,7 +85,6 @@ private:
   bool boundary_ = true;
   double area_length_ = 0.0;
   Vec3 u_{}, v_{}, n_{};
-  int add(VH v, const HalfedgeMesh::Point* points, const VertexRecord* records);
 };
 
 } // namespace geotandem::tandem::detail

@@ -153,8 +153,7 @@ bool EdgeCost::inputs(HH h, CostInputs& in) const {
   return true;
 }
 
-bool EdgeCost::evaluate(HH h, Candidate& out, SimplifyCounters& counters) const {
-  CostInputs in;
+bool EdgeCost::evaluate(HH h, Candidate& out, SimplifyCounters& counters, CostInputs& in) const {
   if (!inputs(h, in)) {
     ++counters.rejected_border;
     return false;

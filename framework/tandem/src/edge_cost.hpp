@@ -44,7 +44,12 @@ public:
   bool inputs(HH h, CostInputs& in) const;
   // The best position and its cost; false (counted in `counters`) when the faces forbid the
   // collapse or the shape error at the best position exceeds E0.
-  bool evaluate(HH h, Candidate& out, SimplifyCounters& counters) const;
+  // `in` receives the inputs the evaluation read (valid when it got that far: no border refusal).
+  bool evaluate(HH h, Candidate& out, SimplifyCounters& counters) const {
+    CostInputs in;
+    return evaluate(h, out, counters, in);
+  }
+  bool evaluate(HH h, Candidate& out, SimplifyCounters& counters, CostInputs& in) const;
 
 private:
   // A face's corners from its first halfedge on, their positions relative to the origin and its

@@ -180,12 +180,13 @@ void WorkingSurface::Engine::simplify(const CancelToken* cancel) {
       // Collapses nearby changed what its cost depends on: compute it again, and put it back
       // when it became dearer.
       Candidate c;
-      if (!costs_.evaluate(mesh_->halfedge_handle(e, 0), c, counters_)) continue;
+      CostInputs in;
+      if (!costs_.evaluate(mesh_->halfedge_handle(e, 0), c, counters_, in)) continue;
       if (c.cost > key + 1e-12 * (1.0 + key)) {
         enqueue(e, c.cost, c.position, false);
         continue;
       }
-      try_collapse(e, key, c.position, false);
+      try_collapse(e, key, c.position, false, &in);
     } else {
       try_collapse(e, key, p.target, p.retried);
     }
@@ -195,7 +196,8 @@ void WorkingSurface::Engine::simplify(const CancelToken* cancel) {
   maybe_collect_garbage();
 }
 
-void WorkingSurface::Engine::try_collapse(EH e, double cost, const detail::Vec3& target, bool retried) {
+void WorkingSurface::Engine::try_collapse(EH e, double cost, const detail::Vec3& target, bool retried,
+                                          const CostInputs* known) {
   const HH h = mesh_->halfedge_handle(e, 0);
   if (!detail::link_condition_ok(*mesh_, h, marks_)) {
     ++counters_.rejected_link;
@@ -218,8 +220,9 @@ void WorkingSurface::Engine::try_collapse(EH e, double cost, const detail::Vec3&
   if (retried) return;
   // One more chance at the simple positions (volume-preserving when asked) that keep every
   // triangle's shape.
-  CostInputs in;
-  if (!costs_.inputs(h, in)) return;
+  CostInputs read;
+  if (!known && !costs_.inputs(h, read)) return;
+  const CostInputs& in = known ? *known : read;
   const detail::AttaliCost& attali = costs_.attali();
   const auto prepared = attali.prepare(in);
   Vec3 positions[3];

@@ -124,7 +124,10 @@ private:
   // Puts e in Q at `cost` with its candidate position (evaluated now: the stamp is today's).
   void enqueue(EH e, double cost, const detail::Vec3& target, bool retried);
   detail::Pending& pending(EH e) { return queues_.pending(erec(e)); }
-  void try_collapse(EH e, double cost, const detail::Vec3& target, bool retried);
+  // `known`: the edge's cost inputs when the caller has just read them (the retry reads them
+  // otherwise).
+  void try_collapse(EH e, double cost, const detail::Vec3& target, bool retried,
+                    const detail::CostInputs* known = nullptr);
   // The distance bound the triangles around c would get (the E0 guarantee, collapse_distance.hpp).
   // The patch around h is read when `gathered` is false (then set): several positions of one
   // collapse share it, as long as nothing changes in between.

@@ -59,27 +59,21 @@ void CollapseDistance::gather(const HalfedgeMesh& mesh, HH h, const HalfedgeMesh
   tolerances_[0] = da;
   tolerances_[1] = db;
   tolerances_[2] = 0.0;
-  int n_points = 3;
-  int ix = -1, iy = -1;
-  for (std::size_t k = 0; k < n_ring; ++k) { // the local numbers
+  n_points_ = 3;
+  const auto add = [&](VH p) { // a new local number
+    points_[n_points_] = to_vec(points[p.idx()]);
+    tolerances_[n_points_] = records[p.idx()].tolerance;
+    return static_cast<int>(n_points_++);
+  };
+  int ix = -1, iy = -1; // x and y are in both rings: numbered once
+  for (std::size_t k = 0; k < n_ring; ++k) {
     const VH p = ring_[k];
-    int ip;
-    if (p == a) {
-      ip = 0;
-    } else if (p == b) {
-      ip = 1;
-    } else if ((p == x && ix >= 0) || (p == y && iy >= 0)) {
-      ip = p == x ? ix : iy;
-    } else {
-      ip = n_points++;
-      points_[static_cast<std::size_t>(ip)] = to_vec(points[p.idx()]);
-      tolerances_[static_cast<std::size_t>(ip)] = records[p.idx()].tolerance;
-      if (p == x) ix = ip;
-      if (p == y) iy = ip;
-    }
-    local_[k] = ip;
+    local_[k] = p == a   ? 0
+                : p == b ? 1
+                : p == x ? (ix < 0 ? ix = add(p) : ix)
+                : p == y ? (iy < 0 ? iy = add(p) : iy)
+                         : add(p);
   }
-  n_points_ = static_cast<std::size_t>(n_points);
   for (int iv = 0; iv < 2; ++iv) {
     const std::size_t first = iv == 0 ? 0 : ring_end[0], last = ring_end[iv];
     for (std::size_t k = first; k < last; ++k) {
@@ -159,11 +153,10 @@ double CollapseDistance::projected(const Vec3& c, double limit) {
     w[0] = 1.0 - w[1] - w[2];
     return w[0] >= slack && w[1] >= slack && w[2] >= slack;
   };
-  // The triangle of a triangulation that holds a point, and the point's barycentric weights.
-  const auto locate = [&](const std::vector<std::array<int, 3>>& triangles, std::size_t count, const Point2& x,
-                          double w[3]) {
-    for (std::size_t i = 0; i < count; ++i) {
-      const auto& t = triangles[i];
+  // The triangle of the old patch that holds a point, and the point's barycentric weights.
+  const auto locate_in_old = [&](const Point2& x, double w[3]) {
+    for (std::size_t i = 0; i < n_old_; ++i) {
+      const auto& t = old_triangles_[i];
       const Point2 &p = at(t[0]), &q = at(t[1]), &r = at(t[2]);
       const double area = cross2(q.u - p.u, q.v - p.v, r.u - p.u, r.v - p.v);
       const double s1 = cross2(x.u - p.u, x.v - p.v, r.u - p.u, r.v - p.v);
@@ -172,8 +165,8 @@ double CollapseDistance::projected(const Vec3& c, double limit) {
     }
     return static_cast<const std::array<int, 3>*>(nullptr);
   };
-  // The same in the fan around c, whose triangles start at c, the origin: subtracting it changes
-  // no bit, so it is left out.
+  // The same in the new patch, the fan around c: its triangles start at c, the origin, and
+  // subtracting it would change no bit.
   const auto locate_in_fan = [&](const Point2& x, double w[3]) {
     for (std::size_t i = 0; i < n_new_; ++i) {
       const auto& t = new_triangles_[i];
@@ -226,7 +219,7 @@ double CollapseDistance::projected(const Vec3& c, double limit) {
   if (winding != 1) return -1.0;
 
   { // c, in the old patch
-    const auto* t = locate(old_triangles_, n_old_, at(2), w);
+    const auto* t = locate_in_old(at(2), w);
     if (!t) return -1.0;
     double z = 0.0, old = 0.0;
     for (int k = 0; k < 3; ++k) {

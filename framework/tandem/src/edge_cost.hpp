@@ -44,11 +44,11 @@ public:
   bool inputs(HH h, CostInputs& in) const;
   // The best position and its cost; false (counted in `counters`) when the faces forbid the
   // collapse or the shape error at the best position exceeds E0.
-  // `in` receives the inputs the evaluation read (valid when it got that far: no border refusal).
   bool evaluate(HH h, Candidate& out, SimplifyCounters& counters) const {
     CostInputs in;
     return evaluate(h, out, counters, in);
   }
+  // The same, keeping the inputs it read in `in` (valid unless the faces forbade the collapse).
   bool evaluate(HH h, Candidate& out, SimplifyCounters& counters, CostInputs& in) const;
 
 private:

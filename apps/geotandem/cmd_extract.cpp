@@ -179,8 +179,8 @@ void add_extract_command(CLI::App& app, Context& context, Runner& run) {
         std::cout << "store: " << a->out << " (run " << r.run << ")\n";
         return 0;
       }
-      std::cout << " from " << r.input_triangles << " marching-cubes triangles in " << seconds_text(r.seconds) << " s; "
-                << r.collapses << " collapses (" << r.counters.rejected_distance
+      std::cout << " from " << r.counters.input_triangles << " marching-cubes triangles in " << seconds_text(r.seconds)
+                << " s; " << r.counters.collapses << " collapses (" << r.counters.rejected_distance
                 << " candidates refused by the E0 distance bound); at most " << r.peak_triangles
                 << " triangles in memory; peak memory " << r.peak_rss_kb / 1024 << " MiB\n";
       if (s.block_size > 0) {

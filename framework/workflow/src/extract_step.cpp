@@ -246,7 +246,6 @@ ExtractResult extract_to_store(const volume::Volume& volume, store::ComponentSto
   result.duplicates = sink.duplicates();
   double extract_s = 0, insert_s = 0, simplify_s = 0, dump_s = 0;
   for (const auto& layer : stats.layers) { // with blocks: every leaf's layers in tree order
-    result.input_triangles += layer.input_triangles;
     result.triangles_per_layer.push_back(layer.triangles_in_memory);
     extract_s += layer.seconds_extract;
     insert_s += layer.seconds_insert;
@@ -255,8 +254,7 @@ ExtractResult extract_to_store(const volume::Volume& volume, store::ComponentSto
   }
   simplify_s += stats.final_pass.seconds_simplify;
   dump_s += stats.final_pass.seconds_dump;
-  result.collapses = stats.counters.collapses; // leaves, seams and the final pass
-  result.counters = stats.counters;
+  result.counters = stats.counters; // leaves, seams and the final pass
   result.peak_triangles = stats.peak_triangles;
   result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   result.peak_rss_kb = peak_rss_kb();
@@ -272,9 +270,9 @@ ExtractResult extract_to_store(const volume::Volume& volume, store::ComponentSto
       {"seconds", {{"leaves", blocks.seconds_leaves}, {"wire", blocks.seconds_wire}, {"merge", blocks.seconds_merge}}}};
   result.statistics = {{"components", result.components},
                        {"duplicates", result.duplicates},
-                       {"input_triangles", result.input_triangles},
+                       {"input_triangles", result.counters.input_triangles},
                        {"peak_triangles", result.peak_triangles},
-                       {"collapses", result.collapses},
+                       {"collapses", result.counters.collapses},
                        {"counters", nlohmann::json::parse(runtime::counters_to_json(result.counters))},
                        {"triangles_per_layer", result.triangles_per_layer},
                        {"blocks", result.blocks},

@@ -236,8 +236,9 @@ private:
       report_.triangles_per_layer = r.triangles_per_layer;
       report_.steps.push_back({step.name, since(t), 0, store_->size(),
                                (step.params.count("mode") ? step.params.at("mode").text + ", " : std::string()) +
-                                   std::to_string(r.input_triangles) + " marching-cubes triangles, " +
-                                   std::to_string(r.collapses) + " collapses" + refused_of(r) + warnings_of(r)});
+                                   std::to_string(r.counters.input_triangles) + " marching-cubes triangles, " +
+                                   std::to_string(r.counters.collapses) + " collapses" + refused_of(r) +
+                                   warnings_of(r)});
     }
     outcome_.components = outcome_.kept = store_->size();
     report_.volume_unit = store_->geometry().z_unit == volume::SampleUnit::milliseconds ? "m^2*ms" : "m^3";

@@ -61,13 +61,12 @@ struct ExtractSettings {
 
 struct ExtractResult {
   std::int64_t run = 0;
-  std::uint64_t components = 0;      // committed by this run (new keys)
-  std::uint64_t duplicates = 0;      // already in the store (a resumed run)
-  std::uint64_t input_triangles = 0; // produced by marching cubes
-  std::uint64_t peak_triangles = 0;  // most held in memory at a layer boundary
-  std::uint64_t collapses = 0;
-  // Every counter of the collapse loop (cost evaluations, refusals by reason: rejected_distance is
-  // what the E0 guarantee refused), of the whole surface.
+  std::uint64_t components = 0;     // committed by this run (new keys)
+  std::uint64_t duplicates = 0;     // already in the store (a resumed run)
+  std::uint64_t peak_triangles = 0; // most held in memory at a layer boundary
+  // Every counter of the collapse loop, of the whole surface: input_triangles (made by marching
+  // cubes), collapses, cost evaluations, refusals by reason (rejected_distance is what the E0
+  // guarantee refused).
   tandem::SimplifyCounters counters;
   std::vector<std::uint64_t> triangles_per_layer; // with blocks: every leaf's layers in tree order
   nlohmann::json blocks;                          // leaves, merges, seam collapses, bytes shipped, seconds per phase

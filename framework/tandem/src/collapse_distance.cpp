@@ -39,7 +39,7 @@ void CollapseDistance::gather(const HalfedgeMesh& mesh, HH h, const HalfedgeMesh
     const HH start = mesh.halfedge_handle(v);
     HH s = start;
     do {
-      if (n_ring == ring_.size()) ring_.resize(2 * n_ring + 16);
+      grow(ring_, n_ring + 1);
       ring_[n_ring++] = mesh.to_vertex_handle(s);
       s = next_outgoing(mesh, s);
     } while (s != start);
@@ -53,6 +53,7 @@ void CollapseDistance::gather(const HalfedgeMesh& mesh, HH h, const HalfedgeMesh
   grow(new_triangles_, n_ring);
   grow(old_edges_, n_ring);
   grow(fan_next_, n_ring + 3);
+  grow(hits_, n_ring + 4); // projected(): up to one per point, and one more
   points_[0] = pa;
   points_[1] = pb;
   points_[2] = pa; // c's entry, framed as a's: its share of the scale below is a's
@@ -235,7 +236,6 @@ double CollapseDistance::projected(const Vec3& c, double limit) {
   // taken with their sectors' sides, and the crossings are then computed exactly; p q nearly in
   // line with c tries every x.
   const int n_points = static_cast<int>(n_points_);
-  grow(hits_, n_points_ + 1);
   for (std::size_t i = 0; i < n_edges_; ++i) {
     const auto& e = old_edges_[i];
     const Point2 &p = at(e[0]), &q = at(e[1]);

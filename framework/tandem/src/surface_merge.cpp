@@ -9,10 +9,12 @@
 #include <cmath>
 #include <cstdint>
 #include <cstring>
+#include <limits>
 #include <string>
 #include <vector>
 
 #include "geotandem/core/error.hpp"
+#include "surface_check.hpp"
 #include "surface_engine.hpp"
 #include "triangle_insert.hpp"
 
@@ -136,17 +138,17 @@ void WorkingSurface::Engine::absorb_state(detail::SurfaceState&& t) {
     }
   }
 
-  // The other side's components join the table; those the seam touches are united below.
-  std::vector<std::int32_t> component(t.component_keys.size());
-  for (std::size_t c = 0; c < component.size(); ++c)
-    component[c] = components_.create(t.component_keys[c], -1);
-
-  // Vertices: welded to an original vertex with the same lattice id, or appended.
+  // Vertices: welded to an original vertex with the same lattice id, or appended. Nothing of this
+  // surface changes until the weld is known to fit (the state itself was checked when its record
+  // was decoded, check_state): a welded vertex is at the same position to the bit (both blocks
+  // interpolate from the edge's lower end) and on this side's boundary, and no triangle of the
+  // other side uses an edge between welded vertices in the direction this side's triangles do.
   std::vector<VH> vertex(nb);
-  std::size_t next = mesh_->n_vertices();
+  const std::size_t first_new = mesh_->n_vertices(), edges_before = mesh_->n_edges(), faces_before = mesh_->n_faces();
+  std::size_t next = first_new;
   for (std::size_t i = 0; i < nb; ++i) {
     const detail::StateVertex& r = t.vertices[i];
-    if (r.component < 0 || static_cast<std::size_t>(r.component) >= component.size())
+    if (r.component < 0 || static_cast<std::size_t>(r.component) >= t.component_keys.size())
       throw DataError(where_() + ": vertex " + std::to_string(i) + " of the other side has no component");
     const std::int32_t j = r.lattice_id == detail::kNoLatticeId ? -1 : ids.find(r.lattice_id);
     if (j < 0) {
@@ -154,8 +156,40 @@ void WorkingSurface::Engine::absorb_state(detail::SurfaceState&& t) {
       continue;
     }
     vertex[i] = VH(j);
+    const detail::Vec3 p = position(vertex[i]);
+    if (std::memcmp(p.data(), t.points[i].data(), sizeof(detail::Vec3)) != 0)
+      throw DataError(
+          where_() + ": lattice edge " + std::to_string(r.lattice_id) + " has different positions on the two sides",
+          {.block = detail::record_blocks(t.region)}, "both blocks must come from the same volume and isovalue");
+    if (!mesh_->is_boundary(vertex[i]) || mesh_->is_isolated(vertex[i]))
+      throw DataError(where_() + ": lattice edge " + std::to_string(r.lattice_id) +
+                          " is not on this side's boundary, where the other side would weld to it",
+                      {.block = detail::record_blocks(t.region)},
+                      "the two surfaces must be the partial surfaces of adjacent blocks of one extraction");
   }
-  const std::size_t first_new = mesh_->n_vertices(), edges_before = mesh_->n_edges(), faces_before = mesh_->n_faces();
+  for (std::size_t k = 0; k < nt; ++k) {
+    const auto& tri = t.triangles[k];
+    for (int c = 0; c < 3; ++c) {
+      const VH a = vertex[tri[static_cast<std::size_t>(c)]], b = vertex[tri[static_cast<std::size_t>((c + 1) % 3)]];
+      if (static_cast<std::size_t>(a.idx()) >= first_new || static_cast<std::size_t>(b.idx()) >= first_new) continue;
+      const HH h = detail::find_halfedge(*mesh_, a, b);
+      if (h.is_valid() && !mesh_->is_boundary(h))
+        throw DataError(where_() + ": triangle " + std::to_string(k) +
+                            " of the other side uses a seam edge in the direction of this side's triangle",
+                        {.block = detail::record_blocks(t.region)},
+                        "the two surfaces must be the partial surfaces of adjacent blocks of one extraction");
+    }
+  }
+  // Handles are ints: the merged mesh must be numbered by them.
+  constexpr std::size_t kMaxHandle = static_cast<std::size_t>(std::numeric_limits<int>::max()) / 2;
+  if (next > kMaxHandle || edges_before + 3 * nt > kMaxHandle || faces_before + nt > kMaxHandle)
+    throw DataError(where_() + ": the merged surface would hold more elements than a working surface can number",
+                    {.block = detail::record_blocks(t.region)}, "use smaller blocks");
+
+  // The other side's components join the table; those the seam touches are united below.
+  std::vector<std::int32_t> component(t.component_keys.size());
+  for (std::size_t c = 0; c < component.size(); ++c)
+    component[c] = components_.create(t.component_keys[c], -1);
   // Exactly the room the merge may need: the larger surface does not double its storage for it.
   // Edges and faces are appended as the triangles go in: the room they do not use is not touched.
   mesh_->reserve(next, edges_before + 3 * nt, faces_before + nt);
@@ -171,14 +205,8 @@ void WorkingSurface::Engine::absorb_state(detail::SurfaceState&& t) {
       points_[v.idx()] = detail::HalfedgeMesh::Point(t.points[i][0], t.points[i][1], t.points[i][2]);
       ++live_vertices_;
     } else {
-      // The same lattice edge seen from both sides: one vertex. Both are original marching-cubes
-      // vertices (height = rank at birth, rad = 1); both blocks interpolate from the edge's lower
-      // end, so the positions must agree to the bit.
-      const detail::Vec3 p = position(v);
-      if (std::memcmp(p.data(), t.points[i].data(), sizeof(detail::Vec3)) != 0)
-        throw DataError(where_() + ": lattice edge " + std::to_string(r.lattice_id) +
-                            " has different positions on the two sides",
-                        {.block = t.region.to_string()}, "both blocks must come from the same volume and isovalue");
+      // The same lattice edge seen from both sides: one vertex (positions compared above). Both
+      // are original marching-cubes vertices (height = rank at birth, rad = 1).
       w.shape += r.shape;
       w.border |= r.border;
       w.version = std::max(w.version, r.version) + 1; // candidates computed on either side are stale
@@ -200,7 +228,7 @@ void WorkingSurface::Engine::absorb_state(detail::SurfaceState&& t) {
     if (!f.is_valid())
       throw DataError(where_() + ": triangle " + std::to_string(k) +
                           " of the other side would make the surface non-manifold",
-                      {.block = t.region.to_string()},
+                      {.block = detail::record_blocks(t.region)},
                       "the two surfaces must be the partial surfaces of adjacent blocks of one extraction");
     faces.push_back(f);
   }

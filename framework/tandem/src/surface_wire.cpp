@@ -9,6 +9,7 @@
 #include <string>
 
 #include "geotandem/core/error.hpp"
+#include "surface_check.hpp"
 #include "surface_engine.hpp"
 #include "wire_io.hpp"
 
@@ -320,7 +321,9 @@ detail::SurfaceState decode_record(std::span<const std::byte> record) {
                         "): the record is corrupt",
                     {}, "the record was damaged in transit or in storage: ship it again");
   Reader r(payload);
-  return decode(r);
+  detail::SurfaceState state = decode(r);
+  detail::check_state(state); // the checksum says the bytes arrived; this, that they make a surface
+  return state;
 }
 
 } // namespace

@@ -1,13 +1,17 @@
 #!/usr/bin/env bash
 # The fuzz targets' seeds, from the project's own files: the recipes under workflows/ and the
-# regression inputs, the raw sidecar and SEG-Y file `geotandem synth` writes.
-#   tests/fuzz/make_seeds.sh GEOTANDEM SOURCE_DIR SEEDS_DIR
+# regression inputs, the raw sidecar and SEG-Y file `geotandem synth` writes, and (with
+# SURFACE_RECORD_SEEDS, the tool of that name) real working-surface records of an analytic cube.
+#   tests/fuzz/make_seeds.sh GEOTANDEM SOURCE_DIR SEEDS_DIR [SURFACE_RECORD_SEEDS]
 set -euo pipefail
-geotandem=$1 root=$2 seeds=$3
+geotandem=$1 root=$2 seeds=$3 surface_seeds=${4:-}
 rm -rf "$seeds"
-mkdir -p "$seeds/recipe" "$seeds/raw_sidecar" "$seeds/segy_header"
+mkdir -p "$seeds/recipe" "$seeds/raw_sidecar" "$seeds/segy_header" "$seeds/surface_record"
 cp "$root"/workflows/*.yaml "$root"/tests/fuzz/regressions/recipe_*.yaml "$seeds/recipe/"
 export ASAN_OPTIONS=detect_leaks=0
+if [ -n "$surface_seeds" ]; then
+  "$surface_seeds" "$seeds/surface_record"
+fi
 "$geotandem" -q synth --kind analytic --shape 40 40 40 --out "$seeds/cube.raw" >/dev/null
 cp "$seeds/cube.raw.json" "$seeds/raw_sidecar/sidecar.json"
 cp "$root"/tests/fuzz/regressions/raw_sidecar_*.json "$seeds/raw_sidecar/"

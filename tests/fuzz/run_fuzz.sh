@@ -19,7 +19,7 @@ cmake -S "$root" -B "$build" -G Ninja \
   -DCMAKE_BUILD_TYPE=RelWithDebInfo \
   -DGEOTANDEM_SANITIZE=address,undefined,fuzzer-no-link \
   -DGEOTANDEM_BUILD_TESTS=OFF -DGEOTANDEM_BUILD_BENCH=OFF -DGEOTANDEM_FUZZ=ON >/dev/null
-nice cmake --build "$build" -j"$jobs" --target fuzz_recipe fuzz_raw_sidecar fuzz_segy_header
+nice cmake --build "$build" -j"$jobs" --target fuzz_recipe fuzz_raw_sidecar fuzz_segy_header fuzz_surface_record surface_record_seeds
 
 # The seed cubes come from a release build's geotandem when there is one (faster than building the
 # instrumented one).
@@ -31,15 +31,16 @@ fi
 
 # Seeds: the project's own files.
 seeds="$build/seeds"
-"$root/tests/fuzz/make_seeds.sh" "$geotandem" "$root" "$seeds"
+"$root/tests/fuzz/make_seeds.sh" "$geotandem" "$root" "$seeds" "$build/bin/surface_record_seeds"
 
 status=0
-for target in recipe raw_sidecar segy_header; do
+for target in recipe raw_sidecar segy_header surface_record; do
   corpus="$build/corpus/$target"
   findings="$build/findings/fuzz_$target"
   mkdir -p "$corpus" "$findings"
   max_len=65536
   [ "$target" = segy_header ] && max_len=700000
+  [ "$target" = surface_record ] && max_len=1048576 # the seeds are whole records
   echo "fuzz_$target: ${seconds} s"
   if ! "$build/bin/fuzz_$target" "$corpus" "$seeds/$target" -max_total_time="$seconds" -max_len="$max_len" \
     -timeout=10 -rss_limit_mb=2048 -artifact_prefix="$findings/" -print_final_stats=1 2>"$build/fuzz_$target.log"; then

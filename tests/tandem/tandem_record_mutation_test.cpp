@@ -6,8 +6,6 @@
 // components are closed); never crash (run under the asan preset in CI).
 #include <gtest/gtest.h>
 
-#include <xxhash.h>
-
 #include <cmath>
 #include <cstring>
 #include <iostream>
@@ -23,73 +21,29 @@
 #include "geotandem/tandem/block_tree.hpp"
 #include "geotandem/tandem/serialize.hpp"
 #include "geotandem/tandem/tandem.hpp"
+#include "surface_record_layout.hpp"
 
 namespace geotandem::tandem {
 namespace {
 
-using Bytes = std::vector<std::byte>;
+using Bytes = testing::RecordBytes;
+using Layout = testing::RecordLayout;
 using fixtures::CollectingSink;
+using testing::reseal;
 
 template <class T> T get(const Bytes& r, std::size_t at) {
-  T v;
-  std::memcpy(&v, r.data() + at, sizeof(T));
-  return v;
+  return testing::record_get<T>(r, at);
 }
 template <class T> void put(Bytes& r, std::size_t at, T v) {
-  std::memcpy(r.data() + at, &v, sizeof(T));
-}
-
-// The length and checksum of the header made right again for the payload as it now is.
-void reseal(Bytes& r) {
-  const std::uint64_t length = r.size() - kSurfaceWireHeaderSize;
-  const std::uint64_t hash = XXH64(r.data() + kSurfaceWireHeaderSize, length, 0);
-  put(r, 16, length);
-  put(r, 24, hash);
-}
-
-// Where a record's sections start (docs/algorithm.md, "The wire format"), found by walking it.
-struct Layout {
-  static constexpr std::size_t kVertex = 145, kTriangle = 12, kEdge = 46;
-  std::size_t axis = 0, blocks_count = 0, blocks = 0, front = 0, components_count = 0, components = 0;
-  std::size_t vertices_count = 0, vertices = 0, triangles_count = 0, triangles = 0, edges_count = 0, edges = 0;
-  std::size_t nb = 0, nc = 0, nv = 0, nt = 0, ne = 0;
-};
-
-Layout layout_of(const Bytes& r) {
-  Layout l;
-  std::size_t at = kSurfaceWireHeaderSize + 24 + 48 + 1 + 48; // shape, spacing, unit, affine
-  l.axis = at;
-  at += 4 + 8 + 8 + 1 + 8 + 48; // axis, E0, alpha, flags, compaction, region cube
-  l.blocks_count = at;
-  l.nb = get<std::uint64_t>(r, at);
-  l.blocks = at + 8;
-  at = l.blocks + 48 * l.nb;
-  l.front = at;
-  at += 8 + 8 + 24 + 8 * SimplifyCounters::all.size();
-  l.components_count = at;
-  l.nc = get<std::uint64_t>(r, at);
-  l.components = at + 8;
-  at = l.components + 8 * l.nc;
-  l.vertices_count = at;
-  l.nv = get<std::uint64_t>(r, at);
-  l.vertices = at + 8;
-  at = l.vertices + Layout::kVertex * l.nv;
-  l.triangles_count = at;
-  l.nt = get<std::uint64_t>(r, at);
-  l.triangles = at + 8;
-  at = l.triangles + Layout::kTriangle * l.nt;
-  l.edges_count = at;
-  l.ne = get<std::uint64_t>(r, at);
-  l.edges = at + 8;
-  return l;
+  testing::record_put(r, at, v);
 }
 
 // One mutation of `r` (kind `kind`, parameters from `rng`), with a description for messages.
 std::string mutate(Bytes& r, int kind, std::mt19937_64& rng) {
-  const Layout l = layout_of(r);
+  const Layout l(r);
   auto pick = [&rng](std::size_t n) { return n == 0 ? 0 : static_cast<std::size_t>(rng() % n); };
-  auto vertex = [&](std::size_t i) { return l.vertices + Layout::kVertex * i; };
-  auto corner = [&](std::size_t t, std::size_t c) { return l.triangles + Layout::kTriangle * t + 4 * c; };
+  auto vertex = [&](std::size_t i) { return l.vertex(i); };
+  auto corner = [&](std::size_t t, std::size_t c) { return l.corner(t, c); };
   const std::size_t v = pick(l.nv), t = pick(l.nt), e = pick(l.ne);
   if (l.nv == 0 || l.nt == 0) kind = 0; // nothing to aim at (the cases hold triangles)
   switch (kind) {

@@ -185,6 +185,12 @@ void Manager::Impl::handle(const std::string& token, std::span<const std::byte> 
                                    "every worker reads the input itself: check that it is readable and "
                                    "intact from every worker, and that the store directory is writable");
     if (!p.task || !(m.lease == p.lease)) return drop("a stale FAILED from worker " + token);
+    if (p.task->kind == TaskKind::merge && m.number == 5) { // DataError
+      // The record it was to merge was refused (issue 52: it may come from a stranger or a broken
+      // worker): the run goes on without that worker, whose blocks and the record's are re-done.
+      log.error("failed during " + task_text(p) + ": " + m.text);
+      return kill_peer(token, "refused the partial surface it was to merge");
+    }
     detail::throw_worker_failure(static_cast<int>(m.number), "failed during " + task_text(p) + ": " + m.text, token,
                                  "fix the cause and rerun the same command: committed components are kept");
   default: break;

@@ -288,10 +288,20 @@ private:
       throw DataError("the partial surface to merge is damaged: " + *why, {.worker = options_.token},
                       "rerun the same command: committed components are kept");
     const std::vector<std::byte> record = in.take();
-    if (surface_)
-      tandem::merge_record(*surface_, record, &cancel_);
-    else
-      surface_ = std::make_unique<tandem::WorkingSurface>(tandem::deserialize(record, &*sink_));
+    try {
+      if (surface_)
+        tandem::merge_record(*surface_, record, &cancel_);
+      else
+        surface_ = std::make_unique<tandem::WorkingSurface>(tandem::deserialize(record, &*sink_));
+    } catch (const DataError& e) {
+      // A record that is not a surface this run's workers write (checked before it touches this
+      // worker's surface, tandem/src/surface_check.hpp), or one that does not weld to it. The
+      // worker fails the task and stops: the manager re-does its blocks and the record's.
+      surface_.reset();
+      throw DataError("refused the partial surface it was to merge: " + e.message(),
+                      {.block = e.context().block, .worker = options_.token},
+                      "its blocks and the record's are extracted again by another worker");
+    }
     report(m, start);
   }
 

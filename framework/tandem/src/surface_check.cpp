@@ -50,7 +50,7 @@ public:
 private:
   [[noreturn]] void refuse(const std::string& what) const {
     const std::string where = record_blocks(s_.region);
-    throw DataError("working-surface record of " + where + ": " + what, {.block = where},
+    throw DataError("working-surface record: " + what, {.block = where},
                     "the record is not a partial surface of this run's extraction (forged, or damaged before its "
                     "checksum was computed): its blocks must be extracted again");
   }
@@ -220,9 +220,9 @@ private:
   }
 
   // Around each vertex the wedges chain into fans: each edge once in each direction, one closed
-  // fan alone or open fans only. A vertex with open fans (several: a merge across a block's edge
-  // leaves them until the blocks between arrive) is an original vertex on an open face, or on the
-  // cube's border.
+  // fan alone or open fans only. Past the sweep, a vertex with open fans (several: a merge across a
+  // block's edge leaves them until the blocks between arrive) is an original vertex on an open face,
+  // or on the cube's border.
   void fans() {
     std::vector<std::uint32_t> ends;
     for (std::size_t v = 0; v < nv_; ++v) {
@@ -254,10 +254,11 @@ private:
         if (covered != w.size()) refuse(where() + "its triangles close around it more than once");
       } else if (covered != w.size()) {
         refuse(where() + "its triangles close around it beside other fans");
-      } else if (!on_cube_border(s_.points[v]) &&
+      } else if (past_sweep() && !on_cube_border(s_.points[v]) &&
                  (s_.vertices[v].lattice_id == kNoLatticeId || !s_.region.on_open_face(s_.points[v]))) {
-        // The surface's boundary lies where a neighbour comes later (or on the cube's border when
-        // there are no caps); the vertices there are original ones, which the merge welds by id.
+        // Past the sweep, the surface's boundary lies where a neighbour comes later (or on the
+        // cube's border when there are no caps; mid-sweep also on the last layer): the vertices
+        // there are original ones, which the merge welds by id.
         refuse(where() + "it is on the surface's boundary (" + num(open) +
                " open fan(s)) but is not an original vertex on an open face of the region");
       }

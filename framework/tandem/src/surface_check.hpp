@@ -25,8 +25,9 @@ std::string record_blocks(const Region& region);
 // a key above one of its original vertices' ids; a triangle out of range, with a repeated corner
 // or joining two components; an edge used twice in one direction (more than two triangles on an
 // edge, or two that disagree on the orientation); a vertex whose triangles do not make fans, that
-// is closed around other fans, or on the surface's boundary but neither an original vertex on an
-// open face of the region nor on the cube's border (a hole the merge would not close); a vertex without a
+// is closed around other fans, or (past the sweep) on the surface's boundary but neither an
+// original vertex on an open face of the region nor on the cube's border (a hole no merge would
+// close); a vertex without a
 // triangle that is not listed as isolated; a queued edge that is not an edge of the triangles, is
 // listed twice or out of order, idle, with a non-finite key or candidate, or delayed past the
 // sweep; ids of the last layer or isolated vertices that do not name vertices (isolated ones past

@@ -93,6 +93,12 @@ private:
     }
   }
 
+  bool near_cube(const Vec3& p) const {
+    for (int a = 0; a < 3; ++a)
+      if (!(p[a] >= lo_[a] && p[a] <= hi_[a])) return false;
+    return true;
+  }
+
   bool on_cube_border(const Vec3& p) const {
     for (int a = 0; a < 3; ++a)
       if (p[a] == 0.0 || p[a] == static_cast<double>(s_.cube.shape[a] - 1)) return true;
@@ -158,8 +164,7 @@ private:
       const StateVertex& v = s_.vertices[i];
       const Vec3& p = s_.points[i];
       if (!finite(p)) refuse("vertex " + num(i) + " has a non-finite position");
-      for (int a = 0; a < 3; ++a)
-        if (p[a] < lo_[a] || p[a] > hi_[a]) refuse("vertex " + num(i) + " lies far outside the cube");
+      if (!near_cube(p)) refuse("vertex " + num(i) + " lies far outside the cube");
       if (!std::all_of(std::begin(v.shape.m), std::end(v.shape.m), [](double x) { return std::isfinite(x); }) ||
           !std::isfinite(v.height))
         refuse("vertex " + num(i) + " has a non-finite quadric or height");
@@ -317,7 +322,8 @@ private:
       if (e.state == EdgeState::idle) refuse(who + " is idle (idle edges are not written)");
       if (!std::isfinite(e.key)) refuse(who + " has a non-finite key");
       if (e.state == EdgeState::delayed && past_sweep()) refuse(who + " is delayed past the sweep");
-      if (e.state == EdgeState::candidate && !finite(e.pending.target)) refuse(who + " has a non-finite candidate");
+      if (e.state == EdgeState::candidate && !near_cube(e.pending.target))
+        refuse(who + " has a candidate position that is not finite or lies far outside the cube");
     }
   }
 

@@ -29,7 +29,7 @@ std::string record_blocks(const Region& region);
 // original vertex on an open face of the region nor on the cube's border (a hole no merge would
 // close); a vertex without a
 // triangle that is not listed as isolated; a queued edge that is not an edge of the triangles, is
-// listed twice or out of order, idle, with a non-finite key or candidate, or delayed past the
+// listed twice or out of order, idle, with a non-finite key or a far candidate, or delayed past the
 // sweep; ids of the last layer or isolated vertices that do not name vertices (isolated ones past
 // the sweep).
 void check_state(const SurfaceState& s);

@@ -36,7 +36,9 @@ std::vector<std::byte> serialize(WorkingSurface&& surface);
 // A surface that continues exactly where the serialized one stood; finished components go to
 // `sink` (may be null), collapses to `observer` (may be null). Throws DataError naming the problem
 // when the record is not a working-surface record, has another format version, is truncated or
-// longer than its header says, fails its checksum, or holds an inconsistent surface.
+// longer than its header says, fails its checksum, or holds a surface that breaks what the engine
+// relies on (a valid checksum does not make a record trusted: docs/algorithm.md, "What a record
+// must satisfy"; the message's context names the record's blocks).
 WorkingSurface deserialize(std::span<const std::byte> record, mesh::ComponentSink* sink,
                            CollapseObserver* observer = nullptr);
 
@@ -44,7 +46,8 @@ WorkingSurface deserialize(std::span<const std::byte> record, mesh::ComponentSin
 // into `into` (no surface engine is built for the sender), welded, the seam simplified, finished
 // components dumped to `into`'s sink. Returns the number dumped. `into` always takes in the
 // record, whatever their sizes. Throws DataError for a bad record (as deserialize) or surfaces that
-// do not fit together (nothing changed then), DataError from the weld (then `into` is in an
+// do not fit together (the regions, a welded vertex's position or place, a seam edge's direction:
+// nothing changed then), DataError when a triangle still cannot be welded in (then `into` is in an
 // unspecified state: drop it), and Cancelled.
 std::size_t merge_record(WorkingSurface& into, std::span<const std::byte> record, const CancelToken* cancel = nullptr);
 // The same, giving the record's storage back once it is decoded, before `into` grows.

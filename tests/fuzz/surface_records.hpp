@@ -9,6 +9,7 @@
 
 #include "geotandem/synth/synthetic.hpp"
 #include "geotandem/tandem/block_tree.hpp"
+#include "geotandem/tandem/marching_cubes.hpp"
 #include "geotandem/tandem/serialize.hpp"
 #include "geotandem/tandem/tandem.hpp"
 

@@ -6,11 +6,13 @@
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <memory>
 #include <numeric>
 #include <span>
 #include <utility>
 #include <vector>
 
+#include "constraints.hpp"
 #include "geotandem/core/error.hpp"
 #include "geotandem/tandem/layer.hpp"
 #include "geotandem/tandem/marching_cubes.hpp"
@@ -312,6 +314,8 @@ private:
   // The queued edges: edges of the triangles, in the writer's order (each once), in a queue with a
   // finite key; none delayed past the sweep.
   void edges() {
+    front_rule_ = make_front_rule(s_.options.time_lag, s_.axis);
+    face_rule_ = make_face_rule(s_.options.extended_time_lag);
     for (std::size_t i = 0; i < s_.edges.size(); ++i) {
       const StateEdge& e = s_.edges[i];
       const std::string who = "queued edge " + num(i) + " (" + std::to_string(e.v0) + ", " + std::to_string(e.v1) + ")";
@@ -324,6 +328,20 @@ private:
       if (e.state == EdgeState::delayed && past_sweep()) refuse(who + " is delayed past the sweep");
       if (e.state == EdgeState::candidate && !near_cube(e.pending.target))
         refuse(who + " has a candidate position that is not finite or lies far outside the cube");
+      // Q holds only edges the front and the open faces let collapse (Engine::place): a candidate
+      // they hold back would collapse a vertex a neighbour is to weld to (the record's region's
+      // open faces include every open face of a merge's union near its edges).
+      if (e.state == EdgeState::candidate) {
+        EdgeGeometry g;
+        g.a = s_.points[e.v0];
+        g.b = s_.points[e.v1];
+        g.height_a = s_.vertices[e.v0].height;
+        g.height_b = s_.vertices[e.v1].height;
+        g.rad_a = s_.vertices[e.v0].rad;
+        g.rad_b = s_.vertices[e.v1].rad;
+        if (!(front_rule_->key(g) < s_.front) || face_rule_->holding_face(g, s_.region).index >= 0)
+          refuse(who + " is a candidate that the front or the region's open faces hold back");
+      }
     }
   }
 
@@ -359,6 +377,8 @@ private:
   std::vector<std::uint64_t> min_original_;                        // per component
   std::vector<std::size_t> members_;                               // per component
   std::vector<std::size_t> first_;
+  std::unique_ptr<FrontRule> front_rule_;
+  std::unique_ptr<FaceRule> face_rule_;
   std::vector<std::pair<std::uint32_t, std::uint32_t>> wedge_;
 };
 

@@ -27,11 +27,10 @@ std::string record_blocks(const Region& region);
 // edge, or two that disagree on the orientation); a vertex whose triangles do not make fans, that
 // is closed around other fans, or (past the sweep) on the surface's boundary but neither an
 // original vertex on an open face of the region nor on the cube's border (a hole no merge would
-// close); a vertex without a
-// triangle that is not listed as isolated; a queued edge that is not an edge of the triangles, is
-// listed twice or out of order, idle, with a non-finite key or a far candidate, or delayed past the
-// sweep; ids of the last layer or isolated vertices that do not name vertices (isolated ones past
-// the sweep).
+// close); a vertex without a triangle that is not listed as isolated; a queued edge that is not an
+// edge of the triangles, is listed twice or out of order, idle, with a non-finite key, a candidate
+// far away or held back by the front or the open faces, or delayed past the sweep; ids of the last
+// layer or isolated vertices that do not name vertices (isolated ones past the sweep).
 void check_state(const SurfaceState& s);
 
 } // namespace geotandem::tandem::detail

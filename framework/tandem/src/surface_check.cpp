@@ -69,8 +69,9 @@ private:
       if (shape[a] < 2 || shape[a] > (std::int64_t{1} << 30))
         refuse("the cube's shape " + std::to_string(shape[a]) + " along axis " + std::to_string(a) +
                " is not between 2 and 2^30 samples");
+      if (n > (std::uint64_t{1} << 60) / static_cast<std::uint64_t>(shape[a]))
+        refuse("the cube has more than 2^60 samples");
       n *= static_cast<std::uint64_t>(shape[a]);
-      if (n > (std::uint64_t{1} << 60)) refuse("the cube has more than 2^60 samples");
     }
     samples_ = n;
     lattice_.shape = shape;

@@ -54,6 +54,12 @@ volume::Box get_box(Reader& r) {
     b.lo[a] = r.get<std::int64_t>();
   for (int a = 0; a < 3; ++a)
     b.hi[a] = r.get<std::int64_t>();
+  // Cells of a cube of at most 2^30 samples an axis (surface_check.cpp): the region's arithmetic
+  // on boxes (extents, counts) cannot overflow then.
+  for (int a = 0; a < 3; ++a)
+    if (b.lo[a] < 0 || b.lo[a] > (std::int64_t{1} << 30) || b.hi[a] < 0 || b.hi[a] > (std::int64_t{1} << 30))
+      throw DataError("working-surface record: the box " + std::to_string(b.lo[a]) + ":" + std::to_string(b.hi[a]) +
+                      " along axis " + std::to_string(a) + " of its region is outside [0, 2^30]");
   return b;
 }
 

@@ -69,8 +69,10 @@ public:
   // Takes in the surface of a disjoint region of the same cube (both past their sweep), as plain
   // data (exported from its engine, or decoded from its wire form), welded by lattice ids; the
   // region becomes the union, but the parked edges are not placed again yet (surface_merge.cpp).
-  // Throws InvalidArgument when the surfaces do not fit together and DataError when two vertices
-  // with the same lattice id differ in position; the engine is then in an unspecified state. The
+  // Throws InvalidArgument when the surfaces do not fit together and DataError when the weld does
+  // not (two vertices with the same lattice id differ in position, a welded vertex is not on this
+  // side's boundary, a seam edge is used in one direction twice): nothing is changed then; a
+  // DataError from a triangle that still cannot go in leaves the engine in an unspecified state. The
   // state's parts are given back as soon as they are in: the larger surface grows while they go.
   void absorb_state(detail::SurfaceState&& other);
   // absorb_state(), then the edges parked by faces now inside the grown region placed again, the

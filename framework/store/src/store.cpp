@@ -3,7 +3,6 @@
 #include <unistd.h>
 
 #include <cerrno>
-
 #include <set>
 
 #include "geotandem/core/error.hpp"

@@ -26,6 +26,19 @@ std::string seconds_text(double seconds) {
   return text;
 }
 
+// " (3 damaged components written again: keys 17, 42, 99)": a repair rerun says what it repaired
+// (the keys `store check` listed), not only "extracted 0 components".
+std::string repaired_text(const workflow::ExtractResult& r) {
+  if (r.repaired == 0) return {};
+  std::string text = " (" + std::to_string(r.repaired) + " damaged component" + (r.repaired == 1 ? "" : "s") +
+                     " written again: key" + (r.repaired == 1 ? " " : "s ");
+  for (std::size_t i = 0; i < r.repaired_keys.size(); ++i)
+    text += (i ? ", " : "") + std::to_string(r.repaired_keys[i]);
+  if (r.repaired > r.repaired_keys.size())
+    text += ", and " + std::to_string(r.repaired - r.repaired_keys.size()) + " more";
+  return text + ")";
+}
+
 const workflow::ParamSpec& param(const std::string& name) {
   for (const auto& spec : workflow::extract_params())
     if (spec.name == name) return spec;
@@ -136,6 +149,10 @@ void add_extract_command(CLI::App& app, Context& context, Runner& run) {
       // One worker per core unless told otherwise (no more than there are blocks; one block is
       // extracted in this process); --workers 0 extracts in this process.
       s.workers = a->workers.value_or(workflow::default_worker_count(cube->geometry(), s.block_size));
+      if (a->fresh) store::ComponentStore::remove(a->out); // refuses while another process writes it
+      // The store (and its writer lock) first: a second run into this store is refused before it
+      // touches anything, the input's copy that the first run's workers read included.
+      auto store = store::ComponentStore::open_or_create(a->out, cube->geometry(), {"geotandem extract", a->cube});
       std::string copy; // beside the store (STORE.input-copy), for a file that reads slowly by blocks
       {
         std::filesystem::path beside = std::filesystem::path(a->out).lexically_normal();
@@ -149,7 +166,6 @@ void add_extract_command(CLI::App& app, Context& context, Runner& run) {
             describe_cube_file(a->cube, a->nan, open.no_data, a->variable, a->segy, cube->reopen_hint());
         s.worker_command = worker_command(context);
       }
-      if (a->fresh) store::ComponentStore::remove(a->out); // refuses while another process writes it
       s.parameters = {{"command", "geotandem extract"}, {"cube", a->cube}};
       // How the file is read decides the samples as much as its content: another array of a netCDF
       // file, other SEG-Y header bytes or other missing samples make another extraction.
@@ -161,12 +177,12 @@ void add_extract_command(CLI::App& app, Context& context, Runner& run) {
       }
       if (!(a->segy == volume::SegyOptions{}))
         s.parameters["segy"] = {{"inline_byte", a->segy.inline_byte}, {"crossline_byte", a->segy.crossline_byte}};
-      auto store = store::ComponentStore::open_or_create(a->out, cube->geometry(), {"geotandem extract", a->cube});
       auto progress = context.progress();
       auto r = workflow::extract_to_store(*cube, store, s, context.log, *progress, context.cancel);
       workflow::remove_input_copy(copy, context.log);
       std::cout << "extracted " << r.components << " components";
       if (r.duplicates) std::cout << " (" << r.duplicates << " already in the store)";
+      std::cout << repaired_text(r);
       if (s.workers > 0) {
         const auto& st = r.statistics;
         std::cout << " in " << seconds_text(r.seconds) << " s with " << st["workers"] << " worker(s) (" << st["deaths"]

@@ -318,12 +318,22 @@ void add_check(CLI::App* parent, Context& context, Runner& run) {
                              {"offset", d.location.offset},
                              {"length", d.location.length},
                              {"problem", d.problem}});
-        std::cout
-            << nlohmann::json{{"checked", report.checked}, {"damaged", damaged}, {"seconds", report.seconds}}.dump(2)
-            << "\n";
+        std::cout << nlohmann::json{{"checked", report.checked},
+                                    {"damaged", damaged},
+                                    {"rows_without_checksum", report.rows_without_checksum},
+                                    {"seconds", report.seconds}}
+                         .dump(2)
+                  << "\n";
       } else {
         for (const auto& d : report.damaged)
           std::cout << "damaged: key " << d.key << ": " << d.problem << "\n";
+        // Rows from before row checksums: their records are verified, their measures cannot be.
+        if (!report.index_has_row_checksums)
+          std::cout << "note: no row checksums in this store (written before index rows were checksummed): "
+                    << "the records are verified, the index's measures are not\n";
+        else if (report.rows_without_checksum > 0)
+          std::cout << "note: " << report.rows_without_checksum << " of " << report.checked
+                    << " rows have no row checksum (written before row checksums): their measures are not verified\n";
         std::cout << "checked " << report.checked << " components in " << format_number(report.seconds, "%.3f")
                   << " s: ";
         if (report.damaged.empty())

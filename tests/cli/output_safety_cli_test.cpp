@@ -162,5 +162,46 @@ TEST(OutputSafetyCli, AReportNeverReplacesAFileOutsideTheOutputDirectoryNorWrite
   EXPECT_TRUE(std::filesystem::is_fifo(dir.file("out/report.html")));
 }
 
+TEST(OutputSafetyCli, ValidateRefusesOutputsThatAreTheRunsOwnFiles) {
+  // An export named report.html or state.json passed validate and was replaced by the report or
+  // the state; `store: .` made the output directory the store; two exports named once relatively
+  // and once absolutely wrote one file.
+  ScratchDir dir;
+  const auto out = dir.file("out"), recipe = dir.file("w.yaml");
+  const auto write = [&](const std::string& output) {
+    std::ofstream(recipe) << "version: 1\ninput:\n  synthetic: {kind: analytic, shape: [40, 40, 40]}\nsteps:\n"
+                          << "  - step: extract\n    iso: 0.5\noutput:\n  directory: " << out << "\n"
+                          << output;
+  };
+  const std::vector<std::pair<std::string, std::string>> cases = {
+      {"  exports:\n    - {format: ply, path: report.html}\n",
+       ":10:7: export 1 writes report.html, which is the run's report (report.html)"},
+      {"  exports:\n    - {format: obj, path: state.json}\n",
+       ":10:7: export 1 writes state.json, which is the run's state file (state.json)"},
+      {"  exports:\n    - {format: ply, path: truth.json}\n",
+       ":10:7: export 1 writes truth.json, which is the synthetic"},
+      {"  exports:\n    - {format: ply, path: store/x.ply}\n",
+       ":10:7: export 1 writes store/x.ply, which is the run's store"},
+      {"  exports:\n    - {format: ply, path: .}\n", ":10:7: export 1 writes ., the output directory itself"},
+      {"  store: .\n", ":9:10: output.store '.': the store would be the output directory itself"},
+      {"  store: ..\n", ":9:10: output.store '..': the store would hold the output directory"},
+      {"  report: state.json\n", ":9:11: the report writes state.json, which is the run's state file"},
+      {"  exports:\n    - {format: ply, path: bodies.ply}\n    - {format: ply, path: " + out + "/./bodies.ply}\n",
+       ":11:7: export 2 writes " + out + "/./bodies.ply, like an earlier export (export 1 writes bodies.ply"},
+  };
+  for (const auto& [output, message] : cases) {
+    write(output);
+    for (const std::string command : {"validate", "run-workflow"}) {
+      auto r = run_geotandem("-q " + command + " " + q(recipe));
+      EXPECT_EQ(r.exit_code, 2) << command << "\n" << output << r.err;
+      EXPECT_NE(r.err.find(recipe + message), std::string::npos) << output << r.err;
+    }
+    EXPECT_FALSE(std::filesystem::exists(out)) << "nothing is written: " << output;
+  }
+  write("  exports:\n    - {format: ply, path: bodies.ply}\n    - {format: ply, per_component: true, path: .}\n");
+  auto fine = run_geotandem("-q validate " + q(recipe));
+  EXPECT_EQ(fine.exit_code, 0) << "one file per component may go into the output directory: " << fine.err;
+}
+
 } // namespace
 } // namespace geotandem

@@ -30,6 +30,7 @@ void ComponentCommitter::commit(std::vector<store::IndexEntry> entries) {
       }
       e.replace = true; // its record is damaged: this one takes its place
       ++replacing;
+      if (repaired_keys_.size() < 20) repaired_keys_.push_back(e.key);
     }
     rows.push_back(std::move(e));
   }

@@ -22,6 +22,8 @@ public:
   std::uint64_t added() const { return added_; }
   std::uint64_t duplicates() const { return duplicates_; }
   std::uint64_t repaired() const { return repaired_; }
+  // The first keys repaired (at most 20): a rerun names what it wrote again.
+  const std::vector<std::uint64_t>& repaired_keys() const { return repaired_keys_; }
 
   // The number of indexed records that do not read back intact (checked one by one).
   std::uint64_t count_damaged(const CancelToken& cancel) const;
@@ -29,6 +31,7 @@ public:
 private:
   store::ComponentStore& store_;
   std::uint64_t added_ = 0, duplicates_ = 0, repaired_ = 0;
+  std::vector<std::uint64_t> repaired_keys_;
 };
 
 } // namespace geotandem::runtime::detail

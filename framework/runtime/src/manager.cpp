@@ -170,6 +170,7 @@ ManagerReport Manager::Impl::run() {
   report.components = committer.added();
   report.duplicates = committer.duplicates();
   report.repaired = committer.repaired();
+  report.repaired_keys = committer.repaired_keys();
   report.bytes_in = socket.bytes_in();
   report.bytes_out = socket.bytes_out();
   report.manager_peak_rss_kb = peak_rss_kb(); // of the whole process, so far

@@ -3,12 +3,11 @@
 
 #include "geotandem/store/export.hpp"
 
-#include <cerrno>
-#include <fstream>
 #include <optional>
 
 #include "export_writers.hpp"
 #include "file_io.hpp"
+#include "geotandem/core/atomic_file.hpp"
 #include "geotandem/core/error.hpp"
 #include "geotandem/core/output_path.hpp"
 #include "geotandem/mesh/caps.hpp"
@@ -75,31 +74,19 @@ namespace {
 
 void write_file(const ComponentStore& store, const std::vector<const ComponentRow*>& rows,
                 const std::filesystem::path& path, const ExportOptions& options, const std::function<void()>& tick) {
-  auto part = path;
-  part += ".part";
-  {
-    std::ofstream out(part, std::ios::binary | std::ios::trunc);
-    if (!out) throw IoError("cannot create export file: " + errno_text(errno), {part.string()});
-    SurfaceSource source(store, rows, tick, 256ull << 20, options.caps);
-    try {
-      switch (options.format) {
-      case ExportFormat::ply: write_ply(source, out, options); break;
-      case ExportFormat::obj: write_obj(source, out, options); break;
-      case ExportFormat::vtp: write_vtp(source, out, options); break;
-      case ExportFormat::tsurf: write_tsurf(source, out, options); break;
-      }
-      out.flush();
-      if (!out) throw IoError("cannot write export file", {part.string()}, "is the disk full?");
-    } catch (...) {
-      out.close();
-      std::error_code ec;
-      std::filesystem::remove(part, ec);
-      throw;
-    }
+  // A unique temporary beside the target, renamed over it when whole: two exports to one path each
+  // write their own, and the later rename wins with a complete file (AtomicFile removes the
+  // temporary on an error or a cancel).
+  AtomicFile file(path);
+  std::ostream& out = file.stream();
+  SurfaceSource source(store, rows, tick, 256ull << 20, options.caps);
+  switch (options.format) {
+  case ExportFormat::ply: write_ply(source, out, options); break;
+  case ExportFormat::obj: write_obj(source, out, options); break;
+  case ExportFormat::vtp: write_vtp(source, out, options); break;
+  case ExportFormat::tsurf: write_tsurf(source, out, options); break;
   }
-  std::error_code ec;
-  std::filesystem::rename(part, path, ec);
-  if (ec) throw IoError("cannot move the export into place: " + ec.message(), {path.string()});
+  file.commit("the export file");
 }
 
 // The store directory that holds `path` (itself or an ancestor), if any.

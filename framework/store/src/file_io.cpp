@@ -9,6 +9,7 @@
 #include <fstream>
 #include <sstream>
 
+#include "geotandem/core/atomic_file.hpp"
 #include "geotandem/core/error.hpp"
 
 namespace geotandem::store::detail {
@@ -80,18 +81,7 @@ void sync_directory(const std::filesystem::path& dir) {
 }
 
 void write_file_atomically(const std::filesystem::path& path, const std::string& text) {
-  auto tmp = path;
-  tmp += ".tmp";
-  int fd = ::open(tmp.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
-  if (fd < 0) throw IoError("cannot create file: " + errno_text(errno), {tmp.string()});
-  {
-    FileHandle handle(fd);
-    write_at(fd, text.data(), text.size(), 0, tmp);
-    sync_data(fd, tmp);
-  }
-  if (::rename(tmp.c_str(), path.c_str()) != 0)
-    throw IoError("cannot rename " + tmp.string() + " into place: " + errno_text(errno), {path.string()});
-  sync_directory(path.parent_path().empty() ? std::filesystem::path(".") : path.parent_path());
+  geotandem::write_file_atomically(path, text, path.filename().string());
 }
 
 std::string read_text_file(const std::filesystem::path& path) {

@@ -17,7 +17,8 @@ void truncate_file(int fd, std::uint64_t size, const std::filesystem::path& path
 void sync_data(int fd, const std::filesystem::path& path);
 // Makes a directory entry (a new or renamed file) durable.
 void sync_directory(const std::filesystem::path& dir);
-// Writes `text` to path.tmp, syncs it and renames it over `path`.
+// Writes `text` to a unique temporary beside `path` (.NAME.XXXXXX.tmp), syncs it and renames it
+// over `path` (geotandem::AtomicFile).
 void write_file_atomically(const std::filesystem::path& path, const std::string& text);
 std::string read_text_file(const std::filesystem::path& path);
 std::string errno_text(int error);

@@ -5,6 +5,7 @@
 #include "geotandem/core/error.hpp"
 #include "geotandem/mesh/component.hpp"
 #include "record.hpp"
+#include "row_checksum.hpp"
 #include "store_impl.hpp"
 
 namespace geotandem::store {
@@ -19,15 +20,18 @@ constexpr const char* columns =
     " centroid_x, centroid_y, centroid_z, min_x, min_y, min_z, max_x, max_y, max_z,"
     " obb_center_x, obb_center_y, obb_center_z, obb_axis0_x, obb_axis0_y, obb_axis0_z,"
     " obb_axis1_x, obb_axis1_y, obb_axis1_z, obb_axis2_x, obb_axis2_y, obb_axis2_z,"
-    " obb_half0, obb_half1, obb_half2, azimuth, dip, elongation, closed, cut_by_border, run, cut_faces, cap_area";
-constexpr int column_count = 41;
+    " obb_half0, obb_half1, obb_half2, azimuth, dip, elongation, closed, cut_by_border, run, cut_faces, cap_area,"
+    " row_checksum";
+constexpr int column_count = 42;
 
-// The columns to select: an index written before caps has no cut_faces and cap_area (read-only
-// stores are not upgraded; see detail::upgrade_cap_columns), so those read as their defaults.
-std::string select_columns(bool cap_columns) {
-  if (cap_columns) return columns;
+// The columns to select: an index written before caps has no cut_faces and cap_area, one written
+// before row checksums no row_checksum (read-only stores are not upgraded; see
+// detail::upgrade_cap_columns), so those read as their defaults (NULL: no checksum to verify).
+std::string select_columns(bool cap_columns, bool row_checksums) {
+  if (cap_columns && row_checksums) return columns;
   std::string text = columns;
-  return text.substr(0, text.rfind(", cut_faces")) + ", '', 0.0";
+  if (!cap_columns) return text.substr(0, text.rfind(", cut_faces")) + ", '', 0.0, NULL";
+  return text.substr(0, text.rfind(",")) + ", NULL";
 }
 
 void bind_entry(Statement& s, const IndexEntry& e) {
@@ -65,6 +69,7 @@ void bind_entry(Statement& s, const IndexEntry& e) {
   put(e.run);
   put(mesh::cut_faces_text(st.cut_faces));
   put(st.cap_area);
+  put(to_sql(row_checksum(e.key, l, st, e.run)));
 }
 
 ComponentRow read_row(const Statement& s) {
@@ -105,6 +110,7 @@ ComponentRow read_row(const Statement& s) {
   ++i;
   st.cut_faces = mesh::parse_cut_faces(s.column_text(i++));
   st.cap_area = s.column_double(i++);
+  if (!s.column_is_null(i)) row.row_checksum = from_sql(s.column_int(i));
   return row;
 }
 
@@ -277,7 +283,8 @@ std::uint64_t ComponentStore::indexed_end(const std::string& shard) const {
 std::vector<ComponentRow> ComponentStore::query(const Query& q) const {
   check_selection_exists(*impl_->db, q.selection, impl_->dir);
   auto filter = build_filter(q);
-  std::string sql = "SELECT " + select_columns(impl_->cap_columns) + " FROM components" + filter.where + order_by(q);
+  std::string sql = "SELECT " + select_columns(impl_->cap_columns, impl_->row_checksums) + " FROM components" +
+                    filter.where + order_by(q);
   if (q.limit) sql += " LIMIT " + std::to_string(std::min<std::uint64_t>(*q.limit, INT64_MAX));
   auto s = impl_->db->prepare(sql);
   bind_values(s, filter.values);
@@ -298,7 +305,7 @@ std::uint64_t ComponentStore::count(const Query& q) const {
 
 std::optional<ComponentRow> ComponentStore::find(std::uint64_t key) const {
   detail::Statement& s = impl_->cached(impl_->row_lookup, [this] {
-    return "SELECT " + select_columns(impl_->cap_columns) + " FROM components WHERE key = ?";
+    return "SELECT " + select_columns(impl_->cap_columns, impl_->row_checksums) + " FROM components WHERE key = ?";
   });
   s.bind(1, to_sql(key));
   std::optional<ComponentRow> row;
@@ -316,6 +323,12 @@ mesh::SurfaceMesh ComponentStore::read(std::uint64_t key) const {
 }
 
 mesh::SurfaceMesh ComponentStore::read(const ComponentRow& row) const {
+  // The row first: a measure changed in the index is as damaged as a changed record.
+  if (row.row_checksum && *row.row_checksum != row_checksum(row.key, row.location, row.stats, row.run))
+    throw FormatError("component " + std::to_string(row.key) +
+                          ": its index row does not match the row's checksum (a measure, its record's place or its "
+                          "run was changed in the index)",
+                      {impl_->db->path()}, "rerun the same extraction into this store to write it again");
   const auto& file = impl_->shard_for_reading(row.location.shard);
   return read_record_from(file.get(), shard_path(impl_->dir, row.location.shard), row.location, row.key);
 }

@@ -53,6 +53,7 @@ void LocalSink::commit(const mesh::Component& component) {
     }
     replace = true;
     ++redone_;
+    if (redone_keys_.size() < max_listed_keys) redone_keys_.push_back(component.key);
   }
   IndexEntry entry;
   entry.replace = replace;
@@ -94,6 +95,11 @@ std::uint64_t LocalSink::committed() const {
 std::uint64_t LocalSink::redone() const {
   std::lock_guard lock(mutex_);
   return redone_;
+}
+
+std::vector<std::uint64_t> LocalSink::redone_keys() const {
+  std::lock_guard lock(mutex_);
+  return redone_keys_;
 }
 
 std::uint64_t LocalSink::duplicates() const {

@@ -41,7 +41,8 @@ CREATE TABLE components(
   azimuth REAL NOT NULL, dip REAL NOT NULL, elongation REAL NOT NULL,
   closed INTEGER NOT NULL, cut_by_border INTEGER NOT NULL,
   run INTEGER REFERENCES runs(id),
-  cut_faces TEXT NOT NULL DEFAULT '', cap_area REAL NOT NULL DEFAULT 0);
+  cut_faces TEXT NOT NULL DEFAULT '', cap_area REAL NOT NULL DEFAULT 0,
+  row_checksum INTEGER);
 CREATE INDEX components_volume ON components(volume);
 CREATE INDEX components_azimuth ON components(azimuth);
 CREATE INDEX components_shard ON components(shard, byte_offset);
@@ -79,6 +80,16 @@ bool upgrade_cap_columns(Database& db, bool writable) {
   if (!writable) return false;
   db.exec("ALTER TABLE components ADD COLUMN cut_faces TEXT NOT NULL DEFAULT ''");
   db.exec("ALTER TABLE components ADD COLUMN cap_area REAL NOT NULL DEFAULT 0");
+  return true;
+}
+
+bool upgrade_row_checksum_column(Database& db, bool writable) {
+  auto columns = db.prepare("SELECT count(*) FROM pragma_table_info('components') WHERE name = 'row_checksum'");
+  if (columns.step() && columns.column_int(0) == 1) return true;
+  if (!writable) return false;
+  // NULL in the rows already there: they were never checksummed, and a checksum made now would
+  // vouch for whatever they hold.
+  db.exec("ALTER TABLE components ADD COLUMN row_checksum INTEGER");
   return true;
 }
 

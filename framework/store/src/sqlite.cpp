@@ -12,6 +12,36 @@ bool is_format_problem(int code) {
   return primary == SQLITE_NOTADB || primary == SQLITE_CORRUPT || primary == SQLITE_SCHEMA;
 }
 
+// The error for SQLite's `code`: what is wrong with the index, which file, and what to do, with
+// SQLite's own words in parentheses (its "attempt to write a readonly database" alone named
+// neither the file nor the cause).
+[[noreturn]] void throw_index_error(int code, const std::string& sqlite_text, const std::string& what,
+                                    const std::string& path) {
+  const std::string said = " (" + what + ": " + sqlite_text + ", SQLite code " + std::to_string(code) + ")";
+  const int primary = code & 0xff;
+  if (is_format_problem(code))
+    throw FormatError("the store index is damaged or is not a geotandem store index" + said, {path},
+                      "restore index.sqlite from a copy; or replace the store (--fresh on extract or run-workflow) "
+                      "and extract again");
+  if (primary == SQLITE_READONLY) {
+    if (code == SQLITE_READONLY_RECOVERY || code == SQLITE_READONLY_CANTINIT || code == SQLITE_READONLY_CANTLOCK)
+      throw IoError("cannot read the store index: a killed writer left a write-ahead log (index.sqlite-wal) that "
+                    "must be replayed, and this user cannot write the store directory" +
+                        said,
+                    {path}, "open the store once as a user who may write its directory, or copy the store elsewhere");
+    throw IoError("cannot write the store index: the file or the store directory is read-only for this user" + said,
+                  {path},
+                  "make the store directory and index.sqlite writable (chmod u+w), or write to another output "
+                  "directory");
+  }
+  if (primary == SQLITE_FULL)
+    throw IoError("cannot write the store index: the disk is full" + said, {path}, "free some space and run again");
+  if (primary == SQLITE_CANTOPEN)
+    throw IoError("cannot open the store index" + said, {path},
+                  "check that the store directory and index.sqlite exist and that this user may read and write them");
+  throw IoError("the store index failed" + said, {path});
+}
+
 } // namespace
 
 Database::Database(const std::string& path, bool create, bool read_only, bool immutable) : path_(path) {
@@ -36,9 +66,10 @@ Database::Database(const std::string& path, bool create, bool read_only, bool im
   int rc = sqlite3_open_v2(name.c_str(), &db_, flags | SQLITE_OPEN_NOMUTEX, nullptr);
   if (rc != SQLITE_OK) {
     std::string message = db_ ? sqlite3_errmsg(db_) : sqlite3_errstr(rc);
+    const int code = db_ ? sqlite3_extended_errcode(db_) : rc;
     sqlite3_close(db_);
     db_ = nullptr;
-    throw IoError("cannot open the store index: " + message, {path});
+    throw_index_error(code, message, "opening it", path);
   }
   sqlite3_extended_result_codes(db_, 1);
   // Readers may meet a writer mid-commit: wait for it instead of failing at once.
@@ -50,10 +81,7 @@ Database::~Database() {
 }
 
 void Database::fail(int code, const std::string& what) const {
-  std::string message = what + ": " + sqlite3_errmsg(db_) + " (SQLite code " + std::to_string(code) + ")";
-  if (is_format_problem(code))
-    throw FormatError(message, {path_}, "the index is damaged or not a geotandem store index");
-  throw IoError(message, {path_});
+  throw_index_error(code, sqlite3_errmsg(db_), what, path_);
 }
 
 void Database::exec(const std::string& sql) {
@@ -62,10 +90,7 @@ void Database::exec(const std::string& sql) {
   if (rc != SQLITE_OK) {
     std::string text = error ? error : sqlite3_errstr(rc);
     sqlite3_free(error);
-    std::string message = "index statement failed: " + text + " in '" + sql.substr(0, 80) + "'";
-    if (is_format_problem(rc))
-      throw FormatError(message, {path_}, "the index is damaged or not a geotandem store index");
-    throw IoError(message, {path_});
+    throw_index_error(sqlite3_extended_errcode(db_), text, "in '" + sql.substr(0, 80) + "'", path_);
   }
 }
 

@@ -2,6 +2,7 @@
 
 #include <unistd.h>
 
+#include <cerrno>
 #include <set>
 
 #include "geotandem/core/error.hpp"
@@ -41,10 +42,25 @@ bool is_interrupted_creation(const std::filesystem::path& dir) {
   std::error_code ec;
   for (const auto& entry : std::filesystem::directory_iterator(dir, ec)) {
     auto name = entry.path().filename().string();
-    if (!leftovers.count(name)) return false;
+    if (!leftovers.count(name) && !is_store_json_temporary(name)) return false;
     if (name == "shards" && !(entry.is_directory() && std::filesystem::is_empty(entry.path(), ec))) return false;
   }
   return !ec;
+}
+
+// A store opened for writing whose directory, index or shards/ this user may not write is refused
+// here, naming the file: SQLite only said "attempt to write a readonly database" at the first
+// commit, without the file or the cause.
+void require_writable_files(const std::filesystem::path& dir) {
+  for (const auto& path : {dir, index_path(dir), dir / "shards"}) {
+    if (::access(path.c_str(), W_OK) == 0 || errno == ENOENT) continue;
+    const int error = errno;
+    throw IoError("cannot write the store: " + path.filename().string() + " is read-only for this user (" +
+                      errno_text(error) + ")",
+                  {path.string()},
+                  "make the store writable (chmod -R u+w on the store directory), or write to another output "
+                  "directory; reading it ('geotandem store ls', 'check', 'export') works as it is");
+  }
 }
 
 } // namespace
@@ -72,7 +88,7 @@ ComponentStore ComponentStore::create(const std::filesystem::path& dir, const vo
   // Created under an exclusive lock, and everything is checked again under it: two processes
   // starting on one new output directory would otherwise both build the index, or one would take
   // the other's half-made store for an interrupted creation and delete it.
-  FileHandle creating = lock_store_directory(dir, true);
+  FileHandle creating = lock_store_directory(dir);
   if (exists(dir))
     throw IoError("another process has just created a store here", {dir.string()},
                   "wait until it ends and run again to resume it, or write to another output directory");
@@ -107,8 +123,7 @@ ComponentStore ComponentStore::create(const std::filesystem::path& dir, const vo
   // store.json comes last: a directory without it is an interrupted creation, never a store.
   sync_directory(dir);
   write_file_atomically(info_path(dir), impl->info_json);
-  // From here on, the writer's shared lock, as when a store is opened.
-  share_store_lock(creating, dir);
+  // Held on as the writer's lock, as when a store is opened for writing.
   impl->writer_lock = std::move(creating);
   return ComponentStore(std::move(impl));
 }
@@ -143,7 +158,8 @@ ComponentStore ComponentStore::open(const std::filesystem::path& dir, OpenMode m
   impl->writable = mode == OpenMode::read_write;
   if (!std::filesystem::is_regular_file(index_path(dir), ec))
     throw FormatError("the store has no index.sqlite", {dir.string()}, "the store is incomplete or damaged");
-  if (impl->writable) impl->writer_lock = lock_store_directory(dir, false);
+  if (impl->writable) impl->writer_lock = lock_store_directory(dir);
+  if (impl->writable) require_writable_files(dir);
   // A store on read-only media or in a directory this user may not write, whose index has no
   // write-ahead log to replay: opened as immutable, since SQLite could not make the WAL's
   // shared-memory file there. With a log (a writer was killed), the ordinary read-only open reads
@@ -157,6 +173,7 @@ ComponentStore ComponentStore::open(const std::filesystem::path& dir, OpenMode m
   configure_connection(*impl->db, impl->writable);
   check_schema(*impl->db);
   impl->cap_columns = upgrade_cap_columns(*impl->db, impl->writable);
+  impl->row_checksums = upgrade_row_checksum_column(*impl->db, impl->writable);
   return ComponentStore(std::move(impl));
 }
 
@@ -181,6 +198,9 @@ std::string ComponentStore::info_json() const {
 }
 bool ComponentStore::writable() const {
   return impl_->writable;
+}
+bool ComponentStore::has_row_checksums() const {
+  return impl_->row_checksums;
 }
 
 void ComponentStore::Impl::require_writable(const char* what) const {

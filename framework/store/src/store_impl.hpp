@@ -20,7 +20,8 @@ struct ComponentStore::Impl {
   volume::Geometry geometry;
   std::string info_json;
   bool writable = false;
-  bool cap_columns = true; // the index has cut_faces and cap_area (stores from before caps may not)
+  bool cap_columns = true;   // the index has cut_faces and cap_area (stores from before caps may not)
+  bool row_checksums = true; // the index has row_checksum (stores from before row checksums may not)
   std::unique_ptr<detail::Database> db;
   // The statements of contains() and find(), prepared once and reset after each use (so that they
   // hold no read snapshot): preparing one for every key cost hundreds of allocations in SQLite's
@@ -35,8 +36,8 @@ struct ComponentStore::Impl {
   }
   // Shards opened for reading, by writer name; kept open across reads.
   std::map<std::string, detail::FileHandle> shards;
-  // The store directory, held with a shared flock while the store is open for writing: remove()
-  // takes it exclusively, so it never deletes a store that a process is writing.
+  // The store directory, held with an exclusive flock while the store is open for writing: one
+  // writer per store, and remove() never deletes a store that a process is writing.
   detail::FileHandle writer_lock;
 
   const detail::FileHandle& shard_for_reading(const std::string& shard);
@@ -53,14 +54,23 @@ void check_schema(Database& db);
 // Whether the components table has the cut_faces and cap_area columns; an index from before caps
 // gets them (with defaults '' and 0) when it is open for writing.
 bool upgrade_cap_columns(Database& db, bool writable);
+// Whether the components table has the row_checksum column; an index from before row checksums
+// gets it (NULL in the rows already there) when it is open for writing.
+bool upgrade_row_checksum_column(Database& db, bool writable);
 // Per-connection settings (WAL is persistent; synchronous and foreign keys are not).
 void configure_connection(Database& db, bool writable);
 
-// Takes the store's writer lock (shared: many writers of one store may coexist; exclusive: for
-// removal). Throws IoError when it cannot be had at once.
-FileHandle lock_store_directory(const std::filesystem::path& dir, bool exclusive);
-// Turns the exclusive lock a creation holds into the writer's shared one.
-void share_store_lock(const FileHandle& lock, const std::filesystem::path& dir);
+// Takes the store's writer lock: an exclusive flock on the directory, held by the one process
+// that writes the store (and taken by removal). Throws IoError ("another process is writing this
+// store", exit 3) when it cannot be had at once.
+FileHandle lock_store_directory(const std::filesystem::path& dir);
+
+// A temporary store.json left by a killed write: ".store.json.XXXXXX.tmp" (AtomicFile), or the
+// fixed "store.json.tmp" of earlier versions.
+inline bool is_store_json_temporary(const std::string& name) {
+  return name == "store.json.tmp" ||
+         (name.size() == 22 && name.rfind(".store.json.", 0) == 0 && name.compare(name.size() - 4, 4, ".tmp") == 0);
+}
 
 // The current time in UTC, ISO 8601 ("2024-05-01T12:00:00Z").
 std::string utc_now();

@@ -5,6 +5,7 @@
 #include <fstream>
 #include <string>
 
+#include "geotandem/core/atomic_file.hpp"
 #include "geotandem/core/error.hpp"
 #include "geotandem/volume/geometry_json.hpp"
 
@@ -114,9 +115,9 @@ nlohmann::json to_json(const GroundTruth& t) {
 }
 
 void write_ground_truth(const GroundTruth& truth, const std::string& path) {
-  std::ofstream out(path, std::ios::trunc);
-  if (!out)
-    throw IoError("cannot create the ground-truth file", {path}, "check that its directory exists and is writable");
+  // Renamed into place when whole (AtomicFile): two runs writing one truth.json never interleave.
+  AtomicFile file(path);
+  std::ostream& out = file.stream();
   // The same text as to_json(truth).dump(2), written body by body. The whole document of a large
   // cube (21,317 bodies and 23 MB of text for the analytic 1024^3) took about 150 MB in small
   // blocks, which glibc's heap kept resident after they were freed, under the extraction that
@@ -140,8 +141,7 @@ void write_ground_truth(const GroundTruth& truth, const std::string& path) {
     }
     out << "\n  ]" << header.substr(at + empty.size()) << '\n';
   }
-  out.close();
-  if (!out) throw IoError("could not write the ground-truth file", {path}, "check the free space");
+  file.commit("the ground-truth file");
 }
 
 std::string truth_path_for(const std::string& cube_path) {

@@ -1,5 +1,6 @@
 #include "geotandem/workflow/extract_step.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <cstdlib>
 #include <filesystem>
@@ -242,7 +243,10 @@ ExtractResult extract_to_store(const volume::Volume& volume, store::ComponentSto
   sink.close();
   const tandem::TandemStats& stats = blocks.tandem;
 
-  result.components = sink.committed();
+  // A repaired component's row replaces the damaged one: counted as repaired, not as a new key.
+  result.repaired = sink.redone();
+  result.repaired_keys = sink.redone_keys();
+  result.components = sink.committed() - std::min(sink.committed(), result.repaired);
   result.duplicates = sink.duplicates();
   double extract_s = 0, insert_s = 0, simplify_s = 0, dump_s = 0;
   for (const auto& layer : stats.layers) { // with blocks: every leaf's layers in tree order
@@ -270,6 +274,7 @@ ExtractResult extract_to_store(const volume::Volume& volume, store::ComponentSto
       {"seconds", {{"leaves", blocks.seconds_leaves}, {"wire", blocks.seconds_wire}, {"merge", blocks.seconds_merge}}}};
   result.statistics = {{"components", result.components},
                        {"duplicates", result.duplicates},
+                       {"repaired", result.repaired},
                        {"input_triangles", result.counters.input_triangles},
                        {"peak_triangles", result.peak_triangles},
                        {"collapses", result.counters.collapses},

@@ -127,6 +127,8 @@ ExtractResult extract_with_workers(const volume::Volume& volume, store::Componen
   const runtime::ManagerReport report = manager.run();
   result.components = report.components;
   result.duplicates = report.duplicates;
+  result.repaired = report.repaired;
+  result.repaired_keys = report.repaired_keys;
   result.counters = report.counters;
   // Resumed: what the finished blocks hold was in the store already, as what was found again.
   if (report.skipped_leaves > 0) result.duplicates = std::max<std::uint64_t>(result.duplicates, rows_before);

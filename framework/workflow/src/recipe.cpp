@@ -11,6 +11,7 @@
 #include "geotandem/volume/io.hpp"
 #include "geotandem/volume/size_guard.hpp"
 #include "geotandem/workflow/suggest.hpp"
+#include "output_paths.hpp"
 #include "recipe_execution.hpp"
 #include "recipe_overrides.hpp"
 #include "yaml_reader.hpp"
@@ -226,7 +227,8 @@ const Plugin& output_step(const PluginRegistry& plugins, const std::string& name
 // The output section: where results go, and the export and report steps it asks for.
 void parse_output(MapReader& m, Recipe& r, const std::string& recipe_stem, const PluginRegistry& plugins) {
   OutputSpec& out = r.output;
-  std::vector<std::string> selections; // written by the component steps
+  std::vector<std::string> selections;  // written by the component steps
+  std::vector<YAML::Node> export_nodes; // where each export is, for check_output_paths
   for (const auto& step : r.steps)
     if (step.kind == StepKind::component && step.params.count("selection"))
       selections.push_back(step.params.at("selection").text);
@@ -276,14 +278,10 @@ void parse_output(MapReader& m, Recipe& r, const std::string& recipe_stem, const
       spec.format = step.params.at("format").text;
       spec.selection = step.params.at("selection").text;
       spec.path = step.params.at("path").text.empty() ? "bodies." + spec.format : step.params.at("path").text;
-      for (const auto& earlier : out.exports)
-        if (fs::path(earlier.path).lexically_normal() == fs::path(spec.path).lexically_normal())
-          throw error_at(m.source(), list[n],
-                         what + " writes " + spec.path + ", like an earlier export: the second would overwrite it",
-                         "give each export its own 'path'");
       spec.per_component = step.params.at("per_component").boolean;
       spec.caps = step.params.at("caps").boolean;
       out.exports.push_back(spec);
+      export_nodes.push_back(list[n]);
       r.finish.push_back(std::move(step));
     }
   }
@@ -304,6 +302,7 @@ void parse_output(MapReader& m, Recipe& r, const std::string& recipe_stem, const
   }
   out.report = report.params.at("path").text;
   r.finish.push_back(std::move(report));
+  detail::check_output_paths(m, r, export_nodes);
   m.finish({"directory", "store", "report", "attribute", "exports"});
 }
 

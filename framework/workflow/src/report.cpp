@@ -3,6 +3,7 @@
 #include <iomanip>
 #include <sstream>
 
+#include "geotandem/core/atomic_file.hpp"
 #include "geotandem/core/error.hpp"
 #include "geotandem/workflow/report.hpp"
 
@@ -221,10 +222,8 @@ std::string render_report(const ReportData& d) {
 }
 
 void write_report(const ReportData& data, const std::string& path) {
-  std::ofstream out(path, std::ios::trunc);
-  out << render_report(data);
-  out.close();
-  if (!out) throw IoError("cannot write the report", {path}, "check that the output directory is writable");
+  // Renamed into place when whole: two runs never leave one report made of both (AtomicFile).
+  write_file_atomically(path, render_report(data), "the report");
 }
 
 } // namespace geotandem::workflow

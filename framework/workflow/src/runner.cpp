@@ -7,7 +7,9 @@
 #include <map>
 #include <optional>
 
+#include "geotandem/core/atomic_file.hpp"
 #include "geotandem/core/error.hpp"
+#include "geotandem/store/writer_lock.hpp"
 #include "geotandem/synth/synthetic.hpp"
 #include "geotandem/volume/fingerprint.hpp"
 #include "geotandem/volume/io.hpp"
@@ -15,6 +17,7 @@
 #include "geotandem/workflow/extract_step.hpp"
 #include "geotandem/workflow/report.hpp"
 #include "geotandem/workflow/report_views.hpp"
+#include "output_paths.hpp"
 
 namespace fs = std::filesystem;
 
@@ -64,14 +67,9 @@ public:
 
 private:
   void save() const {
-    // Write then rename, so a kill leaves the old state or the new one, never half of it.
-    fs::path tmp = path_.string() + ".tmp";
-    {
-      std::ofstream out(tmp, std::ios::trunc);
-      out << json_.dump(2) << '\n';
-      if (!out) throw IoError("cannot write the run state", {tmp.string()});
-    }
-    fs::rename(tmp, path_);
+    // A unique temporary renamed over it, so a kill leaves the old state or the new one, never half
+    // of it (AtomicFile).
+    write_file_atomically(path_, json_.dump(2) + "\n", "the run state");
   }
   fs::path path_;
   nlohmann::json json_;
@@ -281,14 +279,26 @@ private:
     auto t = Clock::now();
     auto progress = progress_of(settings_);
     StepContext c = context(*progress);
+    const std::string path = step.params.at("path").text;
+    refuse_run_file(path.empty() ? "bodies." + step.params.at("format").text : path, "");
     ExportOutcome r = plugin.export_components(*store_, step.params, selection_, out_dir_, c);
     const std::string label = step.params.count("format") ? step.name + " " + step.params.at("format").text : step.name;
     report_.steps.push_back({label, since(t), r.rows, r.components, r.path.empty() ? "nothing to export" : r.path});
     if (!r.path.empty()) report_.outputs.push_back(r.path);
   }
 
+  // Checked again as the file is written (validate checked the recipe): a symbolic link made
+  // since could lead an output onto one of the run's own files.
+  void refuse_run_file(const std::string& path, const std::string& what) const {
+    if (auto own =
+            detail::run_file_at(recipe_.output, recipe_.input.synthetic, detail::resolved(out_dir_ / path), what))
+      throw InvalidArgument("the output " + path + " is " + *own + ": one would overwrite the other", {},
+                            "give it another 'path' in the recipe's output section");
+  }
+
   // The report: every component of the store, marked kept when in the final selection.
   void write_report(const Plugin& plugin, const StepSpec& step) {
+    refuse_run_file(step.params.at("path").text, "report");
     std::vector<std::uint64_t> kept_keys;
     if (!selection_.empty()) kept_keys = store_->load_selection(selection_).keys;
     std::sort(kept_keys.begin(), kept_keys.end());
@@ -360,8 +370,15 @@ RunOutcome run_workflow(const Recipe& recipe, const PluginRegistry& plugins, con
     outcome.store_dir = (fs::path(recipe.output.directory) / recipe.output.store).string();
     return outcome;
   }
+  if (auto problem = detail::store_problem(recipe.output)) // validate refuses it; a Recipe may be built by hand
+    throw InvalidArgument("output.store '" + recipe.output.store + "': " + *problem, {recipe.path},
+                          "name a directory inside the output directory, such as 'store'");
   fs::path out_dir = recipe.output.directory;
   fs::create_directories(out_dir);
+  // One run per output directory, for the whole run and before anything is written there: a second
+  // run would otherwise replace the input's copy, the attribute cube or state.json under the
+  // first before its store refused it. The store keeps its own lock (one writer per store).
+  const store::DirectoryLock run_lock = store::lock_output_directory(out_dir);
   if (const auto* cube = dynamic_cast<const synth::SyntheticCube*>(volumes.input.get())) {
     synth::write_ground_truth(cube->truth(), (out_dir / "truth.json").string());
     log.info("ground truth of the synthetic cube in " + (out_dir / "truth.json").string());

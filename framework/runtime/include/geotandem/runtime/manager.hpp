@@ -58,7 +58,8 @@ struct ManagerReport {
   std::uint64_t bytes_in = 0, bytes_out = 0;                // every frame
   std::uint64_t dropped_messages = 0;                       // damaged, unknown sender, stale lease
   std::uint64_t components = 0, duplicates = 0;
-  std::uint64_t repaired = 0; // damaged records of an earlier run written again
+  std::uint64_t repaired = 0;               // damaged records of an earlier run written again
+  std::vector<std::uint64_t> repaired_keys; // the first of their keys (at most 20)
   std::size_t leaves = 0;
   std::size_t skipped_leaves = 0;              // finished by an earlier run (resume): not redone
   double seconds = 0, manager_cpu_seconds = 0; // the run's wall time; CPU the manager used in it

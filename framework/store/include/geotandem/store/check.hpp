@@ -1,7 +1,8 @@
 #pragma once
-// Integrity check of a store: every indexed record is read back and verified (magic, version,
-// length, counts, key, xxh64 checksum). Damaged components are listed by key; a rerun of the same
-// extraction re-extracts them (LocalSink replaces a damaged record), and `store export
+// Integrity check of a store: every index row is verified against its row checksum and every
+// indexed record is read back and verified (magic, version, length, counts, key, xxh64 checksum). Damaged components
+// are listed by key; a rerun of the same extraction re-extracts them (LocalSink replaces a damaged record), and `store
+// export
 // --skip-damaged` exports the others.
 
 #include <cstdint>
@@ -23,6 +24,10 @@ struct DamagedComponent {
 
 struct CheckReport {
   std::uint64_t checked = 0;
+  // Rows without a row checksum (written before row checksums: their measures are not verified,
+  // only their records); all of them when the index has no row_checksum column at all.
+  std::uint64_t rows_without_checksum = 0;
+  bool index_has_row_checksums = true;
   std::vector<DamagedComponent> damaged; // in key order
   double seconds = 0;
 };

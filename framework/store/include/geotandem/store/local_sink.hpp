@@ -46,8 +46,11 @@ public:
 
   std::uint64_t committed() const;
   std::uint64_t duplicates() const;
-  // Components whose stored record was damaged and that were written again.
+  // Components whose stored record was damaged and that were written again, and the first
+  // `max_listed_keys` of their keys (a rerun names what it repaired).
   std::uint64_t redone() const;
+  std::vector<std::uint64_t> redone_keys() const;
+  static constexpr std::size_t max_listed_keys = 20;
 
 private:
   void flush_locked();
@@ -61,6 +64,7 @@ private:
   std::uint64_t committed_ = 0;
   std::uint64_t duplicates_ = 0;
   std::uint64_t redone_ = 0;
+  std::vector<std::uint64_t> redone_keys_;
   bool closed_ = false;
 };
 

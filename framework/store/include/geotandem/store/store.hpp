@@ -31,6 +31,9 @@ struct ComponentRow {
   RecordLocation location;
   mesh::ComponentStats stats;
   std::optional<std::int64_t> run;
+  // The row's checksum as stored (docs/store-format.md); none in rows written before row checksums.
+  // read() verifies it.
+  std::optional<std::uint64_t> row_checksum;
 };
 
 // A row to commit: a record already written (and synced) by a ShardWriter, with its measures.
@@ -106,6 +109,9 @@ public:
   // The whole store.json as text.
   std::string info_json() const;
   bool writable() const;
+  // False for an index written before row checksums (docs/store-format.md): its rows cannot be
+  // verified. Opened for writing, the column is added; rows written from then on carry one.
+  bool has_row_checksums() const;
 
   // Runs. `parameters_json` and `statistics_json` must be JSON (InvalidArgument otherwise).
   // Parameters holding an "identity" object (what decides the components: isovalue, extraction
@@ -144,9 +150,10 @@ public:
   std::uint64_t count(const Query& query) const;
   // The row of one key; std::nullopt when absent.
   std::optional<ComponentRow> find(std::uint64_t key) const;
-  // Reads a component's surface in world coordinates, verifying its checksum. Throws
-  // InvalidArgument for an unknown key, IoError for a missing shard, FormatError (naming shard,
-  // offset and key) for a damaged record.
+  // Reads a component's surface in world coordinates, verifying the row's checksum (when it has
+  // one) and the record's. Throws InvalidArgument for an unknown key, IoError for a missing shard,
+  // FormatError (naming shard, offset and key, or the index for a changed row) for a damaged
+  // record or row.
   mesh::SurfaceMesh read(std::uint64_t key) const;
   mesh::SurfaceMesh read(const ComponentRow& row) const;
 

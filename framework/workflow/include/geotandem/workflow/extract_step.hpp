@@ -61,8 +61,11 @@ struct ExtractSettings {
 
 struct ExtractResult {
   std::int64_t run = 0;
-  std::uint64_t components = 0;     // committed by this run (new keys)
-  std::uint64_t duplicates = 0;     // already in the store (a resumed run)
+  std::uint64_t components = 0; // committed by this run (new keys)
+  std::uint64_t duplicates = 0; // already in the store (a resumed run)
+  // Damaged components of the store (store check) written again, and the first of their keys.
+  std::uint64_t repaired = 0;
+  std::vector<std::uint64_t> repaired_keys;
   std::uint64_t peak_triangles = 0; // most held in memory at a layer boundary
   // Every counter of the collapse loop, of the whole surface: input_triangles (made by marching
   // cubes), collapses, cost evaluations, refusals by reason (rejected_distance is what the E0

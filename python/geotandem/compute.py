@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import hashlib
 import inspect
+import mmap
 import os
 from pathlib import Path
 from typing import Any, Dict, Mapping, Optional, Sequence, Tuple, Union
@@ -169,7 +170,7 @@ def extract(volume: Any, iso: float, *, out: PathLike, workers: Optional[int] = 
                   worker_command=_native.worker_command(), mode=mode, sink=sink)
     if isinstance(volume, (str, os.PathLike)):
         # A file, as `geotandem extract FILE` reads it.
-        result = _core.extract(None, os.fspath(volume), {}, False, "", **common)
+        result = _core.extract(None, os.fspath(volume), {}, "", 0, "", **common)
         return _finish(out, result)
     data = volume.data if hasattr(volume, "dims") and hasattr(volume, "coords") else volume
     g = geometry_of(volume, spacing=spacing, origin=origin, z_unit=z_unit, geometry=geometry)
@@ -181,11 +182,16 @@ def extract(volume: Any, iso: float, *, out: PathLike, workers: Optional[int] = 
     array = data if is_memmap else np.ascontiguousarray(np.asarray(data), dtype=np.float32)
     if array.ndim != 3:
         raise ValueError(f"a cube has three axes (inline, crossline, sample), not shape {array.shape}")
-    # Pages of a read-only file mapping can be handed back once read; never the process's own memory.
-    release = bool(is_memmap and getattr(data, "mode", None) == "r")
+    # A read-only memmap is read from its file (pread: the same bytes, without faulting the mapping
+    # into this process's resident memory); a writable one may hold changes not in the file yet.
+    file, offset = "", 0
+    if is_memmap and getattr(data, "mode", None) == "r" and getattr(data, "filename", None):
+        at = _memmap_offset(data)
+        if at is not None:
+            file, offset = str(data.filename), at
     source = _source(array, is_memmap)
     if not workers:
-        result = _core.extract(array, "", g, release, source, **common)
+        result = _core.extract(array, "", g, file, offset, source, **common)
         return _finish(out, result)
     # Worker processes cannot see this process's memory: they read a raw cube file. A memmap of a
     # raw-layout file is read where it is (a link to it and a sidecar beside the store); any other
@@ -201,13 +207,24 @@ def extract(volume: Any, iso: float, *, out: PathLike, workers: Optional[int] = 
             cube.symlink_to(os.path.abspath(own))
             _core.write_raw_sidecar(str(cube), g)
         else:
-            _core.write_raw(array, g, release, str(cube), mode, sink)
-        result = _core.extract(None, str(cube), {}, False, "", **common)
+            _core.write_raw(array, g, file, offset, str(cube), mode, sink)
+        result = _core.extract(None, str(cube), {}, "", 0, "", **common)
     finally:
         for path in (cube, sidecar):
             if path.is_symlink() or path.exists():
                 path.unlink()
     return _finish(out, result)
+
+
+def _memmap_offset(m: np.memmap) -> Optional[int]:
+    """The byte of the memmap's file where the array's first sample is (a view may start later
+    than the map): numpy maps from the allocation boundary at or before the memmap's offset."""
+    mm = getattr(m, "_mmap", None)
+    if mm is None:
+        return None
+    offset = int(getattr(m, "offset", 0))
+    start = offset - offset % mmap.ALLOCATIONGRANULARITY
+    return start + (m.ctypes.data - np.frombuffer(mm, dtype=np.uint8).ctypes.data)
 
 
 def _source(array: np.ndarray, is_memmap: bool) -> str:

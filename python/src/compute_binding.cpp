@@ -49,7 +49,10 @@ volume::Geometry geometry_of(const py::dict& d) {
 // The C-contiguous float32 samples of a numpy array of `shape` (geotandem.extract converts).
 const float* samples_of(const py::buffer& array, const volume::Geometry& g) {
   py::buffer_info info = array.request();
-  const bool float32 = info.format == py::format_descriptor<float>::format() && info.itemsize == 4;
+  // numpy describes an unaligned array (a memmap at an odd offset) with an explicit byte order.
+  const bool float32 =
+      (info.format == py::format_descriptor<float>::format() || info.format == "<f" || info.format == "=f") &&
+      info.itemsize == 4;
   bool contiguous = info.ndim == 3;
   py::ssize_t stride = 4;
   for (py::ssize_t a = 2; contiguous && a >= 0; --a) {
@@ -106,7 +109,8 @@ struct ExtractCall {
   std::string cube_path; // a file, or empty: the array
   const float* samples = nullptr;
   volume::Geometry geometry;
-  bool release_pages = false;
+  std::string file; // a read-only memmap's file, read with pread (ArrayVolume)
+  std::uint64_t file_offset = 0;
   std::string source;
   std::map<std::string, std::string> params;
   std::string out;
@@ -131,7 +135,7 @@ py::dict extract_impl(const ExtractCall& c, ReportMode mode, py::object sink) {
         std::unique_ptr<volume::Volume> cube;
         if (c.cube_path.empty())
           cube = volume::apply_nan_policy(
-              std::make_unique<ArrayVolume>(c.geometry, c.samples, c.release_pages, c.source), open);
+              std::make_unique<ArrayVolume>(c.geometry, c.samples, c.source, c.file, c.file_offset), open);
         else
           cube = volume::open_volume(c.cube_path, open);
         workflow::require_cells(cube->geometry(), c.cube_path.empty() ? c.source : c.cube_path);
@@ -168,31 +172,32 @@ py::dict extract_impl(const ExtractCall& c, ReportMode mode, py::object sink) {
   return d;
 }
 
-py::dict extract(py::object array, const std::string& cube_path, const py::dict& geometry, bool release_pages,
-                 const std::string& source, const std::map<std::string, std::string>& params, const std::string& out,
-                 std::optional<std::size_t> workers, bool fresh, const std::string& nan, std::optional<float> no_data,
-                 const std::vector<std::string>& worker_command, const std::string& mode, py::object sink) {
+py::dict extract(py::object array, const std::string& cube_path, const py::dict& geometry, const std::string& file,
+                 std::uint64_t file_offset, const std::string& source, const std::map<std::string, std::string>& params,
+                 const std::string& out, std::optional<std::size_t> workers, bool fresh, const std::string& nan,
+                 std::optional<float> no_data, const std::vector<std::string>& worker_command, const std::string& mode,
+                 py::object sink) {
   ExtractCall c;
   c.cube_path = cube_path;
   if (cube_path.empty()) {
     c.geometry = geometry_of(geometry);
     c.samples = samples_of(array, c.geometry); // `array` stays referenced by this frame throughout
   }
-  c.release_pages = release_pages, c.source = source, c.params = params, c.out = out, c.workers = workers;
+  c.file = file, c.file_offset = file_offset, c.source = source, c.params = params, c.out = out, c.workers = workers;
   c.fresh = fresh, c.nan = nan, c.no_data = no_data, c.worker_command = worker_command;
   return extract_impl(c, parse_report_mode(mode), std::move(sink));
 }
 
 // Streams an array into a raw cube (PATH + PATH.json), block by block, for worker processes.
-void write_raw(const py::buffer& array, const py::dict& geometry, bool release_pages, const std::string& path,
-               const std::string& mode, py::object sink) {
+void write_raw(const py::buffer& array, const py::dict& geometry, const std::string& file, std::uint64_t file_offset,
+               const std::string& path, const std::string& mode, py::object sink) {
   const volume::Geometry g = geometry_of(geometry);
   const float* samples = samples_of(array, g);
   Reporting reporting(parse_report_mode(mode), std::move(sink));
   CancelToken cancel;
   run_cancellable(
       [&] {
-        ArrayVolume cube(g, samples, release_pages, path);
+        ArrayVolume cube(g, samples, path, file, file_offset);
         volume::WriteOptions options;
         options.overwrite = true;
         auto progress = reporting.progress();
@@ -259,11 +264,12 @@ void synth(const std::string& out, const std::string& kind, const std::vector<st
 
 void bind_compute(py::module_& m) {
   m.def("extract_params", &extract_param_list, "The extract step's declared parameters (name, type, default, ...).");
-  m.def("extract", &extract, py::arg("array"), py::arg("cube_path"), py::arg("geometry"), py::arg("release_pages"),
-        py::arg("source"), py::arg("params"), py::arg("out"), py::arg("workers"), py::arg("fresh"), py::arg("nan"),
-        py::arg("no_data"), py::arg("worker_command"), py::arg("mode"), py::arg("sink"));
-  m.def("write_raw", &write_raw, py::arg("array"), py::arg("geometry"), py::arg("release_pages"), py::arg("path"),
-        py::arg("mode"), py::arg("sink"));
+  m.def("extract", &extract, py::arg("array"), py::arg("cube_path"), py::arg("geometry"), py::arg("file"),
+        py::arg("file_offset"), py::arg("source"), py::arg("params"), py::arg("out"), py::arg("workers"),
+        py::arg("fresh"), py::arg("nan"), py::arg("no_data"), py::arg("worker_command"), py::arg("mode"),
+        py::arg("sink"));
+  m.def("write_raw", &write_raw, py::arg("array"), py::arg("geometry"), py::arg("file"), py::arg("file_offset"),
+        py::arg("path"), py::arg("mode"), py::arg("sink"));
   m.def(
       "write_raw_sidecar",
       [](const std::string& path, const py::dict& geometry) { volume::write_raw_sidecar(path, geometry_of(geometry)); },

@@ -64,6 +64,17 @@ def test_memmap(analytic_cube, scratch_root, reference):
     assert_same(s, reference)
 
 
+def test_memmap_at_an_offset_in_its_file(analytic_cube, scratch_root, reference):
+    samples, sidecar = read_raw(analytic_cube)
+    path = scratch_root / "with-header.bin"
+    header = b"H" * 12345  # not a multiple of the page size
+    path.write_bytes(header + samples.tobytes())
+    m = np.memmap(path, dtype="<f4", mode="r", offset=len(header), shape=samples.shape)
+    s = geotandem.extract(m, 0.5, out=scratch_root / "py-memmap-offset", block_size=32,
+                          geometry=sidecar["geometry"], progress=False)
+    assert_same(s, reference)
+
+
 def test_data_array_in_the_seisnc_layout(analytic_cube, scratch_root, reference):
     xr = pytest.importorskip("xarray")
     samples, sidecar = read_raw(analytic_cube)
@@ -96,7 +107,8 @@ def test_with_two_worker_processes(analytic_cube, scratch_root, reference, kind)
     s = geotandem.extract(samples, 0.5, out=out, block_size=32, workers=2, geometry=sidecar["geometry"],
                           progress=False)
     assert s.last_result["workers"] == 2
-    assert_same(s, reference)
+    # Merged in another order by the workers: the same volumes to rounding.
+    assert_same(s, reference, exact=False)
     # The raw copy (or link) beside the store is gone.
     assert not (scratch_root / f"py-workers-{kind}.input.raw").exists()
     assert not (scratch_root / f"py-workers-{kind}.input.raw.json").exists()
@@ -111,7 +123,8 @@ def test_parameters_come_from_the_cpp_declarations():
         assert f"--{name.replace('_', '-')}" in help_text
         assert default in help_text  # the command line shows the same default
         import inspect
-        assert str(inspect.signature(geotandem.extract).parameters[name].default) in (default, repr(float(default)))
+        shown = inspect.signature(geotandem.extract).parameters[name].default
+        assert shown == (type(shown)(default) if not isinstance(shown, str) else default)
         assert name in geotandem.extract.__doc__
 
 

@@ -38,27 +38,27 @@ py::dict index_columns(const std::vector<store::ComponentRow>& rows) {
   for (py::ssize_t r = 0; r < n; ++r) {
     const auto& row = rows[static_cast<std::size_t>(r)];
     const auto& s = row.stats;
-    key.mutable_at(r) = row.key;
-    vertex_count.mutable_at(r) = row.location.vertex_count;
-    triangle_count.mutable_at(r) = row.location.triangle_count;
-    offset.mutable_at(r) = row.location.offset;
-    length.mutable_at(r) = row.location.length;
-    volume.mutable_at(r) = s.volume;
-    area.mutable_at(r) = s.area;
-    azimuth.mutable_at(r) = s.azimuth;
-    dip.mutable_at(r) = s.dip;
-    elongation.mutable_at(r) = s.elongation;
-    cap_area.mutable_at(r) = s.cap_area;
-    closed.mutable_at(r) = s.closed;
-    cut_by_border.mutable_at(r) = s.cut_by_border;
-    run.mutable_at(r) = row.run.value_or(0);
-    run_known.mutable_at(r) = row.run.has_value();
+    key.mutable_data()[r] = row.key;
+    vertex_count.mutable_data()[r] = row.location.vertex_count;
+    triangle_count.mutable_data()[r] = row.location.triangle_count;
+    offset.mutable_data()[r] = row.location.offset;
+    length.mutable_data()[r] = row.location.length;
+    volume.mutable_data()[r] = s.volume;
+    area.mutable_data()[r] = s.area;
+    azimuth.mutable_data()[r] = s.azimuth;
+    dip.mutable_data()[r] = s.dip;
+    elongation.mutable_data()[r] = s.elongation;
+    cap_area.mutable_data()[r] = s.cap_area;
+    closed.mutable_data()[r] = s.closed;
+    cut_by_border.mutable_data()[r] = s.cut_by_border;
+    run.mutable_data()[r] = row.run.value_or(0);
+    run_known.mutable_data()[r] = row.run.has_value();
     const std::array<const std::array<double, 3>*, 8> sources{&s.centroid,    &s.box_min,         &s.box_max,
                                                               &s.obb_center,  &s.obb_axes[0],     &s.obb_axes[1],
                                                               &s.obb_axes[2], &s.obb_half_extents};
     for (std::size_t t = 0; t < sources.size(); ++t)
       for (std::size_t a = 0; a < 3; ++a)
-        triples[t * 3 + a].mutable_at(r) = (*sources[t])[a];
+        triples[t * 3 + a].mutable_data()[r] = (*sources[t])[a];
     cut_faces.append(mesh::cut_faces_text(s.cut_faces));
     shard.append(row.location.shard);
     char text[24];

@@ -27,9 +27,10 @@ CHILD = textwrap.dedent("""
             seen.append(1)
             print("working", flush=True)
     try:
-        if what == "extract":
+        if what in ("extract", "extract_workers"):
             cube = sys.argv[3]
-            s = geotandem.extract(cube, 0.5, out=out, block_size=16, workers=0, progress=progress)
+            workers = 2 if what == "extract_workers" else 0
+            s = geotandem.extract(cube, 0.5, out=out, block_size=16, workers=workers, progress=progress)
         elif what == "extract_array":
             n = 192
             i = np.arange(n, dtype=np.float32)
@@ -91,6 +92,12 @@ def test_keyboard_interrupt_during_extract_of_a_file(big_cube, scratch_root):
     s = geotandem.extract(big_cube, 0.5, out=out, block_size=16, workers=0, progress=False)
     assert len(s) >= before and s.check() == []
     assert s.last_result["duplicates"] == before
+
+
+def test_keyboard_interrupt_during_extract_with_worker_processes(big_cube, scratch_root):
+    out = scratch_root / "interrupted-workers"
+    interrupt(["extract_workers", out, big_cube], scratch_root)
+    assert_intact(out)
 
 
 def test_keyboard_interrupt_during_extract_of_an_array(scratch_root):

@@ -8,7 +8,7 @@
 # release (or dev) build into .venv, a virtual environment that sees Debian's numpy, pandas,
 # xarray and matplotlib; nothing comes from PyPI.
 # Environment: GEOTANDEM_SKIP_APT=1 skips the package step (for machines that already have them);
-# GEOTANDEM_SKIP_PYTHON=1 skips the Python package.
+# GEOTANDEM_SKIP_PYTHON=1 skips installing the Python package into .venv (the build still makes it).
 set -euo pipefail
 here="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 cd "$here"

@@ -185,3 +185,22 @@ def test_a_memmap_is_read_block_by_block(scratch_root):
     # The interpreter with numpy and pandas alone takes ~60 MiB; the array is never resident whole.
     assert figures["maxrss_kb"] < size_kb * 0.5
     path.unlink()
+
+
+def test_the_gil_is_released_while_extracting(analytic_cube, scratch_root):
+    import threading
+    samples, sidecar = read_raw(analytic_cube)
+    done = threading.Event()
+
+    def work():
+        geotandem.extract(samples, 0.5, out=scratch_root / "py-thread", block_size=16,
+                          geometry=sidecar["geometry"], progress=False)
+        done.set()
+
+    thread = threading.Thread(target=work)
+    spins = 0
+    thread.start()
+    while not done.is_set():
+        spins += 1  # runs only while the extraction does not hold the GIL
+    thread.join()
+    assert spins > 100_000

@@ -164,10 +164,10 @@ def extract(volume: Any, iso: float, *, out: PathLike, workers: Optional[int] = 
             raise TypeError(f"extract() got an unexpected keyword argument '{name}' "
                             f"(the extraction's parameters: {', '.join(sorted(names))})")
     texts = {k: _param_text(v) for k, v in given.items()}
-    mode, sink = _progress.resolve(progress)
+    report, sink = _progress.resolve(progress)  # not `mode`: an extraction parameter has that name
     out = os.fspath(out)
     common = dict(params=texts, out=out, workers=workers, fresh=fresh, nan=nan, no_data=no_data,
-                  worker_command=_native.worker_command(), mode=mode, sink=sink)
+                  worker_command=_native.worker_command(), mode=report, sink=sink)
     if isinstance(volume, (str, os.PathLike)):
         # A file, as `geotandem extract FILE` reads it.
         result = _core.extract(None, os.fspath(volume), {}, "", 0, "", **common)
@@ -207,7 +207,7 @@ def extract(volume: Any, iso: float, *, out: PathLike, workers: Optional[int] = 
             cube.symlink_to(os.path.abspath(own))
             _core.write_raw_sidecar(str(cube), g)
         else:
-            _core.write_raw(array, g, file, offset, str(cube), mode, sink)
+            _core.write_raw(array, g, file, offset, str(cube), report, sink)
         result = _core.extract(None, str(cube), {}, "", 0, "", **common)
     finally:
         for path in (cube, sidecar):

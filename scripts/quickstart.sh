@@ -18,3 +18,4 @@ echo "== the ten largest bodies kept"
 "$bin" store ls "$out/store" --selection sorted --sort volume --limit 10
 echo
 echo "quickstart: done. Open $out/report.html in a browser; exports are in $out."
+echo "From Python: $here/.venv/bin/python -c \"import geotandem; print(geotandem.open_store('$out/store').components())\" (docs/python.md)"

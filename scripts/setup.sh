@@ -4,7 +4,11 @@
 # libjs-three: three.js, inlined into run reports for the 3-D view of the bodies; chromium: the
 # headless browser the report test draws that view with. ccache: a rebuild, or a build of the same
 # commit in another clone, reuses the objects already compiled (cmake -DGEOTANDEM_CCACHE=OFF turns it off).
-# Environment: GEOTANDEM_SKIP_APT=1 skips the package step (for machines that already have them).
+# python3-*, pybind11-dev, jupyter-nbconvert: the Python package (docs/python.md), installed after the
+# release (or dev) build into .venv, a virtual environment that sees Debian's numpy, pandas,
+# xarray and matplotlib; nothing comes from PyPI.
+# Environment: GEOTANDEM_SKIP_APT=1 skips the package step (for machines that already have them);
+# GEOTANDEM_SKIP_PYTHON=1 skips installing the Python package into .venv (the build still makes it).
 set -euo pipefail
 here="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 cd "$here"
@@ -21,6 +25,8 @@ packages=(
   clang libclang-rt-14-dev
   slurmctld slurmd slurm-client munge iproute2
   libjs-three chromium
+  python3-dev pybind11-dev python3-numpy python3-pandas python3-xarray python3-pytest python3-matplotlib
+  python3-nbconvert jupyter-nbconvert python3-ipykernel python3-venv python3-setuptools python3-wheel
 )
 
 as_root() {
@@ -49,3 +55,16 @@ for preset in "${presets[@]}"; do
   cmake --preset "$preset" >/dev/null
   cmake --build --preset "$preset" -j "$jobs"
 done
+
+# The Python package into .venv (`.venv/bin/python -c "import geotandem"`), from the release or dev
+# tree just built: setup.py reuses it, so nothing is compiled twice.
+if [ "${GEOTANDEM_SKIP_PYTHON:-0}" != 1 ]; then
+  for preset in "${presets[@]}"; do
+    case "$preset" in release | dev) ;; *) continue ;; esac
+    echo "setup: installing the Python package into $here/.venv (from build/$preset)"
+    [ -x .venv/bin/python ] || /usr/bin/python3 -m venv --system-site-packages .venv
+    GEOTANDEM_PYTHON_PRESET="$preset" GEOTANDEM_JOBS="$jobs" .venv/bin/pip install --quiet --disable-pip-version-check \
+      --no-build-isolation --no-deps --no-index .
+    break
+  done
+fi

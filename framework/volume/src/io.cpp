@@ -6,6 +6,7 @@
 #include "geotandem/core/error.hpp"
 #include "geotandem/core/output_path.hpp"
 #include "geotandem/volume/size_guard.hpp"
+#include "raw_sidecar.hpp"
 
 namespace fs = std::filesystem;
 
@@ -223,6 +224,19 @@ void write_volume(const Volume& volume, const std::string& path, const WriteOpti
     fs::remove(path + ".json", ec);
   }
   writer(volume, path, options, report, cancel);
+}
+
+std::unique_ptr<Volume> apply_nan_policy(std::unique_ptr<Volume> volume, const OpenOptions& options) {
+  return detail::guard_nan(std::move(volume), options);
+}
+
+void write_raw_sidecar(const std::string& path, const Geometry& geometry) {
+  geometry.validate();
+  const std::string sidecar = detail::raw_sidecar_of(path);
+  std::ofstream out(sidecar, std::ios::trunc);
+  out << detail::raw_sidecar_text(geometry);
+  out.flush();
+  if (!out) throw IoError("cannot write the raw sidecar", {sidecar}, "check that the directory is writable");
 }
 
 } // namespace geotandem::volume

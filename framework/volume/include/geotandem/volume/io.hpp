@@ -92,4 +92,14 @@ void check_output_format(const std::string& path);
 void write_volume(const Volume& volume, const std::string& path, const WriteOptions& options = {},
                   Progress* progress = nullptr, const CancelToken& cancel = {});
 
+// For programs that hand over samples of their own (the Python binding's numpy arrays): the NaN
+// policy of `options` (nan_policy, fill_value, no_data) over any volume, as open_volume applies it
+// to the files it reads.
+std::unique_ptr<Volume> apply_nan_policy(std::unique_ptr<Volume> volume, const OpenOptions& options);
+
+// Writes the JSON sidecar (PATH.json) that makes the float32 file PATH, written by another program
+// in the raw layout (little-endian, C order [inline][crossline][sample]), a raw cube of geometry
+// `geometry`. Throws IoError when it cannot be written.
+void write_raw_sidecar(const std::string& path, const Geometry& geometry);
+
 } // namespace geotandem::volume

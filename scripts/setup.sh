@@ -21,6 +21,7 @@ packages=(
   clang libclang-rt-14-dev
   slurmctld slurmd slurm-client munge iproute2
   libjs-three chromium
+  python3-dev pybind11-dev python3-numpy
 )
 
 as_root() {

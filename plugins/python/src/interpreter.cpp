@@ -44,8 +44,8 @@ PyRef::~PyRef() {
 
 std::string traceback_text(py::error_already_set& error) {
   try {
-    py::object lines = py::module_::import("traceback").attr("format_exception")(error.type(), error.value(),
-                                                                                   error.trace());
+    py::object lines =
+        py::module_::import("traceback").attr("format_exception")(error.type(), error.value(), error.trace());
     std::string text = py::str("").attr("join")(lines).cast<std::string>();
     while (!text.empty() && text.back() == '\n')
       text.pop_back();
@@ -96,9 +96,8 @@ PyRef import_function(const std::string& function, const std::string& directory)
     start = dot + 1;
   }
   if (!PyCallable_Check(target.ptr()))
-    throw InvalidArgument("parameter 'function' is '" + function + "', which is a " +
-                              py::str(py::type::handle_of(target).attr("__name__")).cast<std::string>() +
-                              ", not a function",
+    throw InvalidArgument("parameter 'function' is '" + function + "', which is not callable (" +
+                              py::str(py::type::handle_of(target).attr("__name__")).cast<std::string>() + ")",
                           {}, "name a function that takes the block as a numpy array");
   return PyRef(std::move(target));
 }

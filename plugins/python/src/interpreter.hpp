@@ -24,6 +24,7 @@ class PyRef {
 public:
   PyRef() = default;
   explicit PyRef(pybind11::object object) : object_(object.release().ptr()) {}
+  PyRef(PyRef&& other) noexcept : object_(other.object_) { other.object_ = nullptr; }
   PyRef(const PyRef&) = delete;
   PyRef& operator=(const PyRef&) = delete;
   ~PyRef();

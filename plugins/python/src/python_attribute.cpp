@@ -82,7 +82,8 @@ void PythonAttribute::compute(const volume::Box& box, std::span<float> out) cons
   const volume::Box grown = box.grown(halo());
   auto samples = std::make_unique<std::vector<float>>(read_grown(*inputs().front(), box, halo()));
   const std::string what = "python step (function " + function_ + ")";
-  const ErrorContext where{{}, {}, {}, "block " + box.to_string() + " (inline, crossline, sample; without its halo)", {}};
+  const ErrorContext where{
+      {}, {}, {}, "block " + box.to_string() + " (inline, crossline, sample; the halo not included)", {}};
   const volume::Index3 full = grown.shape(), inner = box.shape();
 
   py::gil_scoped_acquire gil;
@@ -97,28 +98,26 @@ void PythonAttribute::compute(const volume::Box& box, std::span<float> out) cons
     result = callable_->get()(block);
   } catch (py::error_already_set& e) {
     throw DataError(what + " raised " + py::str(py::type::handle_of(e.value()).attr("__name__")).cast<std::string>() +
-                        " on block " + box.to_string() + ":\n" + traceback_text(e),
+                        ":\n" + traceback_text(e),
                     where, "the traceback above is Python's; the run stopped, components already stored are kept");
   }
   if (!py::isinstance<py::array>(result))
-    throw DataError(what + " returned a " +
-                        py::str(py::type::handle_of(result).attr("__name__")).cast<std::string>() +
-                        " on block " + box.to_string() + ", not a numpy array",
+    throw DataError(what + " returned a " + py::str(py::type::handle_of(result).attr("__name__")).cast<std::string>() +
+                        ", not a numpy array",
                     where, "return a float32 numpy array of shape " + shape_text(full) + " or " + shape_text(inner));
   const py::array array = py::reinterpret_borrow<py::array>(result);
   if (!py::isinstance<py::array_t<float>>(array))
     throw DataError(what + " returned an array of dtype " + py::str(array.dtype()).cast<std::string>() +
-                        " on block " + box.to_string() + "; it must return float32",
+                        "; it must return float32",
                     where, "cast the result: return result.astype(numpy.float32)");
   std::vector<py::ssize_t> shape(array.shape(), array.shape() + array.ndim());
   const bool whole = shape == std::vector<py::ssize_t>{full[0], full[1], full[2]};
   const bool cropped = shape == std::vector<py::ssize_t>{inner[0], inner[1], inner[2]};
   if (!whole && !cropped)
-    throw DataError(what + " returned an array of shape " + shape_text(shape) + " on block " + box.to_string() +
-                        ", given one of shape " + shape_text(full),
-                    where,
-                    "return the shape it was given, " + shape_text(full) + ", or that shape less the halo " +
-                        shape_text(halo()) + " on each side, " + shape_text(inner));
+    throw DataError(
+        what + " returned an array of shape " + shape_text(shape) + ", given one of shape " + shape_text(full), where,
+        "return the shape it was given, " + shape_text(full) + ", or that shape less the halo " + shape_text(halo()) +
+            " on each side, " + shape_text(inner));
   // Strides as numpy has them (a transposed or sliced result is read as it is, not copied first).
   const auto values = array.unchecked<float, 3>();
   const volume::Index3 skip = whole ? halo() : volume::Index3{0, 0, 0};
@@ -130,7 +129,7 @@ void PythonAttribute::compute(const volume::Box& box, std::span<float> out) cons
         if (!std::isfinite(v))
           throw DataError(what + " returned " + (std::isnan(v) ? "NaN" : "an infinite value") + " at sample (" +
                               std::to_string(box.lo[0] + i) + ", " + std::to_string(box.lo[1] + j) + ", " +
-                              std::to_string(box.lo[2] + k) + ") of block " + box.to_string(),
+                              std::to_string(box.lo[2] + k) + ")",
                           where, "an attribute must be finite everywhere: guard divisions and logarithms");
         *o++ = v;
       }

@@ -23,8 +23,8 @@ volume::Index3 parse_halo(const std::string& text) {
   bool ok = std::regex_match(text, parts, form);
   for (int a = 0; ok && a < 3; ++a) {
     const std::string digits = parts[a + 1];
-    ok = std::from_chars(digits.data(), digits.data() + digits.size(), halo[a]).ec == std::errc() &&
-         halo[a] <= max_halo;
+    ok =
+        std::from_chars(digits.data(), digits.data() + digits.size(), halo[a]).ec == std::errc() && halo[a] <= max_halo;
   }
   if (!ok)
     throw InvalidArgument("parameter 'halo' is '" + text + "': it must be three integers from 0 to " +

@@ -76,29 +76,25 @@ std::map<std::uint64_t, double> components(const fs::path& store_dir) {
   return out;
 }
 
-// The built-in rms run once for all the tests (in this process; its store is the reference).
+// Each test runs the built-in rms first, in this process, in its own scratch directory (ctest
+// runs the tests as separate processes at once): its store and attribute cube are the reference.
 class PythonStep : public ::testing::Test {
 protected:
-  static void SetUpTestSuite() {
-    reference_dir_ = new ScratchDir;
-    const auto recipe = write(*reference_dir_, "builtin.yaml", recipe_text("step: rms\n    window: 9\n", 1, true));
-    auto run = run_workflow(recipe, reference_dir_->path() / "out");
+  void SetUp() override {
+    const auto recipe = write(dir_, "builtin.yaml", recipe_text("step: rms\n    window: 9\n", 1, true));
+    auto run = run_workflow(recipe, dir_.path() / "builtin");
     ASSERT_EQ(run.command.exit_code, 0) << run.command.err;
   }
-  static void TearDownTestSuite() {
-    delete reference_dir_;
-    reference_dir_ = nullptr;
-  }
-  static fs::path reference() { return reference_dir_->path() / "out"; }
+  fs::path reference() const { return dir_.path() / "builtin"; }
 
   // Runs the recipe with the Python attribute and checks that it equals the built-in one.
   void expect_equal_to_builtin(const std::string& function, int workers) {
-    ScratchDir dir;
-    const auto recipe = write(dir, "python.yaml", recipe_text(python_step(function), workers, true));
-    auto run = run_workflow(recipe, dir.path() / "out");
+    const auto recipe = write(dir_, "python.yaml", recipe_text(python_step(function), workers, true));
+    const fs::path out = dir_.path() / "python";
+    auto run = run_workflow(recipe, out);
     ASSERT_EQ(run.command.exit_code, 0) << run.command.err;
     const auto expected = whole_cube(reference() / "attribute.nc");
-    const auto got = whole_cube(dir.path() / "out" / "attribute.nc");
+    const auto got = whole_cube(out / "attribute.nc");
     ASSERT_EQ(got.size(), expected.size());
     double worst = 0.0;
     for (std::size_t n = 0; n < got.size(); ++n)
@@ -107,7 +103,7 @@ protected:
     EXPECT_LE(worst, 1e-6) << "the Python rms differs from the built-in one";
 
     const auto want = components(reference() / "store");
-    const auto have = components(dir.path() / "out" / "store");
+    const auto have = components(out / "store");
     ASSERT_GE(want.size(), 5u) << "the fixture should give several components";
     EXPECT_EQ(have.size(), want.size());
     for (const auto& [key, volume] : want) {
@@ -118,17 +114,14 @@ protected:
     }
   }
 
-  // Runs a recipe whose function fails; returns the run.
-  WorkflowRun run_failing(const ScratchDir& dir, const std::string& function, int workers = 1) {
-    const auto recipe = write(dir, "failing.yaml", recipe_text(python_step(function), workers));
-    return run_workflow(recipe, dir.path() / "out");
+  // Runs a recipe whose function fails, NAME.yaml into the directory NAME; returns the run.
+  WorkflowRun run_failing(const std::string& name, const std::string& function, int workers = 1) {
+    const auto recipe = write(dir_, name + ".yaml", recipe_text(python_step(function), workers));
+    return run_workflow(recipe, dir_.path() / name);
   }
 
-private:
-  static ScratchDir* reference_dir_;
+  ScratchDir dir_;
 };
-
-ScratchDir* PythonStep::reference_dir_ = nullptr;
 
 } // namespace
 
@@ -194,11 +187,11 @@ TEST_F(PythonStep, EqualsTheBuiltInRmsWithTwoWorkers) {
 
 TEST_F(PythonStep, AnExceptionStopsTheRunWithItsTracebackAndKeepsWhatWasCommitted) {
   for (int workers : {1, 2}) {
-    ScratchDir dir;
+    const std::string name = "failing" + std::to_string(workers);
     // The function counts its calls in each process: a worker makes about one per leaf it extracts.
     const std::string after = workers == 1 ? "40" : "10";
     ::setenv("GT_TEST_FAIL_AFTER", after.c_str(), 1);
-    auto run = run_failing(dir, "gt_test_attrs:fails_later", workers);
+    auto run = run_failing(name, "gt_test_attrs:fails_later", workers);
     ::unsetenv("GT_TEST_FAIL_AFTER");
     const std::string& err = run.command.err;
     EXPECT_EQ(run.command.exit_code, 5) << err; // data refused (README's exit codes), as a failing plugin
@@ -212,7 +205,7 @@ TEST_F(PythonStep, AnExceptionStopsTheRunWithItsTracebackAndKeepsWhatWasCommitte
     EXPECT_EQ(run.command.out.find("report:"), std::string::npos) << "a failed run must not report success";
     // What was committed before the failure is whole and the built-in run's.
     const auto want = components(reference() / "store");
-    auto store = store::ComponentStore::open(dir.path() / "out" / "store");
+    auto store = store::ComponentStore::open(dir_.path() / name / "store");
     const auto kept = store.query();
     if (workers == 1) {
       EXPECT_GT(kept.size(), 0u) << "nothing was committed before the failure";
@@ -236,8 +229,7 @@ TEST_F(PythonStep, WrongResultsAreRefusedNamingTheFunctionAndBlock) {
       {"nan_here", "returned NaN at sample ("},
   };
   for (const auto& c : cases) {
-    ScratchDir dir;
-    auto run = run_failing(dir, "gt_test_attrs:" + c.function);
+    auto run = run_failing(c.function, "gt_test_attrs:" + c.function);
     EXPECT_EQ(run.command.exit_code, 5) << c.function << ": " << run.command.err;
     EXPECT_NE(run.command.err.find("python step (function gt_test_attrs:" + c.function + ")"), std::string::npos)
         << run.command.err;

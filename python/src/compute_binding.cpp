@@ -13,6 +13,9 @@
 #include "bindings.hpp"
 #include "bridge.hpp"
 #include "geotandem/builtin/register.hpp"
+#ifdef GEOTANDEM_PYTHON_STEP
+#include "geotandem/python_step/register.hpp"
+#endif
 #include "geotandem/core/error.hpp"
 #include "geotandem/store/store.hpp"
 #include "geotandem/synth/synthetic.hpp"
@@ -216,6 +219,9 @@ py::dict run_workflow(const std::string& recipe_path, const std::vector<std::str
       [&] {
         workflow::PluginRegistry registry;
         builtin::register_builtins(registry);
+#ifdef GEOTANDEM_PYTHON_STEP
+        python_step::register_python_step(registry); // runs in this interpreter (docs/plugins.md)
+#endif
         registry.discover(plugin_path, reporting.log());
         auto recipe = workflow::load_recipe(recipe_path, registry, overrides);
         workflow::RunSettings settings;

@@ -89,7 +89,17 @@ void parse_input(MapReader& m, InputSpec& in) {
   m.finish({"file", "synthetic", "nan", "no_data", "variable", "segy"});
 }
 
-ParamValues parse_params(MapReader& m, const std::vector<ParamSpec>& specs, const std::string& what) {
+// A list parameter's text ("[1, 1, 8]") from a YAML list of scalars (ParamSpec::list).
+std::string list_text(MapReader& m, const YAML::Node& list, const std::string& what) {
+  std::string text = "[";
+  for (std::size_t n = 0; n < list.size(); ++n)
+    text += (n ? ", " : "") + detail::scalar_of(m.source(), list[n], "an entry of " + what);
+  return text + "]";
+}
+
+// `base_dir`: the recipe's directory, against which recipe_path parameters are made absolute.
+ParamValues parse_params(MapReader& m, const std::vector<ParamSpec>& specs, const std::string& what,
+                         const std::string& base_dir = {}) {
   ParamValues values;
   for (const auto& spec : specs) {
     std::string text;
@@ -98,12 +108,20 @@ ParamValues parse_params(MapReader& m, const std::vector<ParamSpec>& specs, cons
     at.reset(m.map());
     if (m.has(spec.name)) {
       at.reset(m.node(spec.name));
-      text = detail::scalar_of(m.source(), at, "'" + spec.name + "' in " + what);
+      if (spec.list && at.IsSequence())
+        text = list_text(m, at, "'" + spec.name + "' in " + what);
+      else
+        text = detail::scalar_of(m.source(), at, "'" + spec.name + "' in " + what);
     } else if (spec.default_value) {
       text = *spec.default_value;
     } else {
       throw error_at(m.source(), m.map(), what + " needs '" + spec.name + "'",
                      spec.name + ": " + spec.help + " (" + to_string(spec.type) + ")");
+    }
+    if (spec.recipe_path && !text.empty()) {
+      fs::path path = fs::absolute(fs::path(base_dir) / text).lexically_normal();
+      if (path.filename().empty() && path.has_relative_path()) path = path.parent_path(); // "dir/" -> "dir"
+      text = path.string();
     }
     try {
       values[spec.name] = parse_param(spec, text);
@@ -165,7 +183,7 @@ StepSpec parse_step(const RecipeSource& source, const YAML::Node& node, std::siz
   if (m.has("input") && m.has("inputs"))
     throw error_at(source, node, what + " has both 'input' and 'inputs'", "use one of them");
   step.inputs = m.has("inputs") ? m.text_list("inputs") : m.text_list("input");
-  step.params = parse_params(m, specs, what);
+  step.params = parse_params(m, specs, what, fs::path(source.file()).parent_path().string());
   std::vector<std::string> known = {"step", "as", "input", "inputs"};
   for (const auto& s : specs)
     known.push_back(s.name);

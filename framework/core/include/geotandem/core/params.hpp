@@ -32,6 +32,12 @@ struct ParamSpec {
   bool max_open = false;
   bool odd = false; // integers that must be odd (centred window lengths)
   std::string unit; // "samples", "traces", "percent", ...; empty when there is none
+  // Text parameters only. `list`: a recipe may write the value as a YAML list of scalars
+  // ([1, 1, 8]); its text is then "[1, 1, 8]" and the step's check() reads it. `recipe_path`: a
+  // path relative to the recipe's directory, made absolute when the recipe is read, so that the
+  // chain description carries it to workers that run elsewhere.
+  bool list = false;
+  bool recipe_path = false;
 
   // Whether `value` lies in the declared interval (NaN never does).
   bool in_range(double value) const;

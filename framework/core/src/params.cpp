@@ -4,6 +4,7 @@
 #include <charconv>
 #include <cmath>
 #include <cstdlib>
+#include <limits>
 
 #include "geotandem/core/error.hpp"
 #include "geotandem/core/suggest.hpp"
@@ -47,6 +48,17 @@ void check_number(const ParamSpec& spec, double value, const std::string& text, 
   if (!spec.in_range(value))
     throw InvalidArgument(named(spec, owner) + " is " + text + ", out of range: it must be " + spec.valid_values(), {},
                           "use a value " + range_words(spec));
+  // Refused from the midpoint between the largest float and 2^128 on, where a conversion to float
+  // rounds to infinity (a conversion that is undefined behaviour in C++): the bound printed below
+  // rounds to the largest float, so it is accepted.
+  constexpr double rounds_to_infinity = 0x1.ffffffp127;
+  if (spec.single_precision && !(std::abs(value) < rounds_to_infinity))
+    throw InvalidArgument(
+        named(spec, owner) + " is " + text + ", beyond the range of a 32-bit float: it must lie between -" +
+            number_text(std::numeric_limits<float>::max()) + " and " + number_text(std::numeric_limits<float>::max()),
+        {},
+        "samples are 32-bit floats, so no sample reaches this value: give one within the cube's "
+        "values (geotandem info CUBE shows them)");
 }
 
 void check_odd(const ParamSpec& spec, std::int64_t n, std::string_view owner) {

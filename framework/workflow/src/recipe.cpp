@@ -97,12 +97,14 @@ ParamValues parse_params(MapReader& m, const std::vector<ParamSpec>& specs, cons
     at.reset(m.map());
     if (m.has(spec.name)) {
       at.reset(m.node(spec.name));
-      text = detail::scalar_of(m.source(), at, "'" + spec.name + "' in " + what);
+      text = m.scalar(spec.name);
     } else if (spec.default_value) {
       text = *spec.default_value;
     } else {
-      throw error_at(m.source(), m.map(), what + " needs '" + spec.name + "'",
-                     spec.name + ": " + spec.help + " (" + to_string(spec.type) + ")");
+      std::vector<std::string> names;
+      for (const auto& s : specs)
+        names.push_back(s.name);
+      m.missing(spec.name, names, spec.name + ": " + spec.help + " (" + to_string(spec.type) + ")");
     }
     try {
       values[spec.name] = parse_param(spec, text);

@@ -139,5 +139,21 @@ TEST(MessagesCli, AnIsovalueBeyondTheFloatRangeIsRefusedWithTheValueAndTheRange)
   EXPECT_EQ(largest.exit_code, 0) << largest.err;
 }
 
+TEST(MessagesCli, ADivisorOfFloatSamplesBeyondOrBelowTheFloatRangeIsRefused) {
+  ScratchDir dir;
+  const std::string path = dir.file("r.yaml");
+  std::ofstream(path) << "version: 1\ninput:\n  synthetic: {kind: analytic, shape: [40, 40, 40]}\nsteps:\n"
+                         "  - step: normalise\n    method: fixed\n    scale: 2\n  - step: extract\n    iso: 0.5\n"
+                         "output:\n  directory: "
+                      << dir.file("o") << "\n";
+  ASSERT_EQ(run_child(dir.path().string(), {"-q", "validate", path}).exit_code, 0);
+  for (const auto& [value, says] : {std::pair{"1e39", "beyond the range of a 32-bit float"},
+                                    std::pair{"1e-50", "closer to 0 than a 32-bit float can hold"}}) {
+    auto r = run_child(dir.path().string(), {"validate", path, "--set", std::string("steps.normalise.scale=") + value});
+    EXPECT_EQ(r.exit_code, 2) << r.err;
+    EXPECT_NE(r.err.find(std::string("parameter 'scale' is ") + value + ", " + says), std::string::npos) << r.err;
+  }
+}
+
 } // namespace
 } // namespace geotandem

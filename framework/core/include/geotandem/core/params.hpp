@@ -32,8 +32,9 @@ struct ParamSpec {
   bool max_open = false;
   bool odd = false; // integers that must be odd (centred window lengths)
   std::string unit; // "samples", "traces", "percent", ...; empty when there is none
-  // A real used as a 32-bit float (an isovalue compared with float samples): a value beyond the
-  // float range (|value| > 3.4028235e38) is refused by name instead of becoming infinity.
+  // A real used as a 32-bit float (an isovalue compared with float samples, a divisor of them): a
+  // value beyond the float range (|value| > 3.4028235e38) is refused by name instead of becoming
+  // infinity, and one that is not 0 but would round to 0 (|value| < 1.4e-45) instead of becoming 0.
   bool single_precision = false;
 
   // Whether `value` lies in the declared interval (NaN never does).

@@ -49,6 +49,8 @@ void add_workflow_command(CLI::App& app, Context& context, Runner& run) {
       settings.progress = [&context] { return context.progress(); };
       settings.worker_command = worker_command(context);
       auto outcome = workflow::run_workflow(recipe, registry, settings, context.log, context.cancel);
+      // Interrupted after the last step polled the token: still an interrupted run (exit 130), never 0.
+      context.cancel.throw_if_cancelled();
       if (args->dry_run) {
         std::cout << args->recipe << ": valid; nothing computed (dry run)\n";
         return 0;

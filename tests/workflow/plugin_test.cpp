@@ -3,14 +3,17 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <fstream>
 
 #include "geotandem/core/error.hpp"
 #include "geotandem/volume/volume.hpp"
 #include "geotandem/workflow/registry.hpp"
+#include "scratch.hpp"
 #include "test_paths.hpp"
 
 using namespace geotandem;
 using namespace geotandem::workflow;
+using geotandem::testing::ScratchDir;
 
 namespace {
 
@@ -107,7 +110,17 @@ TEST(PluginLoader, MissingEntryPointIsAClearError) {
 
 TEST(PluginLoader, NotALibraryIsAClearError) {
   PluginRegistry registry;
-  EXPECT_THROW(registry.load_library(test_paths::plugins() + "/nonexistent/geotandem_x.so"), FormatError);
+  // A missing file cannot be read (exit 3); a file that is no ELF library is a format error (exit 4).
+  EXPECT_THROW(registry.load_library(test_paths::plugins() + "/nonexistent/geotandem_x.so"), IoError);
+  ScratchDir dir;
+  const std::string text = dir.file("geotandem_text.so");
+  std::ofstream(text) << std::string(4096, 'x');
+  try {
+    registry.load_library(text);
+    FAIL() << "a text file loaded as a plugin";
+  } catch (const FormatError& e) {
+    EXPECT_NE(std::string(e.what()).find(text + ": not an ELF file"), std::string::npos) << e.what();
+  }
 }
 
 TEST(PluginLoader, PluginFailureCarriesItsMessage) {

@@ -91,9 +91,10 @@ TEST_F(Recipes, ValidRecipeWithDefaultsFilledIn) {
 
 TEST_F(Recipes, UnknownKeyNamesLineColumnAndNearestKey) {
   std::string e = error_of(replaced("    iso: 0.3", "    isovalue: 0.3"));
-  // 'isovalue' replaces 'iso' at line 9, column 5; the step then also lacks 'iso', which is
-  // reported first since it is a missing value: fix that by keeping iso and adding the typo.
-  EXPECT_NE(e.find("dir/recipe.yaml:8:"), std::string::npos) << e;
+  // 'isovalue' replaces 'iso' at line 9, column 5; the step then lacks 'iso', reported at the key
+  // that looks like it, with the suggestion.
+  EXPECT_NE(e.find("dir/recipe.yaml:9:5: step 2 (extract) needs 'iso'"), std::string::npos) << e;
+  EXPECT_NE(e.find("did you mean 'iso'?"), std::string::npos) << e;
   std::string typo = error_of(replaced("    iso: 0.3", "    iso: 0.3\n    max_eror: 1"));
   EXPECT_NE(typo.find("dir/recipe.yaml:10:5: unknown key 'max_eror' in step 2 (extract)"), std::string::npos) << typo;
   EXPECT_NE(typo.find("did you mean 'max_error'?"), std::string::npos) << typo;

@@ -4,6 +4,7 @@
 #include <charconv>
 #include <cmath>
 #include <cstdlib>
+#include <limits>
 
 #include "geotandem/core/error.hpp"
 #include "geotandem/core/suggest.hpp"
@@ -47,6 +48,25 @@ void check_number(const ParamSpec& spec, double value, const std::string& text, 
   if (!spec.in_range(value))
     throw InvalidArgument(named(spec, owner) + " is " + text + ", out of range: it must be " + spec.valid_values(), {},
                           "use a value " + range_words(spec));
+  // Refused from the midpoint between the largest float and 2^128 on, where a conversion to float
+  // rounds to infinity (a conversion that is undefined behaviour in C++): the bound printed below
+  // rounds to the largest float, so it is accepted.
+  constexpr double rounds_to_infinity = 0x1.ffffffp127;
+  if (spec.single_precision && !(std::abs(value) < rounds_to_infinity))
+    throw InvalidArgument(
+        named(spec, owner) + " is " + text + ", beyond the range of a 32-bit float: it must lie between -" +
+            number_text(std::numeric_limits<float>::max()) + " and " + number_text(std::numeric_limits<float>::max()),
+        {},
+        "the value is used as a 32-bit float, as the cube's samples are: give one within the samples' range "
+        "(geotandem info CUBE shows it)");
+  // Likewise at the other end: a value that is not 0 but rounds to 0 as a float (below half the
+  // smallest subnormal float, 2^-150) would divide by zero or compare as 0.
+  constexpr double rounds_to_zero = 0x1p-150;
+  if (spec.single_precision && value != 0.0 && std::abs(value) <= rounds_to_zero)
+    throw InvalidArgument(named(spec, owner) + " is " + text +
+                              ", closer to 0 than a 32-bit float can hold: the smallest is " +
+                              number_text(std::numeric_limits<float>::denorm_min()),
+                          {}, "the value is used as a 32-bit float, as the cube's samples are");
 }
 
 void check_odd(const ParamSpec& spec, std::int64_t n, std::string_view owner) {

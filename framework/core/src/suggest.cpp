@@ -1,6 +1,7 @@
 #include "geotandem/core/suggest.hpp"
 
 #include <algorithm>
+#include <cctype>
 #include <limits>
 
 namespace geotandem {
@@ -34,6 +35,24 @@ std::string nearest(const std::string& word, const std::vector<std::string>& can
     }
   }
   return best <= std::max<std::size_t>(2, word.size() / 3) ? choice : std::string();
+}
+
+std::string stand_in_for(const std::string& name, const std::vector<std::string>& words) {
+  const auto lower = [](std::string text) {
+    for (char& c : text)
+      c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+    return text;
+  };
+  const std::string wanted = lower(name);
+  for (const auto& word : words)
+    if (!nearest(word, {name}).empty()) return word;
+  for (const auto& word : words) {
+    const std::string w = lower(word);
+    const std::string& shorter = w.size() < wanted.size() ? w : wanted;
+    const std::string& longer = w.size() < wanted.size() ? wanted : w;
+    if (shorter.size() >= 3 && longer.compare(0, shorter.size(), shorter) == 0) return word;
+  }
+  return {};
 }
 
 std::string suggestion_hint(const std::string& word, const std::vector<std::string>& candidates) {

@@ -1,6 +1,8 @@
+#include <algorithm>
 #include <array>
 #include <filesystem>
 #include <fstream>
+#include <vector>
 
 #include "formats.hpp"
 #include "geotandem/core/error.hpp"
@@ -39,22 +41,38 @@ bool envi_header_beside(const std::string& path) {
   return false;
 }
 
+// Whether a 3200-byte block is text in one encoding: printable ASCII, or the printable EBCDIC
+// characters (letters, digits, space and punctuation); NUL padding is allowed in both.
+bool is_textual_header(const std::vector<unsigned char>& text) {
+  const auto ascii = [](unsigned char c) { return c == 0 || (c >= 0x20 && c <= 0x7E); };
+  const auto ebcdic = [](unsigned char c) {
+    return c == 0 || c == 0x40 || (c >= 0x4A && c <= 0x50) || (c >= 0x5A && c <= 0x61) || (c >= 0x6A && c <= 0x6F) ||
+           (c >= 0x79 && c <= 0x7F) || (c >= 0x81 && c <= 0x89) || (c >= 0x91 && c <= 0x99) ||
+           (c >= 0xA1 && c <= 0xA9) || (c >= 0xC0 && c <= 0xC9) || (c >= 0xD0 && c <= 0xD9) ||
+           (c >= 0xE0 && c <= 0xE9) || (c >= 0xF0 && c <= 0xF9);
+  };
+  return std::all_of(text.begin(), text.end(), ascii) || std::all_of(text.begin(), text.end(), ebcdic);
+}
+
 // SEG-Y has no magic number: a 3200-byte textual header (EBCDIC or ASCII, by convention starting
 // with 'C', sometimes blank), a 400-byte binary header with a sample format code (1 to 16) at
 // bytes 3225-3226 in the file's byte order (big-endian by the standard, little-endian in some
-// files), then traces. Unsupported codes and the size are not checked here: such files must reach
-// the SEG-Y reader, which says what is wrong.
+// files), then traces. A file whose first 3200 bytes are all text in one encoding is SEG-Y too
+// whatever its code says (0, 17, 256: a damaged binary header), so that the SEG-Y reader names the
+// code instead of "unknown format". Unsupported codes and the size are not checked here: such files
+// must reach the SEG-Y reader, which says what is wrong.
 bool looks_like_segy(const std::string& path, std::uintmax_t size) {
   if (size < 3600 + 240) return false;
   std::ifstream in(path, std::ios::binary);
-  unsigned char first = 0;
-  in.read(reinterpret_cast<char*>(&first), 1);
-  if (first != 0xC3 && first != 'C' && first != 0x40 && first != ' ') return false;
+  std::vector<unsigned char> text(3200);
+  in.read(reinterpret_cast<char*>(text.data()), static_cast<std::streamsize>(text.size()));
+  const unsigned char first = text[0];
+  if (!in || (first != 0xC3 && first != 'C' && first != 0x40 && first != ' ')) return false;
   unsigned char code[2] = {0, 0};
   in.seekg(3224);
   in.read(reinterpret_cast<char*>(code), 2);
   const int big = code[0] << 8 | code[1], little = code[1] << 8 | code[0];
-  return in && ((big >= 1 && big <= 16) || (little >= 1 && little <= 16));
+  return in && ((big >= 1 && big <= 16) || (little >= 1 && little <= 16) || is_textual_header(text));
 }
 
 // The writer for an output path, from its extension; nullptr when the extension is unknown.

@@ -20,23 +20,72 @@ bool supported(int format) {
          format == SEGY_SIGNED_SHORT_2_BYTE || format == SEGY_IEEE_FLOAT_4_BYTE || format == SEGY_SIGNED_CHAR_1_BYTE;
 }
 
-// SEG-Y rev 2 defines codes 1 to 16; any of them is a plausible value of the field.
-bool plausible_code(int code) {
-  return code >= 1 && code <= 16;
+// The codes SEG-Y rev 2 defines (13 and 14 are unassigned); any of them is a plausible value.
+bool defined_code(int code) {
+  return (code >= 1 && code <= 12) || code == 15 || code == 16;
+}
+
+const char* const defined_codes = "SEG-Y defines 1 to 12, 15 and 16";
+const char* const readable_codes = "geotandem reads IBM float (1), 32-bit integer (2), 16-bit integer (3), IEEE "
+                                   "float (5) and 8-bit integer (8) samples in either byte order";
+
+// Unsigned 16-bit field of the binary header at 1-based file byte `byte`, in either byte order.
+int field16(const BinaryHeader& raw, int byte, bool little_endian) {
+  const auto a = static_cast<unsigned char>(raw[static_cast<std::size_t>(byte - 3201)]);
+  const auto b = static_cast<unsigned char>(raw[static_cast<std::size_t>(byte - 3200)]);
+  return little_endian ? (b << 8 | a) : (a << 8 | b);
+}
+
+// Bytes per sample of a defined format code.
+int bytes_per_sample(int format) {
+  switch (format) {
+  case 3:
+  case 11: return 2;
+  case 6:
+  case 9:
+  case 12: return 8;
+  case 7:
+  case 15: return 3;
+  case 8:
+  case 16: return 1;
+  default: return 4;
+  }
+}
+
+// Whether the rest of the binary header reads sensibly little-endian, for a format code that is
+// defined only that way. A big-endian code of 256 (a damaged header) reads 1 little-endian, so the
+// code alone cannot tell: in a file written little-endian, the sample interval is a positive 16-bit
+// number, or the samples per trace make whole traces of the file's size, or both counts are 0 (they
+// are in the trace headers). Otherwise the code is taken as written big-endian and refused.
+bool reads_little_endian(const BinaryHeader& raw, int format, const std::string& path) {
+  const int interval = field16(raw, 3217, true), samples = field16(raw, 3221, true);
+  if (interval > 0 && interval < 0x8000) return true;
+  if (interval == 0 && samples == 0) return true;
+  const int extended = field16(raw, 3505, true);
+  if (samples == 0 || extended >= 0x8000) return false;
+  std::error_code ec;
+  const auto size = static_cast<long long>(std::filesystem::file_size(path, ec));
+  const long long trace0 = 3600LL + 3200LL * extended;
+  const long long per_trace = SEGY_TRACE_HEADER_SIZE + static_cast<long long>(samples) * bytes_per_sample(format);
+  return !ec && size >= trace0 + per_trace && (size - trace0) % per_trace == 0;
 }
 
 // The sample format code as stored, read in both byte orders; decides the file's byte order.
-// segyio reads headers big-endian until told otherwise.
+// segyio reads headers big-endian until told otherwise. A code that is no SEG-Y format in either
+// order is named as the standard's big-endian reading gives it.
 bool detect_little_endian(const BinaryHeader& raw, const std::string& path) {
-  const auto hi = static_cast<unsigned char>(raw[kFormatByte - 3201]);
-  const auto lo = static_cast<unsigned char>(raw[kFormatByte - 3200]);
-  const int big = hi << 8 | lo, little = lo << 8 | hi;
-  if (plausible_code(big)) return false;
-  if (plausible_code(little)) return true;
-  throw FormatError("the sample format code at binary header byte 3225 reads " + std::to_string(big) +
-                        " big-endian and " + std::to_string(little) +
-                        " little-endian; neither is a SEG-Y format code (1 to 16)",
-                    {path}, "the binary header is damaged, or the file is not SEG-Y");
+  const int big = field16(raw, kFormatByte, false), little = field16(raw, kFormatByte, true);
+  if (defined_code(big)) return false;
+  if (defined_code(little) && reads_little_endian(raw, little, path)) return true;
+  std::string also;
+  if (little != big && defined_code(little))
+    also = "; read little-endian it would be " + std::to_string(little) +
+           ", but the sample interval and trace sizes do not read little-endian either";
+  throw FormatError("sample format code " + std::to_string(big) +
+                        " (binary header bytes 3225-3226) is not a SEG-Y "
+                        "format code (" +
+                        defined_codes + ")" + also,
+                    {path}, std::string("the binary header is damaged, or the file is not SEG-Y; ") + readable_codes);
 }
 
 int field(const TraceHeader& header, int position) {
@@ -92,9 +141,7 @@ Layout read_layout(segy_file* file, const std::string& path) {
   if (!supported(layout.format))
     throw FormatError("sample format code " + std::to_string(layout.format) + " (" + sample_format_name(layout.format) +
                           ", binary header byte 3225) is not supported",
-                      {path},
-                      "geotandem reads IBM float (1), 32-bit integer (2), 16-bit integer (3), IEEE float (5) and "
-                      "8-bit integer (8) samples in either byte order; convert the file to one of them");
+                      {path}, std::string(readable_codes) + "; convert the file to one of them");
   // Tells segyio the sample size for sub-trace reads, and the byte order.
   segy_set_format(file, layout.segyio_format());
   std::int32_t extended = 0;

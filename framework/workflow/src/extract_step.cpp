@@ -44,10 +44,17 @@ int parse_axis(const std::string& text) {
 
 namespace {
 
+// The isovalue is compared with float samples: a value beyond the float range is refused, not inf.
+ParamSpec single_precision(ParamSpec spec) {
+  spec.single_precision = true;
+  return spec;
+}
+
 std::vector<ParamSpec> make_extract_params() {
   const ExtractSettings d;
   return {
-      detail::param_spec("iso", ParamType::real, std::nullopt, "isovalue: samples >= iso are inside a body"),
+      single_precision(
+          detail::param_spec("iso", ParamType::real, std::nullopt, "isovalue: samples >= iso are inside a body")),
       detail::param_spec("max_error", ParamType::real, number_text(d.max_error),
                          "E0, in voxels: the simplified surface stays within E0 of the full-resolution one", 1e-6,
                          100.0),

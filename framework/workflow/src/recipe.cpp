@@ -111,12 +111,14 @@ ParamValues parse_params(MapReader& m, const std::vector<ParamSpec>& specs, cons
       if (spec.list && at.IsSequence())
         text = list_text(m, at, "'" + spec.name + "' in " + what);
       else
-        text = detail::scalar_of(m.source(), at, "'" + spec.name + "' in " + what);
+        text = m.scalar(spec.name);
     } else if (spec.default_value) {
       text = *spec.default_value;
     } else {
-      throw error_at(m.source(), m.map(), what + " needs '" + spec.name + "'",
-                     spec.name + ": " + spec.help + " (" + to_string(spec.type) + ")");
+      std::vector<std::string> names;
+      for (const auto& s : specs)
+        names.push_back(s.name);
+      m.missing(spec.name, names, spec.name + ": " + spec.help + " (" + to_string(spec.type) + ")");
     }
     if (spec.recipe_path && !text.empty()) {
       fs::path path = fs::absolute(fs::path(base_dir) / text).lexically_normal();

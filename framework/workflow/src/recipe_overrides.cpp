@@ -50,6 +50,12 @@ GraftedOverride apply_override(YAML::Node root, const std::string& text) {
   if (eq == std::string::npos || eq == 0)
     throw InvalidArgument("--set '" + text + "' is not key=value", {}, "for example --set execution.workers=4");
   std::string path = text.substr(0, eq), value = text.substr(eq + 1);
+  // An empty value is refused rather than read as YAML's null: `--set KEY=` is almost always a
+  // value lost to the shell (an unset variable, a missing argument), and null is no parameter's value.
+  if (value.find_first_not_of(" \t") == std::string::npos)
+    throw InvalidArgument("--set " + text + ": the value after '=' is empty", {},
+                          "give a value: --set " + path + "=VALUE (quote text that is meant to be empty: --set '" +
+                              path + "=\"\"')");
   std::vector<std::string> parts;
   for (std::size_t start = 0;;) {
     auto dot = path.find('.', start);

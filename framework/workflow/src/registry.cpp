@@ -10,6 +10,7 @@
 
 #include "geotandem/core/error.hpp"
 #include "geotandem/workflow/suggest.hpp"
+#include "library_check.hpp"
 
 namespace fs = std::filesystem;
 
@@ -31,6 +32,7 @@ void PluginRegistry::add(std::shared_ptr<Plugin> plugin) {
 }
 
 void PluginRegistry::load_library(const std::string& path) {
+  detail::check_plugin_library(path); // before dlopen(), which hangs on a FIFO and SIGBUSes on a truncated copy
   ::dlerror();
   void* handle = ::dlopen(path.c_str(), RTLD_NOW | RTLD_LOCAL);
   if (!handle) {

@@ -182,7 +182,7 @@ ReportBody display_body(const ReportComponent& component, const mesh::SurfaceMes
 
 std::vector<ReportBody> display_bodies(const store::ComponentStore& store,
                                        const std::vector<ReportComponent>& components, const ReportSurvey& survey,
-                                       std::size_t budget, std::size_t max_bodies) {
+                                       std::size_t budget, std::size_t max_bodies, const CancelToken* cancel) {
   std::vector<std::size_t> shown;
   for (std::size_t i = 0; i < components.size(); ++i)
     if (components[i].kept) shown.push_back(i);
@@ -203,6 +203,7 @@ std::vector<ReportBody> display_bodies(const store::ComponentStore& store,
   std::vector<ReportBody> bodies;
   bodies.reserve(shown.size());
   for (std::size_t i : shown) {
+    if (cancel) cancel->throw_if_cancelled(); // reading and decimating a large body takes a while
     const ReportComponent& c = components[i];
     // Each body's share of the budget, in proportion to its triangles: the sum stays within it.
     const auto share = static_cast<std::size_t>(static_cast<double>(budget) * static_cast<double>(c.triangles) /

@@ -1,11 +1,13 @@
 #include "geotandem/workflow/runner.hpp"
 
 #include <chrono>
+#include <cstdlib>
 #include <ctime>
 #include <filesystem>
 #include <fstream>
 #include <map>
 #include <optional>
+#include <thread>
 
 #include "geotandem/core/atomic_file.hpp"
 #include "geotandem/core/error.hpp"
@@ -101,6 +103,19 @@ std::string warnings_of(const ExtractResult& r) {
   return text;
 }
 
+// Test-only, and unset in every real run: with GEOTANDEM_TEST_HOLD_IN_REPORT=PATH the report phase
+// creates PATH, then waits there (at most 60 s) until the run is interrupted and carries on, as a
+// report that is still being written when Ctrl-C comes does. A test waits for PATH and sends SIGINT,
+// so that the signal lands inside the report phase every time (tests/cli/interrupt_cli_test.cpp).
+void hold_in_report_for_tests(const CancelToken& cancel) {
+  const char* marker = std::getenv("GEOTANDEM_TEST_HOLD_IN_REPORT");
+  if (!marker || !*marker) return;
+  std::ofstream(marker) << "report phase\n";
+  const auto until = Clock::now() + std::chrono::seconds(60);
+  while (!cancel.cancelled() && Clock::now() < until)
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+}
+
 // One run of a validated recipe: walks its steps, then its output steps, calling each through the
 // registry by kind. Holds what passes between steps: the store, the newest selection, the report.
 class ChainRun {
@@ -132,8 +147,11 @@ private:
   // An error that does not say where in the recipe it happened gets the step and its line: a run
   // fails long after the recipe was read, often at one of several steps of the same kind.
   void run_step(const StepSpec& step) {
+    // An interrupt between steps stops the run there; each step polls the token inside as well.
+    cancel_.throw_if_cancelled();
     try {
       run_step_of_kind(step);
+      cancel_.throw_if_cancelled(); // a step that finished after the interrupt does not let the run go on
     } catch (const Cancelled&) {
       throw;
     } catch (const Error& e) {
@@ -317,11 +335,15 @@ private:
     }
     // The map and 3-D views of the kept bodies (report_views.cpp).
     report_.survey = survey_outline(store_->geometry());
-    report_.bodies = display_bodies(*store_, report_.components, report_.survey);
+    report_.bodies =
+        display_bodies(*store_, report_.components, report_.survey, kDisplayTriangleBudget, kDisplayBodies, &cancel_);
     report_.outputs.push_back(recipe_.output.store + "/");
     if (recipe_.input.synthetic) report_.outputs.push_back("truth.json");
     report_.total_seconds = since(report_started_);
     report_.peak_rss_kb = peak_rss_kb();
+    hold_in_report_for_tests(cancel_);
+    // Interrupted while the views were gathered: no report, and state.json does not say there is one.
+    cancel_.throw_if_cancelled();
     outcome_.report = plugin.write_report(report_, step.params, out_dir_);
     state_.set("report", {{"done", true}, {"path", outcome_.report}, {"finished", utc_now()}});
   }

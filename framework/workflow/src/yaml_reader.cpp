@@ -194,6 +194,9 @@ InvalidArgument error_at(const RecipeSource& source, const YAML::Node& node, con
 }
 
 std::string scalar_of(const RecipeSource& source, const YAML::Node& node, const std::string& what) {
+  // `key:` with nothing after it is null in YAML: say that the value is missing, not that it is a list.
+  if (node.IsNull())
+    throw error_at(source, node, what + " has no value", "give it a value after the colon, or leave the key out");
   if (!node.IsScalar()) throw error_at(source, node, what + " must be a single value, not a list or mapping");
   return node.Scalar();
 }
@@ -214,18 +217,48 @@ const YAML::Node MapReader::node(const std::string& key) {
 
 std::string MapReader::text(const std::string& key, const std::string& fallback) {
   if (!has(key)) return fallback;
-  return scalar_of(source_, node(key), "'" + key + "' in " + what_);
+  return scalar(key);
+}
+
+std::string MapReader::scalar(const std::string& key) {
+  YAML::Node value = node(key);
+  // A null value's mark is where the next token starts (often the next line): name the key's place.
+  if (value.IsNull())
+    for (const auto& entry : node_)
+      if (entry.first.IsScalar() && entry.first.Scalar() == key)
+        throw error_at(source_, entry.first, "'" + key + "' in " + what_ + " has no value",
+                       "give it a value after the colon, or leave the key out");
+  return scalar_of(source_, value, "'" + key + "' in " + what_);
 }
 
 std::string MapReader::required_text(const std::string& key) {
-  if (!has(key)) throw error_at(source_, node_, what_ + " needs '" + key + "'");
+  if (!has(key)) missing(key, {key});
   return text(key, {});
+}
+
+void MapReader::missing(const std::string& key, const std::vector<std::string>& known, const std::string& hint) const {
+  std::vector<std::string> unknown;
+  std::vector<YAML::Node> nodes;
+  for (const auto& entry : node_) {
+    if (!entry.first.IsScalar()) continue;
+    const std::string& k = entry.first.Scalar();
+    if (used_.count(k) || std::find(known.begin(), known.end(), k) != known.end()) continue;
+    unknown.push_back(k);
+    nodes.push_back(entry.first);
+  }
+  const std::string meant = stand_in_for(key, unknown);
+  if (meant.empty()) throw error_at(source_, node_, what_ + " needs '" + key + "'", hint);
+  const YAML::Node& at =
+      nodes[static_cast<std::size_t>(std::find(unknown.begin(), unknown.end(), meant) - unknown.begin())];
+  throw error_at(source_, at, what_ + " needs '" + key + "', and has an unknown key '" + meant + "' instead",
+                 "did you mean '" + key + "'? rename '" + meant + "' to '" + key + "'" +
+                     (hint.empty() ? std::string() : "; " + hint));
 }
 
 std::int64_t MapReader::integer(const std::string& key, std::int64_t fallback, std::int64_t min, std::int64_t max) {
   if (!has(key)) return fallback;
   YAML::Node n = node(key);
-  std::string s = scalar_of(source_, n, "'" + key + "' in " + what_);
+  std::string s = scalar(key);
   char* end = nullptr;
   errno = 0;
   long long v = std::strtoll(s.c_str(), &end, 10);
@@ -239,7 +272,7 @@ std::int64_t MapReader::integer(const std::string& key, std::int64_t fallback, s
 double MapReader::real(const std::string& key, double fallback, double min, double max) {
   if (!has(key)) return fallback;
   YAML::Node n = node(key);
-  std::string s = scalar_of(source_, n, "'" + key + "' in " + what_);
+  std::string s = scalar(key);
   char* end = nullptr;
   errno = 0;
   double v = std::strtod(s.c_str(), &end);
@@ -254,7 +287,7 @@ double MapReader::real(const std::string& key, double fallback, double min, doub
 bool MapReader::boolean(const std::string& key, bool fallback) {
   if (!has(key)) return fallback;
   YAML::Node n = node(key);
-  std::string s = scalar_of(source_, n, "'" + key + "' in " + what_);
+  std::string s = scalar(key);
   if (s == "true" || s == "yes" || s == "on") return true;
   if (s == "false" || s == "no" || s == "off") return false;
   throw error_at(source_, n, "'" + key + "' is '" + s + "', not true or false");
@@ -279,7 +312,11 @@ void MapReader::finish(const std::vector<std::string>& known) const {
     for (const auto& k : known)
       is_known = is_known || k == key;
     if (is_known) continue;
-    throw error_at(source_, entry.first, "unknown key '" + key + "' in " + what_, suggestion_hint(key, known));
+    // A key that begins with a known one ('isovalue' for 'iso') is no typo by edit distance.
+    std::string hint = suggestion_hint(key, known);
+    if (nearest(key, known).empty())
+      if (const std::string meant = stand_in_for(key, known); !meant.empty()) hint = "did you mean '" + meant + "'?";
+    throw error_at(source_, entry.first, "unknown key '" + key + "' in " + what_, hint);
   }
 }
 

@@ -74,10 +74,19 @@ public:
   const YAML::Node node(const std::string& key);
   std::string text(const std::string& key, const std::string& fallback);
   std::string required_text(const std::string& key);
+  // The scalar text of the value of `key` (present): an error at the key when it has no value
+  // (`key:` alone), at the value when it is a list or a mapping.
+  std::string scalar(const std::string& key);
   std::int64_t integer(const std::string& key, std::int64_t fallback, std::int64_t min, std::int64_t max);
   double real(const std::string& key, double fallback, double min, double max);
   bool boolean(const std::string& key, bool fallback);
   std::vector<std::string> text_list(const std::string& key);
+
+  // The error for the required key `key`, missing here: placed at an unknown key that looks like it
+  // ("needs 'iso'; is 'isovalue' (line 7) meant to be it?", with "did you mean 'iso'?") when there is
+  // one, else at the mapping with `hint`. Unknown: not read by any getter and not in `known`.
+  [[noreturn]] void missing(const std::string& key, const std::vector<std::string>& known,
+                            const std::string& hint = {}) const;
 
   // Keys not consumed by any getter are errors: "unknown key 'x' in <what>" with a suggestion from
   // `known` (the keys the getters may read).

@@ -31,7 +31,8 @@ const AttributeSpec& NormaliseOptions::spec() {
                       .type = ParamType::real,
                       .help = "the divisor used by method fixed, in the input's units",
                       .min_value = 0,
-                      .min_open = true},
+                      .min_open = true,
+                      .single_precision = true}, // divides float samples: 1e39 would make every sample 0
                      {.name = "sample_boxes",
                       .type = ParamType::integer,
                       .help = "boxes per axis in the regular grid sampled by method percentile",

@@ -38,6 +38,10 @@ struct ParamSpec {
   // chain description carries it to workers that run elsewhere.
   bool list = false;
   bool recipe_path = false;
+  // A real used as a 32-bit float (an isovalue compared with float samples, a divisor of them): a
+  // value beyond the float range (|value| > 3.4028235e38) is refused by name instead of becoming
+  // infinity, and one that is not 0 but would round to 0 (|value| < 1.4e-45) instead of becoming 0.
+  bool single_precision = false;
 
   // Whether `value` lies in the declared interval (NaN never does).
   bool in_range(double value) const;

@@ -23,8 +23,10 @@ public:
   // Adds a plugin; a second plugin of the same name is an InvalidArgument naming both origins.
   void add(std::shared_ptr<Plugin> plugin);
 
-  // Loads one shared library (dlopen + entry point + descriptor checks). Throws FormatError naming
-  // the file: not loadable, no entry point, wrong interface version, bad descriptor.
+  // Loads one shared library (file checks, dlopen, entry point, descriptor checks). Throws FormatError
+  // naming the file: a FIFO, device or directory, not an ELF shared object of this machine, truncated
+  // (checked before dlopen, see src/library_check.hpp), not loadable, no entry point, wrong interface
+  // version, bad descriptor; IoError when the file cannot be read.
   void load_library(const std::string& path);
 
   // Loads every `geotandem_*.so` in each directory of `search_path` (':'-separated). A library

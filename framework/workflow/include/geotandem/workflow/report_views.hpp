@@ -6,6 +6,7 @@
 #include <cstddef>
 #include <vector>
 
+#include "geotandem/core/cancel.hpp"
 #include "geotandem/mesh/surface.hpp"
 #include "geotandem/store/store.hpp"
 #include "geotandem/volume/geometry.hpp"
@@ -18,11 +19,12 @@ ReportSurvey survey_outline(const volume::Geometry& geometry);
 
 // The kept components of `components` (the `max_bodies` with the most triangles when there are
 // more, in their order in `components`), read from `store` (world coordinates), each decimated to
-// its share of `budget` in proportion to its triangles. Throws what ComponentStore::read throws.
+// its share of `budget` in proportion to its triangles. Throws what ComponentStore::read throws, and
+// Cancelled between bodies once `cancel` (when given) is cancelled.
 std::vector<ReportBody> display_bodies(const store::ComponentStore& store,
                                        const std::vector<ReportComponent>& components, const ReportSurvey& survey,
                                        std::size_t budget = kDisplayTriangleBudget,
-                                       std::size_t max_bodies = kDisplayBodies);
+                                       std::size_t max_bodies = kDisplayBodies, const CancelToken* cancel = nullptr);
 
 // One body: `world` decimated to at most `budget` triangles (points relative to `origin`, z
 // scaled by `z_scale` while clustering so that cells are cubes on screen), and its footprint.

@@ -2,6 +2,7 @@
 // temporary (the fixed NAME.part did, and two exports to one path tore).
 
 #include <gtest/gtest.h>
+#include <sys/stat.h>
 
 #include <filesystem>
 #include <fstream>
@@ -61,6 +62,25 @@ TEST(AtomicFile, AFileDroppedBeforeItsCommitLeavesNothing) {
   EXPECT_THROW(AtomicFile(dir.path() / "missing-dir" / "x"), IoError);
   write_file_atomically(target, "whole");
   EXPECT_EQ(text_of(target), "whole");
+}
+
+// The output gets the mode any new file of the process would: 0666 less the umask (mkstemp's 0600
+// would hide exports from the user's group; a fixed 0644 would ignore a umask of 077).
+TEST(AtomicFile, TheOutputHasTheModeTheUmaskGivesNewFiles) {
+  testing::ScratchDir dir;
+  for (const mode_t mask : {mode_t{022}, mode_t{077}, mode_t{002}}) {
+    const mode_t before = ::umask(mask);
+    const auto target = dir.path() / ("out" + std::to_string(mask));
+    write_file_atomically(target, "x");
+    std::ofstream(dir.path() / "plain") << "x"; // how an ordinary new file comes out
+    ::umask(before);
+    struct stat made = {};
+    struct stat plain = {};
+    ASSERT_EQ(::stat(target.c_str(), &made), 0);
+    ASSERT_EQ(::stat((dir.path() / "plain").c_str(), &plain), 0);
+    EXPECT_EQ(made.st_mode & 0777, plain.st_mode & 0777) << "umask " << std::oct << mask;
+    std::filesystem::remove(dir.path() / "plain");
+  }
 }
 
 } // namespace

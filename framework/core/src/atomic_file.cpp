@@ -6,6 +6,8 @@
 
 #include <cerrno>
 #include <cstring>
+#include <fstream>
+#include <string>
 #include <vector>
 
 #include "geotandem/core/error.hpp"
@@ -29,6 +31,15 @@ void sync_path(const std::filesystem::path& path, int flags, const std::string& 
                   error == ENOSPC ? "the disk is full" : "");
 }
 
+// The process's umask, read without changing it (umask(2) can only set it, which would race with
+// other threads creating files): Linux shows it in /proc/self/status. 022 where that is missing.
+mode_t current_umask() {
+  std::ifstream status("/proc/self/status");
+  for (std::string line; std::getline(status, line);)
+    if (line.rfind("Umask:", 0) == 0) return static_cast<mode_t>(std::stoul(line.substr(6), nullptr, 8));
+  return 022;
+}
+
 } // namespace
 
 AtomicFile::AtomicFile(std::filesystem::path target, std::ios::openmode mode) : target_(std::move(target)) {
@@ -42,7 +53,8 @@ AtomicFile::AtomicFile(std::filesystem::path target, std::ios::openmode mode) : 
   if (fd < 0)
     throw IoError(std::string("cannot create a file in the directory: ") + std::strerror(errno), {dir.string()},
                   errno == ENOSPC ? "the disk is full" : "check that the directory exists and is writable");
-  ::fchmod(fd, 0644); // mkstemp makes it 0600: an output is as readable as an ordinary file
+  // mkstemp makes it 0600: an output gets the mode an ordinary new file would (0666 less the umask).
+  ::fchmod(fd, 0666 & ~current_umask());
   ::close(fd);
   temporary_ = name.data();
   out_.open(temporary_, mode | std::ios::out | std::ios::trunc);

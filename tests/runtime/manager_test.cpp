@@ -395,6 +395,60 @@ TEST(Manager, ATaskHeldForeverByALivePeerIsTakenBackAfterTheBound) {
   run.expect_reference_components(false);
 }
 
+// Without routing-id handover a worker whose connection drops still goes on: it reconnects under
+// its token (its old connection is closed first), and the manager answers it there.
+TEST(Manager, AWorkerReconnectingUnderItsTokenGoesOn) {
+  ManagerRun run;
+  run.options.workers = 0;
+  Manager manager(run.options, *run.store, nullptr, Logger::null(), run.progress, run.cancel);
+  const std::string token = manager.new_token(), endpoint = manager.endpoint();
+  std::thread manager_thread([&] {
+    try {
+      manager.run();
+    } catch (const Cancelled&) {
+    }
+  });
+  zmq::context_t context(1);
+  auto connect = [&] {
+    zmq::socket_t dealer(context, zmq::socket_type::dealer);
+    dealer.set(zmq::sockopt::linger, 0);
+    dealer.set(zmq::sockopt::routing_id, token);
+    use_worker_keys(dealer);
+    dealer.connect(endpoint);
+    return dealer;
+  };
+  auto say = [](zmq::socket_t& dealer, MessageKind kind, const std::string& text = "") {
+    Message m;
+    m.kind = kind;
+    m.text = text;
+    const std::vector<std::byte> bytes = encode(m);
+    (void)dealer.send(zmq::buffer(bytes.data(), bytes.size()), zmq::send_flags::none);
+  };
+  // The first message other than a heartbeat within 10 s.
+  auto next = [](zmq::socket_t& dealer) {
+    for (int i = 0; i < 100; ++i) {
+      zmq::pollitem_t item{dealer.handle(), 0, ZMQ_POLLIN, 0};
+      zmq::poll(&item, 1, std::chrono::milliseconds(100));
+      zmq::message_t frame;
+      while (dealer.recv(frame, zmq::recv_flags::dontwait)) {
+        const Message m = decode(std::span(static_cast<const std::byte*>(frame.data()), frame.size()));
+        if (m.kind != MessageKind::heartbeat) return m.kind;
+      }
+    }
+    return MessageKind::heartbeat;
+  };
+  {
+    zmq::socket_t first = connect();
+    say(first, MessageKind::hello, token);
+    EXPECT_EQ(next(first), MessageKind::setup);
+  } // the connection drops
+  zmq::socket_t second = connect();
+  say(second, MessageKind::ask);
+  EXPECT_EQ(next(second), MessageKind::extract) << "the reconnected worker was not answered";
+  run.cancel.cancel();
+  manager_thread.join();
+}
+
 // The run's keys go beside the store, in STORE.keys: never through a symbolic link planted there
 // (in a shared directory anyone may make one), nor into a directory another user owns or may read.
 // The manager refuses to start, naming the directory, and nothing is written at the link's target.

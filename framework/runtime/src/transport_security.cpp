@@ -223,14 +223,11 @@ std::shared_ptr<ServerSecurity> secure_manager_socket(zmq::context_t& context, z
 }
 
 namespace {
-// The worker's keys from GEOTANDEM_CURVE_KEY_FILE. Every run is authenticated (on loopback too),
-// so a worker without them could only be refused: it says so at once.
+// The worker's keys from GEOTANDEM_CURVE_KEY_FILE: empty when it is not set. Such a worker
+// connects without CURVE and is refused by the manager, which logs it: every run is authenticated.
 std::map<std::string, std::string> worker_keys() {
   const char* file = std::getenv(curve_key_variable);
-  if (!file || !*file)
-    throw IoError(std::string(curve_key_variable) + " is not set: a worker needs the key file its manager wrote", {},
-                  "workers are started by 'geotandem extract --workers N' or 'run-workflow', which set it; one "
-                  "started by hand needs it set to STORE.keys/worker.key of the manager's run");
+  if (!file || !*file) return {};
   std::ifstream in(file);
   std::map<std::string, std::string> keys;
   std::string name, value;
@@ -253,11 +250,13 @@ void check_worker_keys() {
 void secure_worker_socket(zmq::socket_t& dealer) noexcept {
   try {
     auto keys = worker_keys();
+    if (keys.empty()) return;
     dealer.set(zmq::sockopt::curve_serverkey, keys["server"]);
     dealer.set(zmq::sockopt::curve_publickey, keys["public"]);
     dealer.set(zmq::sockopt::curve_secretkey, keys["secret"]);
   } catch (const std::exception&) {
-    // check_worker_keys() reported it before the I/O thread started.
+    // check_worker_keys() reported it before the I/O thread started; without keys the manager
+    // refuses this worker, which then stops when the manager stays silent.
   }
 }
 

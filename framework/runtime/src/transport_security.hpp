@@ -37,13 +37,15 @@ bool is_loopback_endpoint(const std::string& endpoint);
 std::shared_ptr<ServerSecurity> secure_manager_socket(zmq::context_t& context, zmq::socket_t& router,
                                                       const std::string& bind, const std::string& key_dir, Logger& log);
 
-// Throws IoError (naming the file) when GEOTANDEM_CURVE_KEY_FILE is not set, cannot be read or
-// holds no valid keys. The worker calls it before its I/O thread starts.
+// Throws IoError (naming the file) when GEOTANDEM_CURVE_KEY_FILE is set but cannot be read or
+// holds no valid keys. The worker calls it before its I/O thread starts. Without the variable a
+// worker connects without CURVE, and the manager refuses it and logs the refusal.
 void check_worker_keys();
 
 // Call before `dealer.connect(...)`: makes `dealer` a CURVE client with the keys in
 // GEOTANDEM_CURVE_KEY_FILE (the client checks the server's key too: nobody else can pose as the
-// manager). Without valid keys (check_worker_keys said why) it changes nothing.
+// manager). Without the variable, or without valid keys (check_worker_keys said why), it changes
+// nothing.
 void secure_worker_socket(zmq::socket_t& dealer) noexcept;
 
 } // namespace geotandem::runtime::detail

@@ -103,8 +103,16 @@ void add_worker_command(CLI::App& app, Context& context, Runner& run) {
       // Under a billion seconds (31 years): inf means never, and the milliseconds must fit.
       options->manager_timeout = std::chrono::milliseconds(static_cast<std::int64_t>(std::min(*timeout, 1e9) * 1000));
       Logger& log = context.log;
-      return runtime::run_worker(
-          *options, [&log](const std::string& d) { return open_described_volume(d, log); }, log, context.cancel);
+      try {
+        return runtime::run_worker(
+            *options, [&log](const std::string& d) { return open_described_volume(d, log); }, log, context.cancel);
+      } catch (const Cancelled&) {
+        // SIGTERM or SIGINT: its manager stopped it (at the end of a run, one it had given up on,
+        // e.g. frozen for a while), its scheduler cancelled the job, or Ctrl-C reached the whole
+        // process group. A worker told to stop is not an error; the manager reports the run.
+        log.info("worker " + options->token + ": stopped by a signal; the work it finished is kept");
+        return 130;
+      }
     };
   });
 }

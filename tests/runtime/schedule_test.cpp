@@ -3,6 +3,8 @@
 // seed's figure 8. Random event orders are in schedule_properties_test.cpp.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+
 #include "geotandem/runtime/schedule.hpp"
 #include "geotandem/tandem/block_tree.hpp"
 #include "schedule_support.hpp"
@@ -142,6 +144,47 @@ TEST(Schedule, RestrictedAdjacencyOfTheSeedsFigure8) {
     EXPECT_TRUE(left.adjacent(leaf)) << tree.describe(leaf);
     EXPECT_EQ(left.adjacent(leaf), tandem::boxes_share_face(tree.node(1).cells, tree.node(leaf).cells));
   }
+}
+
+// A worker that takes a task and never finishes it holds the run: the others end up waiting for
+// it. The manager takes the task back after its bound by making the worker leave; its leaf is then
+// handed out again and the run completes with every leaf extracted once more, by another worker.
+TEST(Schedule, ATaskNeverFinishedIsHandedOutAgainOnceItsWorkerLeaves) {
+  const BlockTree tree(cells(32, 32, 32), 16);
+  Schedule s(tree);
+  s.join(1);
+  s.join(2);
+  const Decision held = s.next(1);
+  ASSERT_EQ(held.kind, TaskKind::extract);
+  // Worker 2 does everything it can; it is left waiting for worker 1's leaf.
+  std::size_t steps = 0;
+  Decision d;
+  for (d = s.next(2); d.kind != TaskKind::wait && steps < 100; d = s.next(2), ++steps)
+    if (d.kind == TaskKind::send) {
+      ASSERT_TRUE(s.arrived(2, d.transfer));
+    } else if (d.kind != TaskKind::finished) {
+      ASSERT_NE(d.leaf, held.leaf);
+      s.done(2);
+    }
+  ASSERT_EQ(d.kind, TaskKind::wait) << "worker 2 should be left waiting";
+  EXPECT_FALSE(s.complete());
+  EXPECT_EQ(s.unprocessed(), 0u);
+  // Past the bound: worker 1 leaves, its leaf (and any surface sent to it) is unprocessed again and
+  // goes to worker 2.
+  const std::vector<NodeId> redo = s.leave(1);
+  EXPECT_NE(std::find(redo.begin(), redo.end(), held.leaf), redo.end());
+  bool extracted_again = false;
+  for (d = s.next(2); !s.complete() && steps < 200; d = s.next(2), ++steps) {
+    if (d.kind == TaskKind::extract) extracted_again = extracted_again || d.leaf == held.leaf;
+    if (d.kind == TaskKind::send) {
+      ASSERT_TRUE(s.arrived(2, d.transfer));
+    } else if (d.kind != TaskKind::wait) {
+      s.done(2);
+    }
+  }
+  EXPECT_TRUE(extracted_again);
+  EXPECT_TRUE(s.complete());
+  EXPECT_FALSE(s.knows(1)) << "a late result of worker 1 is filtered before the schedule";
 }
 
 } // namespace

@@ -33,18 +33,35 @@ std::map<std::string, std::string> interfaces() {
   return out;
 }
 
+// A port as the user gave it: "*" (any free one) or 1 to 65535. ZeroMQ itself reads a larger number
+// modulo 65536 (99999 listened on 34463), and 0 as any port: both are refused here instead.
+void check_port(const std::string& spec, const std::string& port) {
+  if (port == "*") return;
+  if (port.empty() || port.find_first_not_of("0123456789") != std::string::npos)
+    throw InvalidArgument("bind '" + spec + "': the port '" + port + "' is not a number", {},
+                          "give an interface (eth0), an address (10.0.0.5) or an address and port (10.0.0.5:5555)");
+  if (port.size() > 5 || std::stoul(port) < 1 || std::stoul(port) > 65535)
+    throw InvalidArgument("bind '" + spec + "': the port " + port + " is out of range (ports run from 1 to 65535)", {},
+                          "give a port from 1 to 65535, or leave the port out for a free one");
+}
+
 } // namespace
 
 std::string manager_bind_endpoint(const std::string& spec) {
   if (spec.empty() || spec == "loopback") return "tcp://127.0.0.1:*";
-  if (spec.rfind("tcp://", 0) == 0) return spec;
+  if (spec.rfind("tcp://", 0) == 0) {
+    const auto colon = spec.rfind(':');
+    if (colon < 6)
+      throw InvalidArgument("bind '" + spec + "' has no port", {},
+                            "give tcp://ADDRESS:PORT, or tcp://ADDRESS:* for a free port");
+    check_port(spec, spec.substr(colon + 1));
+    return spec;
+  }
   std::string host = spec, port = "*";
   if (const auto colon = spec.rfind(':'); colon != std::string::npos) {
     host = spec.substr(0, colon);
     port = spec.substr(colon + 1);
-    if (port.empty() || port.find_first_not_of("0123456789") != std::string::npos)
-      throw InvalidArgument("bind '" + spec + "': the port '" + port + "' is not a number", {},
-                            "give an interface (eth0), an address (10.0.0.5) or an address and port (10.0.0.5:5555)");
+    check_port(spec, port);
   }
   if (host == "0.0.0.0" || host == "*")
     throw InvalidArgument("bind '" + spec + "': a wildcard address cannot be handed to the workers", {},

@@ -2,6 +2,7 @@
 // start to end. Decisions come from Schedule; the messages are handled in manager_tasks.cpp.
 #include <unistd.h>
 
+#include <cmath>
 #include <thread>
 
 #include "manager_impl.hpp"
@@ -87,6 +88,7 @@ void Manager::Impl::heartbeats() {
     if (now - p.heard > options.lease) silent.push_back(token);
   for (const std::string& token : silent)
     kill_peer(token, "has been silent for " + std::to_string(options.lease.count() / 1000.0).substr(0, 4) + " s");
+  overdue_tasks();
   if (now - last_beat >= options.heartbeat) {
     Message h;
     h.kind = MessageKind::heartbeat;
@@ -94,6 +96,26 @@ void Manager::Impl::heartbeats() {
       send(token, h);
     last_beat = now;
   }
+}
+
+// A live worker (it heartbeats) that never finishes its task, or never asks for one after its
+// SETUP, would hold the run forever: past the task bound it is treated as dead. Its leaves are
+// re-done under new leases, and what it sends later is ignored (it is told FINISHED).
+void Manager::Impl::overdue_tasks() {
+  const auto now = Clock::now();
+  const Clock::duration bound = task_bound();
+  std::vector<std::pair<std::string, std::string>> overdue;
+  for (const auto& [token, p] : peers) {
+    const bool stuck = p.task ? now - p.task_start > bound : !p.asked && now - p.joined > bound;
+    if (!stuck) continue;
+    const auto seconds = std::llround(std::chrono::duration<double>(bound).count());
+    overdue.emplace_back(token, (p.task ? "has not finished its task within " : "has not asked for a task within ") +
+                                    std::to_string(seconds) +
+                                    " s (the task bound: GEOTANDEM_TASK_TIMEOUT_SECONDS, or 10 times the "
+                                    "longest task so far)");
+  }
+  for (const auto& [token, why] : overdue)
+    kill_peer(token, why);
 }
 
 void Manager::Impl::stop_workers() {

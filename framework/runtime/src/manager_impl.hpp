@@ -39,7 +39,9 @@ struct Manager::Impl {
     std::string token;
     std::uint64_t pid = 0;
     Clock::time_point heard;
-    Lease lease; // of the task in progress
+    Clock::time_point joined;
+    bool asked = false; // it asked for a task (or retired) since SETUP
+    Lease lease;        // of the task in progress
     std::optional<Decision> task;
     Clock::time_point task_start;
     std::uint64_t tasks = 0;
@@ -72,6 +74,7 @@ struct Manager::Impl {
   Clock::time_point start = Clock::now(), last_beat = Clock::now();
   double cpu_at_start = cpu_seconds();
   std::uint64_t progress_done = 0;
+  Clock::duration longest_task{}; // of the tasks finished so far (the task bound grows with it)
 
   Impl(ManagerOptions o, store::ComponentStore& s, Launcher* l, Logger& lg, Progress& p, const CancelToken& c)
       : options(std::move(o)), store(s), launcher(l), log(lg), progress(p), cancel(c),
@@ -106,6 +109,12 @@ struct Manager::Impl {
   }
 
   void kill_peer(const std::string& token, const std::string& why);
+
+  // How long a task (or a worker's SETUP) may take before it is taken back: task_timeout, or 10
+  // times the longest task finished so far when that is longer.
+  Clock::duration task_bound() const { return std::max<Clock::duration>(options.task_timeout, 10 * longest_task); }
+  void task_finished(const Peer& p) { longest_task = std::max(longest_task, Clock::now() - p.task_start); }
+  void overdue_tasks();
 
   // Workers launched that have not said HELLO yet (nor ended).
   std::size_t workers_to_come() const { return allowed.size() - peers.size() - dead.size(); }

@@ -13,7 +13,12 @@ zmq::socket_t make_router(zmq::context_t& context, std::size_t max_message) {
   zmq::socket_t router(context, zmq::socket_type::router);
   router.set(zmq::sockopt::linger, 0);
   router.set(zmq::sockopt::router_mandatory, 1);
-  router.set(zmq::sockopt::router_handover, 1);
+  // No routing-id handover: a second connection under a worker's token never takes its place.
+  // (The token is no secret: it is in the worker's command line. CURVE keeps strangers out; this
+  // keeps a confused or duplicated peer of the run's own from stealing another's messages.) A
+  // worker whose connection drops reconnects under its token a second later (worker_link.cpp),
+  // once this end of the old one is closed; a connection under a token still held is ignored.
+  router.set(zmq::sockopt::router_handover, 0);
   router.set(zmq::sockopt::maxmsgsize, static_cast<std::int64_t>(max_message));
   return router;
 }

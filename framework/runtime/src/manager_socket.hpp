@@ -19,8 +19,8 @@ namespace geotandem::runtime::detail {
 
 class ManagerSocket {
 public:
-  // Binds `bind` ("tcp://127.0.0.1:*" picks a free port). Off loopback the socket is a CURVE
-  // server with this run's keys written under `key_dir` (transport_security.hpp). Throws IoError
+  // Binds `bind` ("tcp://127.0.0.1:*" picks a free port). The socket is a CURVE server with this
+  // run's keys written under `key_dir` (transport_security.hpp), on loopback too. Throws IoError
   // when it cannot bind or write the keys.
   ManagerSocket(const std::string& bind, std::size_t max_message, const std::string& key_dir, Logger& log);
 
@@ -40,7 +40,7 @@ public:
 private:
   zmq::context_t context_{1};
   zmq::socket_t router_;
-  // CURVE and its ZAP handler off loopback. Declared after router_: it stops the socket's monitor
+  // CURVE and its ZAP handler. Declared after router_: it stops the socket's monitor
   // when destroyed, so it must go before the socket does.
   std::shared_ptr<ServerSecurity> security_;
   std::string endpoint_;

@@ -102,6 +102,7 @@ void Manager::Impl::task_done(Peer& p, const Message& m) {
     break;
   default: break;
   }
+  task_finished(p);
   ++p.tasks;
   p.held_triangles = static_cast<std::uint64_t>(std::max<std::int64_t>(m.box[4], 0));
   std::uint64_t held = 0;
@@ -150,7 +151,7 @@ void Manager::Impl::handle(const std::string& token, std::span<const std::byte> 
       departed.insert(token);
       return;
     }
-    Peer p{.id = next_worker++, .token = token, .pid = m.number, .heard = Clock::now()};
+    Peer p{.id = next_worker++, .token = token, .pid = m.number, .heard = Clock::now(), .joined = Clock::now()};
     schedule.join(p.id);
     ++report.workers;
     log.info("worker " + token + " (pid " + std::to_string(p.pid) + ") joined; " + std::to_string(peers.size() + 1) +
@@ -168,12 +169,14 @@ void Manager::Impl::handle(const std::string& token, std::span<const std::byte> 
   switch (m.kind) {
   case MessageKind::heartbeat: return;
   case MessageKind::ask:
+    p.asked = true;
     if (p.task) { // it lost its task (a message dropped on the way): its work is re-done elsewhere
       drop("ASK from worker " + token + " while it has a task (" + task_text(p) + ")");
       return kill_peer(token, "asked again without finishing its task");
     }
     return decide(p);
   case MessageKind::retire:
+    p.asked = true;
     if (p.task) {
       drop("RETIRE from worker " + token + " while it has a task (" + task_text(p) + ")");
       return kill_peer(token, "retired without finishing its task");
@@ -229,6 +232,7 @@ void Manager::Impl::handle(const std::string& token, std::span<const std::byte> 
     report.surface_bytes += bytes;
     report.largest_surface = std::max<std::uint64_t>(report.largest_surface, bytes);
     ++report.send;
+    task_finished(p);
     ++p.tasks;
     p.task.reset();
     if (schedule.arrived(p.id, t))

@@ -39,9 +39,51 @@ KeyPair new_key_pair() {
   return {pub, sec};
 }
 
-// Written with mode 0600 from the start (never readable by others, even for a moment).
-void write_private(const fs::path& path, const std::string& text) {
-  const int fd = ::open(path.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0600);
+// The key directory, made 0700 or checked: never a symbolic link (it is opened with O_NOFOLLOW, so
+// a link planted where it goes, e.g. in a shared /tmp, is refused rather than followed), owned by
+// this user and closed to everyone else. Returns a descriptor of it; the key files are made
+// relative to it, so that nothing is written anywhere else even if the path changes meanwhile.
+int open_key_dir(const fs::path& dir) {
+  const std::string hint = "remove it (or name another output): the manager makes it, mode 0700, for each run's keys";
+  if (::mkdir(dir.c_str(), 0700) != 0 && errno != EEXIST)
+    throw IoError("cannot make the key directory: " + std::string(std::strerror(errno)), {.file = dir.string()},
+                  "the manager needs a writable output directory");
+  const int fd = ::open(dir.c_str(), O_RDONLY | O_DIRECTORY | O_NOFOLLOW | O_CLOEXEC);
+  if (fd < 0) {
+    const int error = errno;
+    struct stat link {};
+    if (error == ELOOP || (::lstat(dir.c_str(), &link) == 0 && S_ISLNK(link.st_mode)))
+      throw IoError("the key directory is a symbolic link: the run's keys are never written through one",
+                    {.file = dir.string()}, hint);
+    throw IoError("cannot open the key directory: " + std::string(std::strerror(error)), {.file = dir.string()},
+                  error == ENOTDIR ? hint : "the manager needs a writable output directory");
+  }
+  struct stat st {};
+  std::string wrong;
+  if (::fstat(fd, &st) != 0)
+    wrong = std::strerror(errno);
+  else if (st.st_uid != ::geteuid())
+    wrong = "it belongs to user id " + std::to_string(st.st_uid) + ", not to this user";
+  else if ((st.st_mode & 077) != 0)
+    wrong = "its mode is " + std::to_string((st.st_mode >> 6) & 7) + std::to_string((st.st_mode >> 3) & 7) +
+            std::to_string(st.st_mode & 7) + " (others may read or change it), not 700";
+  if (!wrong.empty()) {
+    ::close(fd);
+    throw IoError("the key directory cannot be trusted: " + wrong, {.file = dir.string()}, hint);
+  }
+  return fd;
+}
+
+// Made afresh with mode 0600 (never readable by others, even for a moment), inside the checked
+// directory: an old file is removed first and a link in its place is neither followed nor kept.
+void write_private(int dir, const fs::path& path, const std::string& text) {
+  const std::string name = path.filename().string();
+  if (::unlinkat(dir, name.c_str(), 0) != 0 && errno != ENOENT) {
+    const int error = errno;
+    throw IoError("cannot replace the key file: " + std::string(std::strerror(error)), {.file = path.string()},
+                  "the manager needs a writable output directory");
+  }
+  const int fd = ::openat(dir, name.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_NOFOLLOW | O_CLOEXEC, 0600);
   if (fd < 0 || ::fchmod(fd, 0600) != 0 || ::write(fd, text.data(), text.size()) != static_cast<ssize_t>(text.size())) {
     const int error = errno;
     if (fd >= 0) ::close(fd);
@@ -153,30 +195,36 @@ bool is_loopback_endpoint(const std::string& endpoint) {
 std::shared_ptr<ServerSecurity> secure_manager_socket(zmq::context_t& context, zmq::socket_t& router,
                                                       const std::string& bind, const std::string& key_dir,
                                                       Logger& log) {
-  if (is_loopback_endpoint(bind)) return nullptr;
   const KeyPair server = new_key_pair(), worker = new_key_pair();
-  const fs::path dir = fs::path(key_dir);
-  std::error_code ec;
-  fs::create_directories(dir, ec);
-  if (ec || ::chmod(dir.c_str(), 0700) != 0)
-    throw IoError("cannot make the key directory: " + (ec ? ec.message() : std::string(std::strerror(errno))),
-                  {.file = dir.string()}, "the manager needs a writable output directory");
-  write_private(dir / "manager.key", "public " + server.public_key + "\nsecret " + server.secret_key + "\n");
+  const fs::path dir = fs::absolute(fs::path(key_dir));
+  const int dir_fd = open_key_dir(dir);
   const fs::path worker_file = dir / "worker.key";
-  write_private(worker_file, "server " + server.public_key + "\npublic " + worker.public_key + "\nsecret " +
-                                 worker.secret_key + "\n");
+  try {
+    write_private(dir_fd, dir / "manager.key", "public " + server.public_key + "\nsecret " + server.secret_key + "\n");
+    write_private(dir_fd, worker_file,
+                  "server " + server.public_key + "\npublic " + worker.public_key + "\nsecret " + worker.secret_key +
+                      "\n");
+  } catch (...) {
+    ::close(dir_fd);
+    throw;
+  }
+  ::close(dir_fd);
   auto security = std::make_shared<ServerSecurity>(context, router, std::set<std::string>{worker.public_key},
-                                                   fs::absolute(worker_file).string(), log);
+                                                   worker_file.string(), log);
   router.set(zmq::sockopt::zap_domain, "geotandem");
   router.set(zmq::sockopt::curve_server, 1);
   router.set(zmq::sockopt::curve_secretkey, server.secret_key);
-  ::setenv(curve_key_variable, fs::absolute(worker_file).c_str(), 1); // inherited by the workers
-  log.info("listening on " + bind + " (not loopback): CurveZMQ is on, with this run's keys in " + dir.string());
+  ::setenv(curve_key_variable, worker_file.c_str(), 1); // inherited by the workers
+  if (is_loopback_endpoint(bind))
+    log.debug("listening on " + bind + ": CurveZMQ is on, with this run's keys in " + dir.string());
+  else
+    log.info("listening on " + bind + " (not loopback): CurveZMQ is on, with this run's keys in " + dir.string());
   return security;
 }
 
 namespace {
-// The worker's keys from GEOTANDEM_CURVE_KEY_FILE: empty when it is not set.
+// The worker's keys from GEOTANDEM_CURVE_KEY_FILE: empty when it is not set. Such a worker
+// connects without CURVE and is refused by the manager, which logs it: every run is authenticated.
 std::map<std::string, std::string> worker_keys() {
   const char* file = std::getenv(curve_key_variable);
   if (!file || !*file) return {};

@@ -96,6 +96,16 @@ public:
     }
   }
 
+  // The error to report when a cancel ended the worker because its manager went silent (the link
+  // cancels the task in progress); none when a signal stopped it.
+  std::optional<Error> manager_gone() const {
+    if (!link_.gone()) return std::nullopt;
+    const auto ms = link_.manager_timeout().count();
+    const std::string seconds = std::to_string(ms / 1000) + (ms % 1000 ? "." + std::to_string(ms % 1000 / 100) : "");
+    return Error("the manager at " + link_.endpoint() + " has been silent for " + seconds + " s: it is gone",
+                 {.worker = options_.token}, "this worker stops; rerun the extraction to resume");
+  }
+
 private:
   // Runs one task; true when the worker must stop.
   bool handle(const Message& m) {
@@ -373,7 +383,12 @@ int run_worker(const WorkerOptions& options, const VolumeFactory& factory, Logge
     KeepSurfaceStorage& operator=(const KeepSurfaceStorage&) = delete;
   } keep;
   Worker worker(options, factory, log, cancel);
-  return worker.run();
+  try {
+    return worker.run();
+  } catch (const Cancelled&) {
+    if (std::optional<Error> gone = worker.manager_gone()) throw *gone;
+    throw;
+  }
 }
 
 } // namespace geotandem::runtime

@@ -70,6 +70,10 @@ void WorkerLink::io_loop() {
   dealer.set(zmq::sockopt::routing_id, options_.token);
   dealer.set(zmq::sockopt::linger, 1000); // a final message gets a second to leave
   dealer.set(zmq::sockopt::maxmsgsize, static_cast<std::int64_t>(options_.max_message));
+  // After a dropped connection it reconnects under its token a second later (ZeroMQ's default is
+  // 0.1 s): by then the manager has closed its end of the old one. Its ROUTER takes no routing-id
+  // handover, and ignores a connection whose routing id is still held (manager_socket.cpp).
+  dealer.set(zmq::sockopt::reconnect_ivl, 1000);
   secure_worker_socket(dealer); // CURVE when the manager's key file is given
   dealer.connect(options_.endpoint);
   using Clock = std::chrono::steady_clock;

@@ -36,6 +36,10 @@ public:
   // `timeout`. Throws Error when the manager is gone.
   std::optional<Message> receive(std::chrono::milliseconds timeout);
   std::uint64_t bytes_sent() const { return bytes_sent_.load(); }
+  // True once the manager has been silent for the manager timeout (the link then cancelled).
+  bool gone() const { return gone_.load(); }
+  const std::string& endpoint() const { return options_.endpoint; }
+  std::chrono::milliseconds manager_timeout() const { return options_.manager_timeout; }
 
 private:
   void io_loop();

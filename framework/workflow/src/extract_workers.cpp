@@ -108,6 +108,8 @@ ExtractResult extract_with_workers(const volume::Volume& volume, store::Componen
                 " (smaller blocks give more workers something to do)");
   options.bind = runtime::manager_bind_endpoint(settings.bind);
   options.worker_command = settings.worker_command;
+  // The bound after which a task never finished is taken back (manager.hpp).
+  options.task_timeout = seconds_from_env("GEOTANDEM_TASK_TIMEOUT_SECONDS", options.task_timeout);
   if (settings.relay_memory_mb >= 0) options.relay_memory = static_cast<std::uint64_t>(settings.relay_memory_mb) << 20;
 
   ExtractSettings effective = settings;

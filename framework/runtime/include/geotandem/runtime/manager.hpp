@@ -4,7 +4,8 @@
 // surfaces of SEND to the worker that merges them, commits the component entries the workers
 // report to the store's index (it alone writes the index), and watches heartbeats: a worker silent
 // for longer than the lease is dead, its blocks and the surfaces it held are re-done, and a
-// replacement is launched. Results of an old attempt (a late or replayed message) are ignored.
+// replacement is launched; so is one whose task outlasts the task bound (task_timeout). Results
+// of an old attempt (a late or replayed message) are ignored.
 #include <chrono>
 #include <cstdint>
 #include <memory>
@@ -33,6 +34,13 @@ struct ManagerOptions {
   std::vector<std::string> worker_command;
   std::chrono::milliseconds heartbeat{500};
   std::chrono::milliseconds lease{2500}; // silent this long: dead
+  // A task not finished after the larger of this and 10 times the longest task the run has
+  // finished so far is taken back: its worker is treated as dead (its blocks are re-done from the
+  // volume, a replacement starts, whatever it sends later is ignored). So is a worker that has
+  // not asked for a task this long after joining. A worker that heartbeats but never finishes
+  // cannot hold a run forever. GEOTANDEM_TASK_TIMEOUT_SECONDS in `geotandem extract` and
+  // `run-workflow`.
+  std::chrono::milliseconds task_timeout{std::chrono::minutes(30)};
   std::chrono::milliseconds connect_timeout{60000};
   std::size_t max_restarts = 16; // replacement workers launched after deaths, at most
   std::size_t max_message = kDefaultMaxMessage;

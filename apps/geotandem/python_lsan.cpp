@@ -10,8 +10,8 @@
 
 #if defined(__SANITIZE_ADDRESS__)
 extern "C" const char* __lsan_default_suppressions() {
-  return "leak:libpython3\n"                      // the interpreter
-         "leak:cpython-311-x86_64-linux-gnu.so\n" // extension modules (numpy's among them)
-         "leak:libcrypto.so\n";                   // loaded by hashlib when numpy.random is imported
+  return "leak:libpython3\n"    // the interpreter
+         "leak:.cpython-3\n"    // extension modules (numpy's among them), any 3.x
+         "leak:libcrypto.so\n"; // loaded by hashlib when numpy.random is imported
 }
 #endif

@@ -12,6 +12,7 @@ import hashlib
 import inspect
 import mmap
 import os
+import uuid
 from pathlib import Path
 from typing import Any, Dict, Mapping, Optional, Sequence, Tuple, Union
 
@@ -195,12 +196,13 @@ def extract(volume: Any, iso: float, *, out: PathLike, workers: Optional[int] = 
         return _finish(out, result)
     # Worker processes cannot see this process's memory: they read a raw cube file. A memmap of a
     # raw-layout file is read where it is (a link to it and a sidecar beside the store); any other
-    # array is written, block by block, to OUT.input.raw, removed when the run ends.
-    cube = Path(out.rstrip("/") + ".input.raw")
+    # array is written, block by block, to OUT.input.<unique>.raw, removed when the run ends. The
+    # name is this call's own: a second call into the same store, refused by the store's lock only
+    # once its copy is written, must not replace the file the first call's workers read. The
+    # store's identity is `source` (the samples), not the copy's name or time, so a rerun resumes.
+    base = out.rstrip("/")
+    cube = Path(f"{base}.input.{os.getpid()}-{uuid.uuid4().hex[:12]}.raw")
     sidecar = Path(str(cube) + ".json")
-    for stale in (cube, sidecar):
-        if stale.is_symlink() or stale.exists():
-            stale.unlink()
     own = _raw_layout_file(array) if is_memmap else None
     try:
         if own is not None:
@@ -208,7 +210,7 @@ def extract(volume: Any, iso: float, *, out: PathLike, workers: Optional[int] = 
             _core.write_raw_sidecar(str(cube), g)
         else:
             _core.write_raw(array, g, file, offset, str(cube), report, sink)
-        result = _core.extract(None, str(cube), {}, "", 0, "", **common)
+        result = _core.extract(None, str(cube), {}, "", 0, source, **common)
     finally:
         for path in (cube, sidecar):
             if path.is_symlink() or path.exists():
@@ -235,7 +237,11 @@ def _source(array: np.ndarray, is_memmap: bool) -> str:
         own = _raw_layout_file(array)
         if own is not None:
             return os.path.abspath(own)
-        return f"numpy memmap {array.filename} offset {getattr(array, 'offset', 0)} shape {array.shape}"
+        # Part of a file: its name, where the array lies in it, and the file's size and time (the
+        # store then refuses to resume on a file that changed, as for any input file).
+        info = os.stat(array.filename)
+        return (f"numpy memmap {array.filename} offset {getattr(array, 'offset', 0)} shape {array.shape} "
+                f"file size {info.st_size} mtime_ns {info.st_mtime_ns}")
     digest = hashlib.blake2b(memoryview(array).cast("B"), digest_size=16).hexdigest()
     return f"numpy array {array.shape} blake2b {digest}"
 
@@ -262,7 +268,7 @@ def _extract_doc() -> str:
         "",
         "``workers``: local worker processes (the manager/worker runtime). They cannot see this",
         "process's memory: a memmap of a raw float32 file is read from its own file (linked beside",
-        "the store with a sidecar), any other array is first written to ``OUT.input.raw`` (removed",
+        "the store with a sidecar), any other array is first written to ``OUT.input.<unique>.raw`` (removed",
         "afterwards). Default for arrays: 0, in this process; for files: one per core, as on the",
         "command line.",
         "",

@@ -29,10 +29,12 @@ struct Reporting::Shared {
     std::chrono::steady_clock::time_point start;
     std::string state = "running";
     bool changed = true;
+    std::uint64_t id = 0; // stable while flush() drops finished tasks from the vector
   };
   std::mutex mutex;
   std::string log;
   std::vector<Task> tasks; // in order of begin(); shown and dropped by flush()
+  std::uint64_t next_id = 1;
 };
 
 // A Progress that records its task for flush().
@@ -44,8 +46,8 @@ public:
     done_ = 0;
     Shared::Task task;
     task.label = label, task.unit = unit, task.total = total, task.start = std::chrono::steady_clock::now();
+    task.id = id_ = shared_->next_id++;
     shared_->tasks.push_back(task);
-    index_ = shared_->tasks.size() - 1;
   }
   void update(std::uint64_t done) override {
     std::lock_guard lock(shared_->mutex);
@@ -61,9 +63,15 @@ private:
     std::lock_guard lock(shared_->mutex);
     if (auto* t = task()) t->state = state, t->changed = true;
   }
-  Shared::Task* task() { return index_ < shared_->tasks.size() ? &shared_->tasks[index_] : nullptr; }
+  // This recording's task, found by its id: flush() compacts the vector, so an index would point
+  // at another task once an earlier one has ended (a run has few tasks running at once).
+  Shared::Task* task() {
+    for (auto& t : shared_->tasks)
+      if (t.id == id_) return &t;
+    return nullptr;
+  }
   std::shared_ptr<Shared> shared_;
-  std::size_t index_ = static_cast<std::size_t>(-1);
+  std::uint64_t id_ = 0;
 };
 
 // A stream buffer that appends the logger's lines to Shared::log.

@@ -19,6 +19,7 @@
 #include "geotandem/core/error.hpp"
 #include "geotandem/store/store.hpp"
 #include "geotandem/synth/synthetic.hpp"
+#include "geotandem/volume/fingerprint.hpp"
 #include "geotandem/volume/io.hpp"
 #include "geotandem/workflow/extract_step.hpp"
 #include "geotandem/workflow/recipe.hpp"
@@ -160,9 +161,13 @@ py::dict extract_impl(const ExtractCall& c, ReportMode mode, py::object sink) {
           s.worker_command = c.worker_command;
         }
         if (c.fresh) store::ComponentStore::remove(c.out);
-        s.parameters = {{"command", "geotandem.extract (Python)"},
-                        {"cube", c.cube_path.empty() ? c.source : c.cube_path}};
+        s.parameters = {{"command", "geotandem.extract (Python)"}, {"cube", c.source.empty() ? c.cube_path : c.source}};
         if (c.no_data) s.parameters["no_data"] = *c.no_data;
+        // An array handed to workers through a copy: the store knows the samples by the array's own
+        // identity (its digest, or its memmap's file), as a run in this process does, so that a
+        // rerun resumes whatever the copy's name and time, in process or with workers.
+        if (!c.cube_path.empty() && !c.source.empty())
+          s.parameters["input_content"] = volume::input_fingerprint(c.source);
         auto store =
             store::ComponentStore::open_or_create(c.out, cube->geometry(), {"geotandem.extract", s.parameters["cube"]});
         auto progress = reporting.progress();

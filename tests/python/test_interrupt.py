@@ -65,7 +65,8 @@ def interrupt(args, scratch_root):
     assert "finished" not in out, "the run ended before the signal: make it longer"
     assert "KeyboardInterrupt" in out, err
     assert child.returncode == 130
-    assert elapsed < 3.0
+    # About a second on a quiet machine (0.2-1.0 s measured); the bound leaves room for CI's load.
+    assert elapsed < 5.0
     return elapsed
 
 
@@ -124,7 +125,8 @@ def test_reading_a_store_while_a_run_writes_into_it(big_cube, scratch_root):
         try:
             s = geotandem.open_store(out)
         except geotandem.Error:
-            continue  # not created yet
+            time.sleep(0.05)  # not created yet
+            continue
         df = s.components()
         counts.append(len(df))
         for key in df["key"][-3:]:

@@ -24,8 +24,10 @@ std::chrono::milliseconds seconds_from_env(const char* name, std::chrono::millis
   if (!text || !*text) return fallback;
   char* end = nullptr;
   const double v = std::strtod(text, &end);
-  if (!(v > 0) || (end && *end))
-    throw InvalidArgument(std::string(name) + "='" + text + "' is not a positive number of seconds", {},
+  // At most a billion seconds (32 years): larger values, and inf, would overflow the manager's
+  // nanosecond clock and make every task overdue at once.
+  if (!(v > 0) || !(v <= 1e9) || (end && *end))
+    throw InvalidArgument(std::string(name) + "='" + text + "' is not a number of seconds from 0 to 1e9", {},
                           "unset it or give seconds, e.g. 30");
   return std::chrono::milliseconds(static_cast<long long>(v * 1000));
 }

@@ -8,6 +8,19 @@
 namespace py = pybind11;
 
 namespace geotandem::python_step {
+namespace {
+
+// Whether a ModuleNotFoundError is about `module` itself or one of its parent packages ("a.b" for
+// "a.b.c"), not about a module that `module` imports (numpy, scipy, ...).
+bool missing_module_is(const pybind11::error_already_set& e, const std::string& module) {
+  if (!pybind11::hasattr(e.value(), "name")) return true;
+  const pybind11::object name = e.value().attr("name");
+  if (name.is_none()) return true;
+  const auto missing = name.cast<std::string>();
+  return module == missing || module.rfind(missing + ".", 0) == 0;
+}
+
+} // namespace
 
 void ensure_interpreter() {
   static std::once_flag once;
@@ -18,6 +31,9 @@ void ensure_interpreter() {
     PyConfig_InitPythonConfig(&config); // PYTHONPATH, PYTHONHOME and the site packages as python3 has them
     config.install_signal_handlers = 0; // Ctrl-C stays geotandem's (core/interrupt.hpp)
     config.parse_argv = 0;
+    // Unbuffered, as `python3 -u`: the interpreter is never finalised (interpreter.hpp), so a user's
+    // print() in a worker's log would otherwise be lost in a buffer at exit.
+    config.buffered_stdio = 0;
     // The interpreter finds its standard library from the program's location. Left to itself an
     // embedded one searches PATH for "python3", which may be another installation's (pyenv):
     // name the interpreter geotandem was built against.
@@ -74,8 +90,9 @@ PyRef import_function(const std::string& function, const std::string& directory)
     }
     target = py::module_::import(module.c_str());
   } catch (py::error_already_set& e) {
-    // A module not found says so in one line; an error raised by the module's code gets its traceback.
-    if (e.matches(PyExc_ModuleNotFoundError))
+    // The module itself not found says so in one line; anything else (an error raised by its code, or
+    // a module that it imports missing) gets its traceback.
+    if (e.matches(PyExc_ModuleNotFoundError) && missing_module_is(e, module))
       throw InvalidArgument("parameter 'function' is '" + function + "': cannot import module '" + module +
                                 "': " + py::str(e.value()).cast<std::string>(),
                             {}, "put the module in " + where + ", or set the step's 'path' to its directory");

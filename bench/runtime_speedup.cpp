@@ -48,8 +48,8 @@ int bench_main(int argc, char** argv) {
     runtime::ManagerOptions options;
     options.settings.volume = description;
     options.settings.store = (root / ("w" + n)).string();
-    options.settings.block_size = block;
-    options.settings.iso = 0.5f;
+    options.settings.extraction.block_size = block;
+    options.settings.extraction.iso = 0.5f;
     options.settings.run = store.begin_run("{}");
     options.workers = static_cast<std::size_t>(workers);
     options.worker_command = {exe, "-q", "--log-level", "warning", "worker"};

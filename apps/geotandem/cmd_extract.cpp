@@ -1,8 +1,9 @@
 // geotandem extract CUBE --iso T --out STORE: the isosurface of a cube into a component store.
-// Its options are the extract step's declared parameters: the same defaults, ranges and checks as
-// in recipes (workflow::extract_params()).
+// Its options are the extraction's declared options (tandem::extraction_fields()): the same names,
+// defaults, ranges, help and checks as in recipes, made into command-line options here.
 
 #include <algorithm>
+#include <map>
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
@@ -14,6 +15,7 @@
 #include "geotandem/core/error.hpp"
 #include "geotandem/store/store.hpp"
 #include "geotandem/volume/io.hpp"
+#include "geotandem/tandem/extraction_options.hpp"
 #include "geotandem/workflow/extract_step.hpp"
 
 namespace geotandem::app {
@@ -39,23 +41,75 @@ std::string repaired_text(const workflow::ExtractResult& r) {
   return text + ")";
 }
 
-const workflow::ParamSpec& param(const std::string& name) {
-  for (const auto& spec : workflow::extract_params())
-    if (spec.name == name) return spec;
-  throw InvalidArgument("the extract step declares no parameter '" + name + "'");
+// The command line's spelling of an extraction option: --max-error for max_error; a boolean whose
+// default is true is turned off with --no-NAME, one whose default is false turned on with --NAME.
+std::string option_of(const ParamSpec& spec) {
+  std::string name = spec.name;
+  std::replace(name.begin(), name.end(), '_', '-');
+  if (spec.type == ParamType::boolean) return spec.default_value == "true" ? "--no-" + name : "--" + name;
+  return "--" + name;
 }
 
-// The declared default of an extract parameter, as the command line's default text.
-std::string default_of(const std::string& name) {
-  return param(name).default_value.value_or("");
+std::string type_name_of(const ParamSpec& spec) {
+  switch (spec.type) {
+  case ParamType::real: return "NUMBER";
+  case ParamType::integer: return "INT";
+  case ParamType::choice: {
+    std::string words;
+    for (const auto& w : spec.choices)
+      words += (words.empty() ? "" : "|") + w;
+    return words;
+  }
+  case ParamType::boolean:
+  case ParamType::text: break;
+  }
+  return "TEXT";
 }
 
-// The option's text validated by the extract step's declaration; errors name the option.
-workflow::ParamValue value_of(const std::string& name, const std::string& option, const std::string& text) {
+// The extraction's options (tandem::extraction_fields()) as this command's options: one per
+// declared option, with its help, unit and default. Their texts go into `texts` by name.
+void add_extraction_options(CLI::App& cmd, std::map<std::string, std::string>& texts) {
+  for (const auto& field : tandem::extraction_fields()) {
+    const ParamSpec& spec = field.spec;
+    std::string help = spec.help + (spec.unit.empty() ? "" : " (" + spec.unit + ")");
+    std::string& text = texts[spec.name];
+    if (spec.type == ParamType::boolean) {
+      const bool on_by_default = spec.default_value == "true";
+      text = on_by_default ? "true" : "false";
+      cmd.add_flag_function(
+          option_of(spec), [&text, on_by_default](std::int64_t) { text = on_by_default ? "false" : "true"; },
+          (on_by_default ? "off: " : "on: ") + help);
+      continue;
+    }
+    auto* option = cmd.add_option(option_of(spec), text, help)->type_name(type_name_of(spec));
+    if (spec.default_value) {
+      text = *spec.default_value;
+      option->capture_default_str();
+    } else {
+      option->required();
+    }
+  }
+}
+
+// The options' texts checked by their declarations, as one value; errors name the option.
+tandem::ExtractionOptions extraction_options_of(const std::map<std::string, std::string>& texts) {
+  workflow::ParamValues values;
+  for (const auto& field : tandem::extraction_fields()) {
+    const ParamSpec& spec = field.spec;
+    try {
+      values[spec.name] = parse_param(spec, texts.at(spec.name));
+    } catch (const Error& e) {
+      throw InvalidArgument(option_of(spec) + ": " + e.message(), {}, e.hint());
+    }
+  }
   try {
-    return workflow::parse_param(param(name), text);
+    return tandem::options_from_params(values);
   } catch (const Error& e) {
-    throw InvalidArgument(option + ": " + e.message(), {}, e.hint());
+    // The checks across options name their parameter ("parameter 'block_size' ..."): name the option.
+    std::string option;
+    for (const auto& field : tandem::extraction_fields())
+      if (e.message().find("'" + field.spec.name + "'") != std::string::npos) option = option_of(field.spec) + ": ";
+    throw InvalidArgument(option + e.message(), {}, e.hint());
   }
 }
 
@@ -64,9 +118,7 @@ workflow::ParamValue value_of(const std::string& name, const std::string& option
 void add_extract_command(CLI::App& app, Context& context, Runner& run) {
   struct Args {
     std::string cube, out, nan = "error", variable;
-    std::string iso, max_error = default_of("max_error"), isotropy = default_of("isotropy"), axis = default_of("axis"),
-                     block_size = default_of("block_size"), mode = default_of("mode");
-    bool no_extended_time_lag = false;
+    std::map<std::string, std::string> extraction; // by option name, as given or the default
     std::optional<std::size_t> workers;
     std::optional<double> no_data;
     bool fresh = false;
@@ -78,30 +130,9 @@ void add_extract_command(CLI::App& app, Context& context, Runner& run) {
                                     "(marching cubes interleaved with edge-collapse simplification) into a component "
                                     "store. Finished components are written as they are found.");
   cmd->add_option("cube", a->cube, "the cube (any format 'geotandem info' reads)")->required();
-  cmd->add_option("--iso", a->iso, "isovalue: samples >= ISO are inside a body")->required()->type_name("NUMBER");
   cmd->add_option("--out", a->out, "the component store directory (created; resumed if it holds this cube)")
       ->required();
-  cmd->add_option("--max-error", a->max_error,
-                  "E0, in voxels: the simplified surface stays within E0 of the full-resolution one (guaranteed)")
-      ->capture_default_str()
-      ->type_name("NUMBER");
-  cmd->add_option("--isotropy", a->isotropy, "alpha in [0, 1]: weight of triangle shape against fidelity")
-      ->capture_default_str()
-      ->type_name("NUMBER");
-  cmd->add_option("--axis", a->axis, "extraction axis: i (inline), j (crossline) or k (sample)")
-      ->capture_default_str()
-      ->type_name("i|j|k");
-  cmd->add_option("--block-size", a->block_size,
-                  "leaf block edge of the block tree, in cells (at least " + std::to_string(workflow::min_block_size) +
-                      "; 0: the whole cube as one block, in this process). The workers extract and merge the blocks in "
-                      "parallel")
-      ->capture_default_str()
-      ->type_name("INT");
-  cmd->add_option("--mode", a->mode, "tandem-dump, tandem (no early dumping) or brute (extract all, then simplify)")
-      ->capture_default_str()
-      ->type_name("MODE");
-  cmd->add_flag("--no-extended-time-lag", a->no_extended_time_lag,
-                "freeze only vertices on open block faces (for comparison; degrades seams)");
+  add_extraction_options(*cmd, a->extraction);
   cmd->add_option(
          "--nan", a->nan,
          "missing samples (NaN, infinite, or the file's declared no-data value): error, or fill (treated as outside)")
@@ -125,21 +156,8 @@ void add_extract_command(CLI::App& app, Context& context, Runner& run) {
       open.no_data = no_data_option(a->no_data);
       open.variable = a->variable;
       open.segy = a->segy;
-      workflow::ParamValues values;
-      values["iso"] = value_of("iso", "--iso", a->iso);
-      values["max_error"] = value_of("max_error", "--max-error", a->max_error);
-      values["isotropy"] = value_of("isotropy", "--isotropy", a->isotropy);
-      values["axis"] = value_of("axis", "--axis", a->axis);
-      values["block_size"] = value_of("block_size", "--block-size", a->block_size);
-      values["mode"] = value_of("mode", "--mode", a->mode);
-      values["extended_time_lag"] =
-          value_of("extended_time_lag", "--no-extended-time-lag", a->no_extended_time_lag ? "false" : "true");
-      workflow::ExtractSettings s;
-      try {
-        s = workflow::extract_settings(values);
-      } catch (const Error& e) {
-        throw InvalidArgument("--block-size: " + e.message(), {}, e.hint());
-      }
+      const tandem::ExtractionOptions options = extraction_options_of(a->extraction);
+      workflow::ExecutionContext s;
       auto opening = context.progress(); // an irregular SEG-Y survey's pass over its headers
       open.progress = opening.get();
       auto cube = volume::open_volume(a->cube, open);
@@ -148,7 +166,7 @@ void add_extract_command(CLI::App& app, Context& context, Runner& run) {
         context.log.warning(warning);
       // One worker per core unless told otherwise (no more than there are blocks; one block is
       // extracted in this process); --workers 0 extracts in this process.
-      s.workers = a->workers.value_or(workflow::default_worker_count(cube->geometry(), s.block_size));
+      s.workers = a->workers.value_or(workflow::default_worker_count(cube->geometry(), options.block_size));
       if (a->fresh) store::ComponentStore::remove(a->out); // refuses while another process writes it
       // The store (and its writer lock) first: a second run into this store is refused before it
       // touches anything, the input's copy that the first run's workers read included.
@@ -166,19 +184,19 @@ void add_extract_command(CLI::App& app, Context& context, Runner& run) {
             describe_cube_file(a->cube, a->nan, open.no_data, a->variable, a->segy, cube->reopen_hint());
         s.worker_command = worker_command(context);
       }
-      s.parameters = {{"command", "geotandem extract"}, {"cube", a->cube}};
+      s.record = {{"command", "geotandem extract"}, {"cube", a->cube}};
       // How the file is read decides the samples as much as its content: another array of a netCDF
       // file, other SEG-Y header bytes or other missing samples make another extraction.
-      if (open.no_data) s.parameters["no_data"] = *open.no_data;
+      if (open.no_data) s.record["no_data"] = *open.no_data;
       if (!a->variable.empty()) { // as the file names it: "chaos" and "/chaos" are one array
-        s.parameters["variable"] = a->variable;
+        s.record["variable"] = a->variable;
         for (const auto& detail : cube->format_details())
-          if (detail.key == "array") s.parameters["variable"] = detail.value;
+          if (detail.key == "array") s.record["variable"] = detail.value;
       }
       if (!(a->segy == volume::SegyOptions{}))
-        s.parameters["segy"] = {{"inline_byte", a->segy.inline_byte}, {"crossline_byte", a->segy.crossline_byte}};
+        s.record["segy"] = {{"inline_byte", a->segy.inline_byte}, {"crossline_byte", a->segy.crossline_byte}};
       auto progress = context.progress();
-      auto r = workflow::extract_to_store(*cube, store, s, context.log, *progress, context.cancel);
+      auto r = workflow::extract_to_store(*cube, store, options, s, context.log, *progress, context.cancel);
       workflow::remove_input_copy(copy, context.log);
       std::cout << "extracted " << r.components << " components";
       if (r.duplicates) std::cout << " (" << r.duplicates << " already in the store)";
@@ -199,7 +217,7 @@ void add_extract_command(CLI::App& app, Context& context, Runner& run) {
                 << " s; " << r.counters.collapses << " collapses (" << r.counters.rejected_distance
                 << " candidates refused by the E0 distance bound); at most " << r.peak_triangles
                 << " triangles in memory; peak memory " << r.peak_rss_kb / 1024 << " MiB\n";
-      if (s.block_size > 0) {
+      if (options.block_size > 0) {
         const auto& b = r.blocks;
         std::cout << "blocks: " << b["leaves"] << " leaves, " << b["merges"] << " merges (" << b["seam_collapses"]
                   << " seam collapses), " << b["wire_bytes"].get<std::uint64_t>() / 1024 << " KiB shipped; "

@@ -43,7 +43,7 @@ void add_workflow_command(CLI::App& app, Context& context, Runner& run) {
       if (!args->scheduler.empty()) sets.push_back("execution.scheduler=" + args->scheduler);
       if (!args->bind.empty()) sets.push_back("execution.bind=" + args->bind);
       auto recipe = workflow::load_recipe(args->recipe, registry, sets);
-      workflow::RunSettings settings;
+      workflow::WorkflowSettings settings;
       settings.dry_run = args->dry_run;
       settings.fresh = args->fresh;
       settings.progress = [&context] { return context.progress(); };

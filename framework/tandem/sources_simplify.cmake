@@ -14,4 +14,5 @@ set(TANDEM_SIMPLIFY_SOURCES
   src/surface_dump.cpp
   src/working_mesh.cpp
   src/working_surface.cpp
-  src/tandem_driver.cpp)
+  src/tandem_driver.cpp
+  src/extraction_options.cpp)

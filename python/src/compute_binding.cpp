@@ -130,7 +130,8 @@ py::dict extract_impl(const ExtractCall& c, ReportMode mode, py::object sink) {
   Reporting reporting(mode, std::move(sink));
   CancelToken cancel;
   workflow::ExtractResult r;
-  workflow::ExtractSettings s = workflow::extract_settings(extract_values(c.params));
+  const tandem::ExtractionOptions options = tandem::options_from_params(extract_values(c.params));
+  workflow::ExecutionContext s;
   volume::OpenOptions open;
   open.nan_policy = volume::parse_nan_policy(c.nan);
   open.no_data = c.no_data;
@@ -146,7 +147,7 @@ py::dict extract_impl(const ExtractCall& c, ReportMode mode, py::object sink) {
         for (const std::string& warning : volume::open_warnings(*cube))
           reporting.log().warning(warning);
         s.workers = c.workers.value_or(
-            c.cube_path.empty() ? 0 : workflow::default_worker_count(cube->geometry(), s.block_size));
+            c.cube_path.empty() ? 0 : workflow::default_worker_count(cube->geometry(), options.block_size));
         if (s.workers > 0) {
           if (c.cube_path.empty())
             throw InvalidArgument("workers need the cube in a file", {},
@@ -161,17 +162,17 @@ py::dict extract_impl(const ExtractCall& c, ReportMode mode, py::object sink) {
           s.worker_command = c.worker_command;
         }
         if (c.fresh) store::ComponentStore::remove(c.out);
-        s.parameters = {{"command", "geotandem.extract (Python)"}, {"cube", c.source.empty() ? c.cube_path : c.source}};
-        if (c.no_data) s.parameters["no_data"] = *c.no_data;
+        s.record = {{"command", "geotandem.extract (Python)"}, {"cube", c.source.empty() ? c.cube_path : c.source}};
+        if (c.no_data) s.record["no_data"] = *c.no_data;
         // An array handed to workers through a copy: the store knows the samples by the array's own
         // identity (its digest, or its memmap's file), as a run in this process does, so that a
         // rerun resumes whatever the copy's name and time, in process or with workers.
         if (!c.cube_path.empty() && !c.source.empty())
-          s.parameters["input_content"] = volume::input_fingerprint(c.source);
+          s.record["input_content"] = volume::input_fingerprint(c.source);
         auto store =
-            store::ComponentStore::open_or_create(c.out, cube->geometry(), {"geotandem.extract", s.parameters["cube"]});
+            store::ComponentStore::open_or_create(c.out, cube->geometry(), {"geotandem.extract", s.record["cube"]});
         auto progress = reporting.progress();
-        r = workflow::extract_to_store(*cube, store, s, reporting.log(), *progress, cancel);
+        r = workflow::extract_to_store(*cube, store, options, s, reporting.log(), *progress, cancel);
       },
       cancel, reporting);
   py::dict d;
@@ -229,7 +230,7 @@ py::dict run_workflow(const std::string& recipe_path, const std::vector<std::str
 #endif
         registry.discover(plugin_path, reporting.log());
         auto recipe = workflow::load_recipe(recipe_path, registry, overrides);
-        workflow::RunSettings settings;
+        workflow::WorkflowSettings settings;
         settings.dry_run = dry_run;
         settings.fresh = fresh;
         settings.progress = [&reporting] { return reporting.progress(); };

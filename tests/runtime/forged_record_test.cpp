@@ -64,7 +64,7 @@ public:
       const std::optional<Message> m = link.receive(200ms);
       if (!m) continue;
       switch (m->kind) {
-      case MessageKind::setup: options_ = RunSettings::from_json(m->text).tandem_options(); break;
+      case MessageKind::setup: options_ = tandem::loop_options(RunSettings::from_json(m->text).extraction); break;
       case MessageKind::extract: extract(*m), done(link, *m); break;
       case MessageKind::merge: merge(link, *m), done(link, *m); break;
       case MessageKind::send:
@@ -176,8 +176,8 @@ TEST(ForgedRecord, TheWorkerRefusesItNamingItselfAndTheBlocksAndTheRunRedoesThem
   ManagerOptions options;
   options.settings.volume = R"({"kind":"file","path":")" + cube + R"(","nan":"error","variable":""})";
   options.settings.store = dir.file("store");
-  options.settings.block_size = 8;
-  options.settings.iso = 0.5f;
+  options.settings.extraction.block_size = 8;
+  options.settings.extraction.iso = 0.5f;
   options.settings.run = store.begin_run("{}");
   options.worker_command = {test_paths::binary(), "-q", "worker"};
   options.workers = 1;

@@ -41,8 +41,8 @@ struct ManagerRun {
     store = store::ComponentStore::create(dir.file("store"), volume->geometry());
     options.settings.volume = R"({"kind":"file","path":")" + cube + R"(","nan":"error","variable":""})";
     options.settings.store = dir.file("store");
-    options.settings.block_size = 8;
-    options.settings.iso = 0.5f;
+    options.settings.extraction.block_size = 8;
+    options.settings.extraction.iso = 0.5f;
     options.settings.run = store->begin_run("{}");
     options.worker_command = {test_paths::binary(), "-q", "worker"};
   }

@@ -207,7 +207,7 @@ TEST(Manager, SurfacesOverTheSizeCapAreDroppedNotACrash) {
 // leaves, a lone fast worker did just that and finished the run).
 TEST(Manager, WorkersDeadPastTheRestartLimitEndTheRunAtOnceSayingWhy) {
   ManagerRun run("192 176 160");
-  run.options.settings.block_size = 256;
+  run.options.settings.extraction.block_size = 256;
   run.options.workers = 2;
   run.options.max_restarts = 1;
   run.options.lease = std::chrono::milliseconds(1); // each worker is soon found silent, and dropped

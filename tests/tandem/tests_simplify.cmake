@@ -24,3 +24,4 @@ target_include_directories(tandem_block_test PRIVATE ${PROJECT_SOURCE_DIR}/frame
 geotandem_add_test(collapse_distance_test SOURCES collapse_distance_test.cpp
                    DEPS geotandem::tandem geotandem::mesh OpenMeshCore LABELS tandem)
 target_include_directories(collapse_distance_test PRIVATE ${PROJECT_SOURCE_DIR}/framework/tandem/src)
+geotandem_add_test(tandem_extraction_options_test SOURCES extraction_options_test.cpp DEPS geotandem::tandem LABELS tandem)

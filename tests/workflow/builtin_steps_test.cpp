@@ -81,7 +81,7 @@ TEST_F(BuiltinSteps, EveryStepIsInTheOneRegistryWithItsKindAndDeclaredDefaults) 
       }
   }
   // The command line and recipes share these: one statement of each default.
-  const ExtractSettings d;
+  const ExtractionOptions d;
   auto e = values_of(registry.get("extract"), {{"iso", "0.5"}});
   EXPECT_EQ(e.at("block_size").integer, d.block_size);
   EXPECT_DOUBLE_EQ(e.at("max_error").real, tandem::SimplifyOptions{}.max_error);
@@ -113,9 +113,11 @@ TEST_F(BuiltinSteps, ChainOfBuiltinStepsThroughTheRegistryMatchesTheLibraryFunct
   auto oracle = store::ComponentStore::create(dir.file("oracle"), cube->geometry());
   // extract
   auto extract_values = values_of(registry.get("extract"), {{"iso", "0.5"}, {"block_size", "16"}});
-  ExtractResult r = registry.get("extract").extract(*cube, store, extract_values, {{"test", true}}, context);
-  ExtractSettings direct_settings = extract_settings(extract_values);
-  ExtractResult direct = extract_to_store(*cube, oracle, direct_settings, log, progress, cancel);
+  ExecutionContext execution;
+  execution.record = {{"test", true}};
+  ExtractResult r = registry.get("extract").extract(*cube, store, extract_values, execution, context);
+  ExtractResult direct =
+      extract_to_store(*cube, oracle, tandem::options_from_params(extract_values), execution, log, progress, cancel);
   ASSERT_GT(r.components, 3u);
   EXPECT_EQ(r.components, direct.components);
   std::vector<std::uint64_t> keys, oracle_keys;

@@ -134,7 +134,7 @@ TEST_F(Chains, DryRunWritesNothing) {
   geotandem::testing::ScratchDir dir;
   const fs::path out = dir.path() / "out";
   Recipe r = recipe(out.string());
-  RunSettings settings;
+  WorkflowSettings settings;
   settings.dry_run = true;
   std::ostringstream log_text;
   Logger log(log_text, LogLevel::info);

@@ -8,18 +8,8 @@
 namespace geotandem::runtime {
 
 std::string RunSettings::to_json() const {
-  const nlohmann::json j = {{"version", kProtocolVersion},
-                            {"volume", volume},
-                            {"store", store},
-                            {"block_size", block_size},
-                            {"iso", iso},
-                            {"axis", axis},
-                            {"max_error", max_error},
-                            {"isotropy", isotropy},
-                            {"extended_time_lag", extended_time_lag},
-                            {"dump", dump},
-                            {"brute", brute},
-                            {"run", run},
+  const nlohmann::json j = {{"version", kProtocolVersion},   {"volume", volume}, {"store", store},
+                            {"extraction", tandem::to_json(extraction)}, {"run", run},
                             {"chunk_bytes", chunk_bytes}};
   return j.dump();
 }
@@ -32,14 +22,7 @@ RunSettings RunSettings::from_json(const std::string& text) {
     RunSettings s;
     s.volume = j.at("volume").get<std::string>();
     s.store = j.at("store").get<std::string>();
-    s.block_size = j.at("block_size").get<std::int64_t>();
-    s.iso = j.at("iso").get<float>();
-    s.axis = j.at("axis").get<int>();
-    s.max_error = j.at("max_error").get<double>();
-    s.isotropy = j.at("isotropy").get<double>();
-    s.extended_time_lag = j.at("extended_time_lag").get<bool>();
-    s.dump = j.at("dump").get<bool>();
-    s.brute = j.at("brute").get<bool>();
+    s.extraction = tandem::options_from_json(j.at("extraction"));
     s.run = j.at("run").get<std::int64_t>();
     s.chunk_bytes = j.at("chunk_bytes").get<std::uint64_t>();
     if (s.chunk_bytes == 0 || s.chunk_bytes > (std::uint64_t{1} << 28))
@@ -47,18 +30,9 @@ RunSettings RunSettings::from_json(const std::string& text) {
     return s;
   } catch (const nlohmann::json::exception& e) {
     throw ProtocolError(std::string("run settings: ") + e.what());
+  } catch (const InvalidArgument& e) {
+    throw ProtocolError("run settings: " + e.message());
   }
-}
-
-tandem::TandemOptions RunSettings::tandem_options() const {
-  tandem::TandemOptions o;
-  o.iso = iso;
-  o.axis = axis;
-  o.simplify.max_error = max_error;
-  o.simplify.isotropy = isotropy;
-  o.simplify.extended_time_lag = extended_time_lag;
-  o.dump = dump;
-  return o;
 }
 
 } // namespace geotandem::runtime

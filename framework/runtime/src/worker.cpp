@@ -172,7 +172,7 @@ private:
     volume_ = factory_(settings_.volume);
     writer_.emplace(settings_.store, options_.token, volume_->geometry());
     sink_.emplace(*writer_, settings_.run, [this] { send_commit(task_lease_); });
-    options_tandem_ = settings_.tandem_options();
+    options_tandem_ = tandem::loop_options(settings_.extraction);
     options_tandem_.cancel = &cancel_;
     log_.info("worker " + options_.token + ": ready (" + volume_->source() + ")");
   }
@@ -217,7 +217,8 @@ private:
     const auto start = Clock::now();
     const volume::Box cells{{m.box[0], m.box[1], m.box[2]}, {m.box[3], m.box[4], m.box[5]}};
     std::unique_ptr<tandem::WorkingSurface> piece;
-    tandem::extract_block(*volume_, cells, options_tandem_, &*sink_, &piece, settings_.brute);
+    tandem::extract_block(*volume_, cells, options_tandem_, &*sink_, &piece,
+                           settings_.extraction.mode == tandem::ExtractMode::brute);
     absorb(std::move(piece));
     report(m, start);
   }

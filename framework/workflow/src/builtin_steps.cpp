@@ -52,26 +52,11 @@ public:
   ExtractStep()
       : BuiltinStep("extract", StepKind::extract,
                     "the isosurface by the extended tandem algorithm into the component store", extract_params()) {}
-  void check(const ParamValues& values) const override { check_extract_params(values); }
+  void check(const ParamValues& values) const override { tandem::check_params(values); }
   ExtractResult extract(const volume::Volume& input, store::ComponentStore& store, const ParamValues& values,
-                        const nlohmann::json& description, StepContext& context) const override {
-    ExtractSettings settings = extract_settings(values);
-    settings.parameters = description;
-    if (description.contains("workers") && description.contains("chain")) { // manager/worker runtime
-      settings.parameters.erase("worker_command");
-      settings.parameters.erase("input_hint");
-      settings.workers = description.at("workers").get<std::size_t>();
-      nlohmann::json chain = description.at("chain");
-      if (description.contains("input_hint")) chain["input"]["reopen_hint"] = description.at("input_hint");
-      settings.volume_description = nlohmann::json{{"kind", "chain"}, {"chain", std::move(chain)}}.dump();
-      settings.worker_command = description.at("worker_command").get<std::vector<std::string>>();
-      settings.scheduler = description.value("scheduler", "local");
-      settings.resources = description.value("resources", nlohmann::json::object());
-      settings.bind = description.value("bind", "");
-      settings.relay_memory_mb = description.value("relay_memory_mb", std::int64_t{-1});
-      settings.parameters.erase("resources");
-    }
-    return extract_to_store(input, store, settings, context.log, context.progress, context.cancel);
+                        const ExecutionContext& execution, StepContext& context) const override {
+    return extract_to_store(input, store, tandem::options_from_params(values), execution, context.log,
+                            context.progress, context.cancel);
   }
 };
 

@@ -15,93 +15,11 @@
 #include "geotandem/tandem/tandem.hpp"
 #include "geotandem/volume/fingerprint.hpp"
 #include "geotandem/workflow/chain.hpp"
-#include "param_builder.hpp"
 
 namespace geotandem::workflow {
 
-ExtractMode parse_extract_mode(const std::string& text) {
-  if (text == "tandem-dump") return ExtractMode::tandem_dump;
-  if (text == "tandem") return ExtractMode::tandem;
-  if (text == "brute") return ExtractMode::brute;
-  throw InvalidArgument("unknown extraction mode '" + text + "'", {}, "use tandem-dump, tandem or brute");
-}
-
-const char* to_string(ExtractMode mode) {
-  switch (mode) {
-  case ExtractMode::tandem_dump: return "tandem-dump";
-  case ExtractMode::tandem: return "tandem";
-  case ExtractMode::brute: return "brute";
-  }
-  return "?";
-}
-
-int parse_axis(const std::string& text) {
-  if (text == "i" || text == "0") return 0;
-  if (text == "j" || text == "1") return 1;
-  if (text == "k" || text == "2") return 2;
-  throw InvalidArgument("unknown axis '" + text + "'", {}, "use i (inline), j (crossline) or k (sample)");
-}
-
-namespace {
-
-// The isovalue is compared with float samples: a value beyond the float range is refused, not inf.
-ParamSpec single_precision(ParamSpec spec) {
-  spec.single_precision = true;
-  return spec;
-}
-
-std::vector<ParamSpec> make_extract_params() {
-  const ExtractSettings d;
-  return {
-      single_precision(
-          detail::param_spec("iso", ParamType::real, std::nullopt, "isovalue: samples >= iso are inside a body")),
-      detail::param_spec("max_error", ParamType::real, number_text(d.max_error),
-                         "E0, in voxels: the simplified surface stays within E0 of the full-resolution one", 1e-6,
-                         100.0),
-      detail::param_spec("isotropy", ParamType::real, number_text(d.isotropy),
-                         "alpha, weight of triangle shape against surface fidelity", 0.0, 1.0),
-      detail::param_spec("axis", ParamType::choice, std::string(1, "ijk"[d.axis]),
-                         "extraction axis: i (inline), j (crossline) or k (sample)", {}, {}, {"i", "j", "k"}),
-      detail::param_spec("block_size", ParamType::integer, std::to_string(d.block_size),
-                         "leaf block edge in cells for the block tree: 0 (the whole cube as one block) or at least " +
-                             std::to_string(min_block_size),
-                         0.0, 4096.0),
-      detail::param_spec("mode", ParamType::choice, to_string(d.mode),
-                         "tandem-dump (default), tandem (no early dumping), brute (extract, then simplify)", {}, {},
-                         {"tandem-dump", "tandem", "brute"}),
-      detail::param_spec("extended_time_lag", ParamType::boolean, d.extended_time_lag ? "true" : "false",
-                         "delay collapses near open block faces (the seed's section 3.2)"),
-  };
-}
-
-} // namespace
-
 const std::vector<ParamSpec>& extract_params() {
-  static const std::vector<ParamSpec> specs = make_extract_params();
-  return specs;
-}
-
-void check_extract_params(const ParamValues& values) {
-  std::int64_t block = values.at("block_size").integer;
-  if (block != 0 && block < min_block_size)
-    throw InvalidArgument("parameter 'block_size' is " + std::to_string(block) + ", below the smallest block of " +
-                              std::to_string(min_block_size) + " cells",
-                          {},
-                          "use 0 (one block) or at least " + std::to_string(min_block_size) +
-                              "; blocks of 64 to 256 cells are typical");
-}
-
-ExtractSettings extract_settings(const ParamValues& values) {
-  check_extract_params(values);
-  ExtractSettings e;
-  e.iso = static_cast<float>(values.at("iso").real);
-  e.max_error = values.at("max_error").real;
-  e.isotropy = values.at("isotropy").real;
-  e.axis = parse_axis(values.at("axis").text);
-  e.block_size = values.at("block_size").integer;
-  e.mode = parse_extract_mode(values.at("mode").text);
-  e.extended_time_lag = values.at("extended_time_lag").boolean;
-  return e;
+  return tandem::extraction_params();
 }
 
 std::int64_t peak_rss_kb() {
@@ -112,48 +30,36 @@ std::int64_t peak_rss_kb() {
   return 0;
 }
 
-nlohmann::json extract_run_parameters(const volume::Volume& volume, const ExtractSettings& settings) {
-  nlohmann::json parameters = settings.parameters;
-  parameters["iso"] = settings.iso;
-  parameters["max_error"] = settings.max_error;
-  parameters["isotropy"] = settings.isotropy;
-  parameters["axis"] = std::string(1, "ijk"[settings.axis]);
-  parameters["block_size"] = settings.block_size;
-  parameters["mode"] = to_string(settings.mode);
-  parameters["extended_time_lag"] = settings.extended_time_lag;
+nlohmann::json extract_run_parameters(const volume::Volume& volume, const ExtractionOptions& options,
+                                      const ExecutionContext& context) {
+  const nlohmann::json& record = context.record;
+  nlohmann::json parameters = record.is_object() ? record : nlohmann::json::object();
+  const nlohmann::json codec = tandem::to_json(options); // the options as SETUP carries them
+  parameters.update(codec);
   parameters["source"] = volume.source();
   // What decides the components. The store refuses a run of another identity (it would mix
   // two extractions); a rerun of the same one resumes.
-  parameters["identity"] = {
-      {"iso", std::strtod(number_text(settings.iso).c_str(), nullptr)}, // 0.6f recorded as 0.6
-      {"max_error", settings.max_error},
-      {"isotropy", settings.isotropy},
-      {"axis", parameters["axis"]},
-      {"block_size", settings.block_size},
-      {"mode", to_string(settings.mode)},
-      {"extended_time_lag", settings.extended_time_lag},
-      {"input", settings.parameters.contains("input_content") ? settings.parameters["input_content"]
-                                                              : volume::input_fingerprint(volume.source())},
-      {"chain", settings.parameters.is_object() && settings.parameters.contains("chain") ? settings.parameters["chain"]
-                                                                                         : nlohmann::json::object()}};
+  parameters["identity"] = codec;
+  parameters["identity"]["input"] =
+      parameters.contains("input_content") ? record["input_content"] : volume::input_fingerprint(volume.source());
+  parameters["identity"]["chain"] = parameters.contains("chain") ? record["chain"] : nlohmann::json::object();
   // How a command reads its file (a recipe's chain records it): recorded only when given, so that
   // stores made before these keys existed still resume.
   for (const char* key : {"no_data", "variable", "segy"})
-    if (settings.parameters.is_object() && settings.parameters.contains(key))
-      parameters["identity"][key] = settings.parameters[key];
-
+    if (parameters.contains(key)) parameters["identity"][key] = record[key];
   return parameters;
 }
 
-void warn_if_empty(ExtractResult& result, const ExtractSettings& settings, Logger& log) {
+void warn_if_empty(ExtractResult& result, const ExtractionOptions& options, const ExecutionContext& context,
+                   Logger& log) {
   // An empty result is almost always an isovalue outside the data: say so.
   if (result.components == 0 && result.duplicates == 0) {
     // A recipe's chain that ends in an attribute: the input's range says nothing about it.
-    const auto& p = settings.parameters;
+    const auto& p = context.record;
     const bool attribute =
         p.is_object() && p.contains("chain") && ChainDescription::from_json(p["chain"]).reads_attribute();
     const std::string warning =
-        "no component was extracted: is the isovalue " + number_text(settings.iso) +
+        "no component was extracted: is the isovalue " + number_text(options.iso) +
         (attribute ? " inside the attribute's value range? (write the attribute with output.attribute in the recipe "
                      "and see its range with 'geotandem info' on that file)"
                    : " inside the cube's value range? ('geotandem info' on the cube shows it)");
@@ -203,30 +109,22 @@ void require_cells(const volume::Geometry& geometry, const std::string& source) 
 }
 
 ExtractResult extract_to_store(const volume::Volume& volume, store::ComponentStore& store,
-                               const ExtractSettings& settings, Logger& log, Progress& progress,
-                               const CancelToken& cancel) {
+                               const ExtractionOptions& extraction, const ExecutionContext& context, Logger& log,
+                               Progress& progress, const CancelToken& cancel) {
   require_cells(volume.geometry(), {});
   if (!(store.geometry() == volume.geometry()))
     throw InvalidArgument("the store was made for another cube geometry", {store.directory().string()},
                           "extract into a new store directory");
-  if (settings.block_size != 0 && settings.block_size < min_block_size)
-    throw InvalidArgument("block size must be 0 (one block) or at least " + std::to_string(min_block_size) +
-                              " cells, got " + std::to_string(settings.block_size),
-                          {}, "blocks of 64 to 256 cells are typical");
-  if (settings.workers > 0) return extract_with_workers(volume, store, settings, log, progress, cancel);
+  extraction.validate(); // block_size 0 or at least min_block_size, every value in its range
+  if (context.workers > 0)
+    return extract_with_workers(volume, store, extraction, context, log, progress, cancel);
   auto start = std::chrono::steady_clock::now();
-  tandem::TandemOptions options;
-  options.iso = settings.iso;
-  options.axis = settings.axis;
-  options.simplify.max_error = settings.max_error;
-  options.simplify.isotropy = settings.isotropy;
-  options.simplify.extended_time_lag = settings.extended_time_lag;
+  tandem::TandemOptions options = tandem::loop_options(extraction);
   options.simplify.validate();
-  options.dump = settings.mode != ExtractMode::tandem;
   options.cancel = &cancel;
   options.progress = &progress;
 
-  const nlohmann::json parameters = extract_run_parameters(volume, settings);
+  const nlohmann::json parameters = extract_run_parameters(volume, extraction, context);
 
   ExtractResult result;
   result.run = store.begin_run(parameters.dump());
@@ -238,11 +136,11 @@ ExtractResult extract_to_store(const volume::Volume& volume, store::ComponentSto
   // One block (block_size 0), or the block tree: leaves one after the other, brothers merged
   // bottom-up, each partial surface through its wire form as the runtime will ship it.
   const volume::Box cells = tandem::cube_cells(volume.geometry().shape);
-  const bool brute = settings.mode == ExtractMode::brute;
+  const bool brute = extraction.mode == ExtractMode::brute;
   tandem::BlocksStats blocks;
-  if (settings.block_size > 0) {
-    log.info("block tree with leaves of at most " + std::to_string(settings.block_size) + " cells per axis");
-    blocks = tandem::extract_blocks(volume, cells, settings.block_size, options, &sink, nullptr, brute);
+  if (extraction.block_size > 0) {
+    log.info("block tree with leaves of at most " + std::to_string(extraction.block_size) + " cells per axis");
+    blocks = tandem::extract_blocks(volume, cells, extraction.block_size, options, &sink, nullptr, brute);
   } else {
     blocks.tandem = tandem::extract_block(volume, cells, options, &sink, nullptr, brute);
     blocks.leaves = 1;
@@ -270,7 +168,7 @@ ExtractResult extract_to_store(const volume::Volume& volume, store::ComponentSto
   result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   result.peak_rss_kb = peak_rss_kb();
   result.blocks = {
-      {"block_size", settings.block_size},
+      {"block_size", extraction.block_size},
       {"leaves", blocks.leaves},
       {"merges", blocks.merges},
       {"seam_collapses", blocks.seam_collapses},
@@ -295,7 +193,7 @@ ExtractResult extract_to_store(const volume::Volume& volume, store::ComponentSto
                          {"simplify", simplify_s},
                          {"dump", dump_s}}},
                        {"peak_rss_kb", result.peak_rss_kb}};
-  warn_if_empty(result, settings, log);
+  warn_if_empty(result, extraction, context, log);
   store.end_run(result.run, result.statistics.dump());
   return result;
 }

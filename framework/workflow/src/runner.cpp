@@ -77,7 +77,7 @@ private:
   nlohmann::json json_;
 };
 
-std::unique_ptr<Progress> progress_of(const RunSettings& settings) {
+std::unique_ptr<Progress> progress_of(const WorkflowSettings& settings) {
   return settings.progress ? settings.progress() : std::make_unique<NullProgress>();
 }
 
@@ -120,7 +120,7 @@ void hold_in_report_for_tests(const CancelToken& cancel) {
 // registry by kind. Holds what passes between steps: the store, the newest selection, the report.
 class ChainRun {
 public:
-  ChainRun(const Recipe& recipe, const PluginRegistry& plugins, const RunSettings& settings, Logger& log,
+  ChainRun(const Recipe& recipe, const PluginRegistry& plugins, const WorkflowSettings& settings, Logger& log,
            const CancelToken& cancel, const ChainDescription& chain, const ChainVolumes& volumes)
       : recipe_(recipe), plugins_(plugins), settings_(settings), log_(log), cancel_(cancel), chain_(chain),
         volumes_(volumes), out_dir_(recipe.output.directory), store_dir_(out_dir_ / recipe.output.store),
@@ -208,10 +208,11 @@ private:
       report_.steps.push_back({step.name, 0.0, 0, store_->size(), "reused from a previous run with the same inputs"});
     } else {
       state_.set("extract", {{"fingerprint", print_}, {"done", false}});
-      nlohmann::json description = {{"recipe", recipe_.path},
-                                    {"chain", chain_.to_json()},
-                                    {"chain_fingerprint", print_},
-                                    {"input_content", input_content_}};
+      ExecutionContext run;
+      run.record = {{"recipe", recipe_.path},
+                    {"chain", chain_.to_json()},
+                    {"chain_fingerprint", print_},
+                    {"input_content", input_content_}};
       const ExecutionSpec& ex = recipe_.execution;
       // Without `workers`, one per core locally (a cube of one block stays in this process); a
       // cluster scheduler gets the recipe's count.
@@ -226,24 +227,22 @@ private:
         log_.warning("execution.relay_memory is ignored: the extraction runs in this process, so no surface is "
                      "relayed between workers (it applies with execution.workers of 2 or more, or a cluster "
                      "scheduler)");
-      if (with_workers) {
-        description["workers"] = workers; // the extract step hands the chain to that many workers
-        description["worker_command"] = settings_.worker_command;
+      if (with_workers) { // the extract step hands the chain to that many workers
+        run.workers = workers;
+        run.worker_command = settings_.worker_command;
+        run.execution = ex;
+        nlohmann::json chain = chain_.to_json();
         // What opening the input found (an irregular SEG-Y survey's grid): the workers skip that work.
-        if (const std::string hint = volumes_.input->reopen_hint(); !hint.empty()) description["input_hint"] = hint;
-        description["scheduler"] = ex.scheduler;
-        description["bind"] = ex.bind;
-        if (ex.relay_memory_mb >= 0) description["relay_memory_mb"] = ex.relay_memory_mb;
-        description["resources"] = {{"cpus_per_worker", ex.resources.cpus_per_worker},
-                                    {"memory_mb", ex.resources.memory_mb},
-                                    {"walltime_s", ex.resources.walltime_s},
-                                    {"queue", ex.resources.queue},
-                                    {"account", ex.resources.account},
-                                    {"extra_args", ex.resources.extra_args}};
+        if (const std::string hint = volumes_.input->reopen_hint(); !hint.empty()) chain["input"]["reopen_hint"] = hint;
+        run.volume_description = nlohmann::json{{"kind", "chain"}, {"chain", std::move(chain)}}.dump();
+        run.record["workers"] = workers;
+        run.record["scheduler"] = ex.scheduler;
+        run.record["bind"] = ex.bind;
+        if (ex.relay_memory_mb >= 0) run.record["relay_memory_mb"] = ex.relay_memory_mb;
       }
       auto progress = progress_of(settings_);
       StepContext c = context(*progress);
-      ExtractResult r = plugin.extract(*volumes_.result, *store_, step.params, description, c);
+      ExtractResult r = plugin.extract(*volumes_.result, *store_, step.params, run, c);
       state_.set("extract", {{"fingerprint", print_},
                              {"done", true},
                              {"run", r.run},
@@ -350,7 +349,7 @@ private:
 
   const Recipe& recipe_;
   const PluginRegistry& plugins_;
-  const RunSettings& settings_;
+  const WorkflowSettings& settings_;
   Logger& log_;
   const CancelToken& cancel_;
   const ChainDescription& chain_;
@@ -369,7 +368,7 @@ private:
 
 } // namespace
 
-RunOutcome run_workflow(const Recipe& recipe, const PluginRegistry& plugins, const RunSettings& settings, Logger& log,
+RunOutcome run_workflow(const Recipe& recipe, const PluginRegistry& plugins, const WorkflowSettings& settings, Logger& log,
                         const CancelToken& cancel) {
   // The input and the attribute chain: lazy volumes, nothing is computed or written until the
   // extraction reads them.

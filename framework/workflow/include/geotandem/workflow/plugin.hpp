@@ -32,6 +32,7 @@ class ComponentStore;
 namespace geotandem::workflow {
 
 struct ExtractResult;
+struct ExecutionContext;
 struct ReportData;
 
 // The one parameter model (geotandem/core/params.hpp), shared with the built-in attributes; the C
@@ -103,10 +104,10 @@ public:
     return make_attribute(std::vector<std::shared_ptr<const volume::Volume>>{std::move(input)}, values);
   }
 
-  // The extraction step: the isosurface of `input` into `store`; `description` is recorded with
-  // the run in the store.
+  // The extraction step: the isosurface of `input` into `store`; `execution` says where it runs
+  // (in this process or with workers) and what the run records besides the parameters.
   virtual ExtractResult extract(const volume::Volume& input, store::ComponentStore& store, const ParamValues& values,
-                                const nlohmann::json& description, StepContext& context) const;
+                                const ExecutionContext& execution, StepContext& context) const;
 
   // Component steps: read the components of selection `from` (empty: every component) and write a
   // named selection.

@@ -17,7 +17,7 @@
 
 namespace geotandem::workflow {
 
-struct RunSettings {
+struct WorkflowSettings {
   bool dry_run = false; // build and check the whole chain, print the plan, compute nothing
   bool fresh = false;   // discard a previous run's store in the output directory
   std::function<std::unique_ptr<Progress>()> progress; // a new reporter per step; null: none
@@ -39,7 +39,7 @@ struct RunOutcome {
 // Throws InvalidArgument (the output holds another extraction: pass fresh), and what each step
 // throws; components committed before a failure stay in the store and state.json says which steps
 // finished.
-RunOutcome run_workflow(const Recipe& recipe, const PluginRegistry& plugins, const RunSettings& settings, Logger& log,
+RunOutcome run_workflow(const Recipe& recipe, const PluginRegistry& plugins, const WorkflowSettings& settings, Logger& log,
                         const CancelToken& cancel);
 
 } // namespace geotandem::workflow

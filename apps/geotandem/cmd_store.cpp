@@ -1,6 +1,7 @@
 // geotandem store ls|show|export|runs|selections|check STORE: look into a component store without
 // reading its raw data (ls, show, runs), export what a filter selects, verify every record.
 
+#include <functional>
 #include <charconv>
 #include <cstdio>
 #include <iostream>
@@ -235,65 +236,70 @@ void add_export(CLI::App* parent, Context& context, Runner& run) {
   });
 }
 
-void add_runs(CLI::App* parent, Runner& run) {
+// A listing of the store's index (`store runs`, `store selections`): its rows as JSON with --json,
+// else `print_row` for each, or `empty` when there is none.
+void add_listing(CLI::App* parent, Runner& run, const std::string& name, const std::string& help,
+                 const std::string& empty, std::function<nlohmann::json(const store::ComponentStore&)> rows,
+                 std::function<void(const nlohmann::json&)> print_row) {
   auto args = std::make_shared<ListArgs>();
-  auto* cmd = parent->add_subcommand("runs", "List the runs that wrote the store, with their statistics.");
+  auto* cmd = parent->add_subcommand(name, help);
   cmd->add_option("store", args->store, "the store directory")->required();
   cmd->add_flag("--json", args->json, "print JSON");
-  cmd->callback([args, &run] {
-    run = [args] {
-      auto s = store::ComponentStore::open(args->store);
-      nlohmann::json list = nlohmann::json::array();
-      for (const auto& r : s.runs())
-        list.push_back({{"id", r.id},
-                        {"started", r.started},
-                        {"ended", r.ended.empty() ? nlohmann::json(nullptr) : nlohmann::json(r.ended)},
-                        {"components", r.component_count},
-                        {"parameters", json_text_or_string(r.parameters)},
-                        {"statistics", json_text_or_string(r.statistics)}});
+  cmd->callback([args, &run, rows, print_row, empty] {
+    run = [args, rows, print_row, empty] {
+      const nlohmann::json list = rows(store::ComponentStore::open(args->store));
       if (args->json) {
         std::cout << list.dump(2) << "\n";
         return 0;
       }
-      if (list.empty()) std::cout << "no runs recorded\n";
-      for (const auto& r : list) {
+      if (list.empty()) std::cout << empty << "\n";
+      for (const auto& row : list)
+        print_row(row);
+      return 0;
+    };
+  });
+}
+
+void add_runs(CLI::App* parent, Runner& run) {
+  add_listing(
+      parent, run, "runs", "List the runs that wrote the store, with their statistics.", "no runs recorded",
+      [](const store::ComponentStore& s) {
+        nlohmann::json list = nlohmann::json::array();
+        for (const auto& r : s.runs())
+          list.push_back({{"id", r.id},
+                          {"started", r.started},
+                          {"ended", r.ended.empty() ? nlohmann::json(nullptr) : nlohmann::json(r.ended)},
+                          {"components", r.component_count},
+                          {"parameters", json_text_or_string(r.parameters)},
+                          {"statistics", json_text_or_string(r.statistics)}});
+        return list;
+      },
+      [](const nlohmann::json& r) {
         std::cout << "run " << r["id"] << ": started " << r["started"].get<std::string>() << ", "
                   << (r["ended"].is_null() ? std::string("not ended (running, or killed)")
                                            : "ended " + r["ended"].get<std::string>())
                   << ", " << r["components"] << " components\n";
         std::cout << "  parameters: " << r["parameters"].dump() << "\n";
         std::cout << "  statistics: " << r["statistics"].dump() << "\n";
-      }
-      return 0;
-    };
-  });
+      });
 }
 
 void add_selections(CLI::App* parent, Runner& run) {
-  auto args = std::make_shared<ListArgs>();
-  auto* cmd = parent->add_subcommand("selections", "List the named selections (e.g. written by component steps).");
-  cmd->add_option("store", args->store, "the store directory")->required();
-  cmd->add_flag("--json", args->json, "print JSON");
-  cmd->callback([args, &run] {
-    run = [args] {
-      auto s = store::ComponentStore::open(args->store);
-      nlohmann::json list = nlohmann::json::array();
-      for (const auto& sel : s.selections())
-        list.push_back({{"name", sel.name},
-                        {"size", sel.size},
-                        {"created", sel.created},
-                        {"parameters", json_text_or_string(sel.parameters)}});
-      if (args->json) {
-        std::cout << list.dump(2) << "\n";
-        return 0;
-      }
-      if (list.empty()) std::cout << "no selections\n";
-      for (const auto& sel : list)
+  add_listing(
+      parent, run, "selections", "List the named selections (e.g. written by component steps).", "no selections",
+      [](const store::ComponentStore& s) {
+        nlohmann::json list = nlohmann::json::array();
+        for (const auto& sel : s.selections())
+          list.push_back({{"name", sel.name},
+                          {"size", sel.size},
+                          {"created", sel.created},
+                          {"parameters", json_text_or_string(sel.parameters)}});
+        return list;
+      },
+      [](const nlohmann::json& sel) {
         std::cout << sel["name"].get<std::string>() << ": " << sel["size"] << " components, created "
                   << sel["created"].get<std::string>() << ", " << sel["parameters"].dump() << "\n";
-      return 0;
-    };
-  });
+      });
 }
 
 void add_check(CLI::App* parent, Context& context, Runner& run) {

@@ -17,7 +17,7 @@ nlohmann::json finite_or_null(double value) {
   return std::isfinite(value) ? nlohmann::json(value) : nlohmann::json(nullptr);
 }
 
-nlohmann::json geometry_json(const volume::Geometry& g) {
+nlohmann::json truth_geometry_json(const volume::Geometry& g) {
   nlohmann::json j = volume::geometry_fields_json(g);
   j["shape"] = {g.shape[0], g.shape[1], g.shape[2]};
   j["axes"] = {"inline", "crossline", "sample"};
@@ -80,7 +80,7 @@ nlohmann::json header_json(const GroundTruth& t) {
   j["version"] = 1;
   j["kind"] = to_string(t.kind);
   j["seed"] = t.seed;
-  j["geometry"] = geometry_json(t.geometry);
+  j["geometry"] = truth_geometry_json(t.geometry);
   j["world_volume_unit"] = t.world_volume_unit;
   j["body_frame_unit_m"] = t.body_frame_unit_m;
   j["voxel_volume_world"] = t.voxel_volume_world;

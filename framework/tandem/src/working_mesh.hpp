@@ -51,7 +51,7 @@ struct VertexRecord {
   // Volume terms of the current triangles around v (coordinates relative to the surface's origin):
   // for each triangle (v, p, q), the cross product p x q and the difference q - p of the two
   // corners following v. With them the volume plane of a collapse costs O(1)
-  // (WorkingSurface::Engine::volume_plane). The triangles' determinants and normals follow from
+  // (EdgeCost::volume_plane, edge_cost.cpp). The triangles' determinants and normals follow from
   // them and v's own position: det(v, p, q) = v.(p x q) and (p - v) x (q - v) = p x q - v x (q - p),
   // so they are not kept either (40 bytes a vertex with W_v).
   Vec3 cross_sum{0.0, 0.0, 0.0};
@@ -78,7 +78,7 @@ struct VertexRecord {
 static_assert(sizeof(VertexRecord) == 216, "a vertex record's size is counted in docs/algorithm.md (Memory)");
 
 // What an edge in Q keeps beside its key: nothing else reads it. It lives in the engine's pool
-// (WorkingSurface::Engine::pending_), not in the edge record: Q is empty between simplifications,
+// (EdgeQueues::pending_, edge_queues.hpp), not in the edge record: Q is empty between simplifications,
 // so the surface at rest does not pay 24 bytes an edge for it (36 a triangle).
 struct Pending {
   Vec3 target{}; // the candidate c

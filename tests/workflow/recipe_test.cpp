@@ -108,9 +108,40 @@ TEST_F(Recipes, UnknownTopLevelAndSectionKeys) {
   EXPECT_NE(s.find("recipe.yaml:21:3: unknown key 'worker' in execution"), std::string::npos) << s;
 }
 
+// The input, output and execution sections are validated from their declarations as steps are:
+// a misspelled key, at any depth, gets the nearest declared one with its line and column.
+TEST_F(Recipes, MisspelledSectionKeysGetTheDeclaredNameWithLineAndColumn) {
+  struct Case {
+    std::string from, to, where, key, meant;
+  };
+  const std::vector<Case> cases = {
+      {"  synthetic: {kind: seismic, shape: [64, 48, 80], seed: 3}",
+       "  synthetic: {kind: seismic, shape: [64, 48, 80], seed: 3}\n  nann: fill", "recipe.yaml:4:3:", "nann", "nan"},
+      {"seed: 3}", "sed: 3}", "recipe.yaml:3:51:", "sed", "seed"},
+      {"  directory: out", "  directroy: out", "recipe.yaml:16:3:", "directroy", "directory"},
+      {"  directory: out", "  directory: out\n  stor: s", "recipe.yaml:17:3:", "stor", "store"},
+      {"  scheduler: slurm", "  schedulr: slurm", "recipe.yaml:20:3:", "schedulr", "scheduler"},
+      {"queue: normal}", "queu: normal}", "recipe.yaml:22:49:", "queu", "queue"},
+      {"  workers: 4", "  workers: 4\n  relay_memroy: 1G", "recipe.yaml:22:3:", "relay_memroy", "relay_memory"},
+  };
+  for (const auto& c : cases) {
+    const std::string e = error_of(replaced(c.from, c.to));
+    EXPECT_NE(e.find(c.where + " unknown key '" + c.key + "'"), std::string::npos) << e;
+    EXPECT_NE(e.find("did you mean '" + c.meant + "'?"), std::string::npos) << e;
+  }
+  // A value checked by its declaration names the section, the key, and what it accepts.
+  const std::string scheduler = error_of(replaced("  scheduler: slurm", "  scheduler: slurmm"));
+  EXPECT_NE(scheduler.find("recipe.yaml:20:14: execution: parameter 'scheduler' is 'slurmm'"), std::string::npos)
+      << scheduler;
+  EXPECT_NE(scheduler.find("did you mean 'slurm'?"), std::string::npos) << scheduler;
+  const std::string nan = error_of(replaced("seed: 3}", "seed: 3}\n  nan: drop"));
+  EXPECT_NE(nan.find("recipe.yaml:4:8: input: parameter 'nan' is 'drop'"), std::string::npos) << nan;
+}
+
 TEST_F(Recipes, WrongTypesAndRanges) {
   std::string w = error_of(replaced("  workers: 4", "  workers: many"));
-  EXPECT_NE(w.find("recipe.yaml:21:12: 'workers' is 'many', not an integer"), std::string::npos) << w;
+  EXPECT_NE(w.find("recipe.yaml:21:12: execution: parameter 'workers' is 'many', not an integer"), std::string::npos)
+      << w;
   std::string r = error_of(replaced("    mode: tandem", "    mode: tandem\n    isotropy: 1.5"));
   EXPECT_NE(r.find("recipe.yaml:11:15:"), std::string::npos) << r;
   EXPECT_NE(r.find("out of range"), std::string::npos) << r;
@@ -207,7 +238,7 @@ TEST_F(Recipes, AnErrorInAnOverriddenValueNamesTheSetNotALineOfTheFile) {
   EXPECT_EQ(twice.rfind("--set execution.workers=-1: ", 0), 0u) << twice;
   // An error in the file keeps its line and column with overrides elsewhere.
   std::string in_file = error_of(replaced("workers: 4", "workers: 0"), {"steps.extract.iso=0.7"});
-  EXPECT_EQ(in_file.rfind("dir/recipe.yaml:21:12: 'workers' is 0", 0), 0u) << in_file;
+  EXPECT_EQ(in_file.rfind("dir/recipe.yaml:21:12: execution: parameter 'workers' is 0", 0), 0u) << in_file;
   // A path through a value is refused as such (it used to fail inside YAML as "not valid YAML").
   std::string through = error_of(good, {"input.synthetic.kind.x=1"});
   EXPECT_EQ(through.rfind("--set input.synthetic.kind.x=1: 'kind' holds a value ('seismic'), not keys", 0), 0u)

@@ -28,38 +28,38 @@ using detail::RecipeSource;
 
 constexpr std::int64_t big = std::int64_t(1) << 40;
 
+// The input section, read through its declaration (recipe_schema.cpp); what the declaration cannot
+// say alone (file or synthetic, a shape of three sizes that fits this machine) is checked here.
 void parse_input(MapReader& m, InputSpec& in) {
   in.where = m.source().where_of(m.map());
   bool has_file = m.has("file"), has_synth = m.has("synthetic");
   if (has_file == has_synth)
     throw error_at(m.source(), m.map(), "input needs exactly one of 'file' or 'synthetic'",
                    "file: path/to/cube.segy, or synthetic: {kind: seismic, shape: [160, 160, 128]}");
-  in.nan = m.text("nan", "error");
-  if (in.nan != "error" && in.nan != "fill")
-    throw error_at(m.source(), m.node("nan"), "'nan' is '" + in.nan + "'", "use 'error' or 'fill'");
+  const RecipeSection& section = recipe_section("input");
+  const ParamValues v = detail::read_section(m, section);
+  in.nan = v.at("nan").text;
   if (m.has("no_data") && has_synth)
     throw error_at(m.source(), m.node("no_data"), "'no_data' applies to a file input",
                    "a synthetic cube has no missing samples");
-  if (m.has("no_data")) {
-    const double largest = std::numeric_limits<float>::max();
-    in.no_data = m.real("no_data", 0.0, -largest, largest); // a float sample's value
-  }
-  in.variable = m.text("variable", "");
+  if (v.count("no_data")) in.no_data = v.at("no_data").real; // a float sample's value
+  if (v.count("variable")) in.variable = v.at("variable").text;
   if (m.has("segy")) {
-    MapReader s(m.source(), m.node("segy"), "input.segy");
-    in.segy_inline_byte = static_cast<int>(s.integer("inline_byte", 189, 1, 240));
-    in.segy_crossline_byte = static_cast<int>(s.integer("crossline_byte", 193, 1, 240));
-    s.finish({"inline_byte", "crossline_byte"});
+    const RecipeSection& segy = recipe_section("input.segy");
+    MapReader s(m.source(), m.node("segy"), segy.path);
+    const ParamValues b = detail::read_section(s, segy);
+    in.segy_inline_byte = static_cast<int>(b.at("inline_byte").integer);
+    in.segy_crossline_byte = static_cast<int>(b.at("crossline_byte").integer);
+    s.finish(segy.key_names());
   }
   if (has_file) {
     in.file = m.required_text("file");
   } else {
     in.synthetic = true;
-    MapReader s(m.source(), m.node("synthetic"), "input.synthetic");
-    in.synthetic_kind = s.text("kind", "seismic");
-    if (in.synthetic_kind != "seismic" && in.synthetic_kind != "analytic")
-      throw error_at(m.source(), s.node("kind"), "synthetic kind '" + in.synthetic_kind + "' is unknown",
-                     suggestion_hint(in.synthetic_kind, {"seismic", "analytic"}));
+    const RecipeSection& synthetic = recipe_section("input.synthetic");
+    MapReader s(m.source(), m.node("synthetic"), synthetic.path);
+    const ParamValues p = detail::read_section(s, synthetic);
+    in.synthetic_kind = p.at("kind").text;
     if (s.has("shape")) {
       YAML::Node shape = s.node("shape");
       if (!shape.IsSequence() || shape.size() != 3)
@@ -82,11 +82,11 @@ void parse_input(MapReader& m, InputSpec& in) {
         throw error_at(m.source(), shape, e.message(), e.hint());
       }
     }
-    in.seed = static_cast<std::uint64_t>(s.integer("seed", 1, 0, big));
-    in.snr = s.real("snr", 4.0, 1e-3, 1e6);
-    s.finish({"kind", "shape", "seed", "snr"});
+    in.seed = static_cast<std::uint64_t>(p.at("seed").integer);
+    in.snr = p.at("snr").real;
+    s.finish(synthetic.key_names());
   }
-  m.finish({"file", "synthetic", "nan", "no_data", "variable", "segy"});
+  m.finish(section.key_names());
 }
 
 // A list parameter's text ("[1, 1, 8]") from a YAML list of scalars (ParamSpec::list).
@@ -252,9 +252,11 @@ void parse_output(MapReader& m, Recipe& r, const std::string& recipe_stem, const
   for (const auto& step : r.steps)
     if (step.kind == StepKind::component && step.params.count("selection"))
       selections.push_back(step.params.at("selection").text);
-  out.directory = m.text("directory", recipe_stem + "-out");
-  out.store = m.text("store", "store");
-  out.attribute_file = m.text("attribute", "");
+  const RecipeSection& section = recipe_section("output");
+  const ParamValues v = detail::read_section(m, section);
+  out.directory = v.count("directory") ? v.at("directory").text : recipe_stem + "-out";
+  out.store = v.at("store").text;
+  out.attribute_file = v.count("attribute") ? v.at("attribute").text : "";
   if (!out.attribute_file.empty()) {
     try {
       volume::check_output_format(out.attribute_file);
@@ -323,7 +325,7 @@ void parse_output(MapReader& m, Recipe& r, const std::string& recipe_stem, const
   out.report = report.params.at("path").text;
   r.finish.push_back(std::move(report));
   detail::check_output_paths(m, r, export_nodes);
-  m.finish({"directory", "store", "report", "attribute", "exports"});
+  m.finish(section.key_names());
 }
 
 nlohmann::json to_json(const Recipe& r) {

@@ -7,7 +7,6 @@
 
 #include "geotandem/core/error.hpp"
 #include "geotandem/runtime/bind_address.hpp"
-#include "geotandem/workflow/suggest.hpp"
 
 namespace geotandem::workflow::detail {
 namespace {
@@ -38,39 +37,34 @@ std::int64_t parse_memory(const RecipeSource& source, const YAML::Node& node, co
 } // namespace
 
 void parse_execution(MapReader& m, ExecutionSpec& ex) {
-  ex.scheduler = m.text("scheduler", "local");
-  if (ex.scheduler != "local" && ex.scheduler != "slurm" && ex.scheduler != "lsf")
-    throw error_at(m.source(), m.node("scheduler"), "unknown scheduler '" + ex.scheduler + "'",
-                   suggestion_hint(ex.scheduler, {"local", "slurm", "lsf"}));
-  ex.workers_given = m.has("workers");
-  ex.workers = static_cast<int>(m.integer("workers", 1, 1, 4096));
+  const RecipeSection& section = recipe_section("execution");
+  const ParamValues v = read_section(m, section);
+  ex.scheduler = v.at("scheduler").text; // one of the scheduler backends' names (schedulers::scheduler_backends)
+  ex.workers_given = v.count("workers") > 0;
+  if (ex.workers_given) ex.workers = static_cast<int>(v.at("workers").integer);
   if (m.has("resources")) {
-    MapReader r(m.source(), m.node("resources"), "execution.resources");
-    ex.resources.cpus_per_worker = static_cast<int>(r.integer("cpus_per_worker", 1, 1, 1024));
-    if (r.has("memory")) {
-      YAML::Node n = r.node("memory");
-      ex.resources.memory_mb = parse_memory(m.source(), n, detail::scalar_of(m.source(), n, "memory"));
-    }
-    if (r.has("walltime")) {
-      YAML::Node n = r.node("walltime");
-      ex.resources.walltime_s = parse_walltime(m.source(), n, detail::scalar_of(m.source(), n, "walltime"));
-    }
-    ex.resources.queue = r.text("queue", "");
-    ex.resources.account = r.text("account", "");
+    const RecipeSection& declared = recipe_section("execution.resources");
+    MapReader r(m.source(), m.node("resources"), declared.path);
+    const ParamValues rv = read_section(r, declared);
+    ex.resources.cpus_per_worker = static_cast<int>(rv.at("cpus_per_worker").integer);
+    if (rv.count("memory"))
+      ex.resources.memory_mb = parse_memory(m.source(), r.node("memory"), rv.at("memory").text);
+    if (rv.count("walltime"))
+      ex.resources.walltime_s = parse_walltime(m.source(), r.node("walltime"), rv.at("walltime").text);
+    if (rv.count("queue")) ex.resources.queue = rv.at("queue").text;
+    if (rv.count("account")) ex.resources.account = rv.at("account").text;
     ex.resources.extra_args = r.text_list("extra_args");
-    r.finish({"cpus_per_worker", "memory", "walltime", "queue", "account", "extra_args"});
+    r.finish(declared.key_names());
   }
-  if (m.has("relay_memory")) {
-    YAML::Node n = m.node("relay_memory");
-    ex.relay_memory_mb = parse_memory(m.source(), n, detail::scalar_of(m.source(), n, "relay_memory"), true);
-  }
-  ex.bind = m.text("bind", "");
+  if (v.count("relay_memory"))
+    ex.relay_memory_mb = parse_memory(m.source(), m.node("relay_memory"), v.at("relay_memory").text, true);
+  if (v.count("bind")) ex.bind = v.at("bind").text;
   try {
     (void)runtime::manager_bind_endpoint(ex.bind); // an unknown interface is an error at validation
   } catch (const InvalidArgument& e) {
     throw error_at(m.source(), m.node("bind"), e.message(), e.hint());
   }
-  m.finish({"scheduler", "workers", "resources", "bind", "relay_memory"});
+  m.finish(section.key_names());
 }
 
 } // namespace geotandem::workflow::detail

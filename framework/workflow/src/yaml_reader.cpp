@@ -320,4 +320,23 @@ void MapReader::finish(const std::vector<std::string>& known) const {
   }
 }
 
+ParamValues read_section(MapReader& m, const RecipeSection& section) {
+  ParamValues values;
+  for (const ParamSpec& spec : section.keys) {
+    if (spec.list) continue;
+    if (!m.has(spec.name)) {
+      if (spec.default_value) values[spec.name] = parse_param(spec, *spec.default_value);
+      continue;
+    }
+    const YAML::Node at = m.node(spec.name);
+    const std::string text = m.scalar(spec.name);
+    try {
+      values[spec.name] = parse_param(spec, text, section.path);
+    } catch (const Error& e) {
+      throw error_at(m.source(), at, e.message(), e.hint());
+    }
+  }
+  return values;
+}
+
 } // namespace geotandem::workflow::detail

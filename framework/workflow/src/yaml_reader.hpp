@@ -10,6 +10,7 @@
 
 #include "geotandem/core/error.hpp"
 #include "geotandem/workflow/recipe.hpp"
+#include "geotandem/workflow/recipe_schema.hpp"
 
 namespace geotandem::workflow::detail {
 
@@ -101,5 +102,12 @@ private:
   std::string what_;
   std::set<std::string> used_;
 };
+
+// The keys `section` declares, read from `m`: each one given, checked by its declaration (an error
+// at its value's line and column), else its default; a key left out without a default is absent
+// from the result. List keys (ParamSpec::list) are left to the caller, which reads them from `m`.
+// Does not call finish(): the caller reads the nested sections first, then
+// m.finish(section.key_names()).
+ParamValues read_section(MapReader& m, const RecipeSection& section);
 
 } // namespace geotandem::workflow::detail

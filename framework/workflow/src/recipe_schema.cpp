@@ -1,0 +1,256 @@
+// The recipe's sections declared (recipe_schema.hpp), and the tables of docs/recipe-schema.md
+// generated from them and from the steps' declarations.
+#include "geotandem/workflow/recipe_schema.hpp"
+
+#include <limits>
+#include <sstream>
+#include <stdexcept>
+
+#include "geotandem/core/error.hpp"
+#include "geotandem/schedulers/make_scheduler.hpp"
+#include "geotandem/synth/options.hpp"
+#include "geotandem/volume/io.hpp"
+#include "geotandem/workflow/recipe.hpp"
+
+namespace geotandem::workflow {
+namespace {
+
+ParamSpec key(std::string name, ParamType type, std::optional<std::string> default_value, std::string help,
+              std::optional<double> lo = {}, std::optional<double> hi = {}, std::vector<std::string> choices = {}) {
+  ParamSpec s;
+  s.name = std::move(name);
+  s.type = type;
+  s.default_value = std::move(default_value);
+  s.help = std::move(help);
+  s.min_value = lo;
+  s.max_value = hi;
+  s.choices = std::move(choices);
+  return s;
+}
+
+ParamSpec list_key(std::string name, std::optional<std::string> default_value, std::string help) {
+  ParamSpec s = key(std::move(name), ParamType::text, std::move(default_value), std::move(help));
+  s.list = true;
+  return s;
+}
+
+// The defaults are the members' initialisers of the specs recipe.hpp fills (and of the libraries'
+// option structs they take theirs from): read here, never written again.
+std::vector<RecipeSection> make_sections() {
+  const InputSpec in;
+  const OutputSpec out;
+  const ExecutionSpec ex;
+  const ResourceSpec res;
+  const volume::SegyOptions segy;
+  std::vector<RecipeSection> s;
+
+  RecipeSection input{"input", {}, {}, {"segy", "synthetic"}};
+  input.keys = {
+      key("file", ParamType::text, std::nullopt,
+          "the cube: SEG-Y, netCDF-4, Zarr, HDF5, GeoTIFF/ENVI, or raw float32 with its JSON sidecar. The format is "
+          "found from the file itself. A relative path is relative to the recipe's directory. Exactly one of `file` "
+          "or `synthetic`"),
+      key("no_data", ParamType::real, std::nullopt,
+          "samples of this value are missing too, as NaN samples are (`nan` decides): the null of a SEG-Y or raw "
+          "cube, which cannot declare one (-999.25 is common). A netCDF, Zarr, GeoTIFF or ENVI file's own no-data "
+          "value is honoured without it. A file input only",
+          -static_cast<double>(std::numeric_limits<float>::max()),
+          static_cast<double>(std::numeric_limits<float>::max())),
+      key("variable", ParamType::text, std::nullopt,
+          "the array to read from a netCDF, Zarr or HDF5 file holding several cubes (a name such as `chaos` or a "
+          "full name such as `/group/chaos`); without it such a file is refused with the list of its arrays"),
+      key("nan", ParamType::choice, in.nan,
+          "missing samples (NaN, infinite, or equal to the no-data value the file declares: docs/formats-gdal.md): "
+          "stop with an error naming the file, the box and the first bad sample, or fill them. Filled, they are "
+          "never inside a body: read directly by `extract`, they are the lowest float; under attributes, the "
+          "attributes see them as dead samples (0, as the dead traces that pad an irregular survey) and the "
+          "attribute is the lowest float wherever the input is missing",
+          {}, {}, {"error", "fill"}),
+  };
+  input.keys[1].single_precision = true;
+  input.absent = {{"file", "—"}, {"no_data", "—"}, {"variable", "the only 3-D array"}};
+  s.push_back(input);
+
+  RecipeSection segy_section{"input.segy", {}, {}, {}};
+  segy_section.keys = {
+      key("inline_byte", ParamType::integer, std::to_string(segy.inline_byte),
+          "SEG-Y only: the trace header byte (1-based) holding the inline number; 9, 5 and 17 are common "
+          "(docs/formats-segy-raw.md). `geotandem info` names the positions that work when these do not",
+          1, 240),
+      key("crossline_byte", ParamType::integer, std::to_string(segy.crossline_byte),
+          "SEG-Y only: the trace header byte (1-based) holding the crossline number; 21 and 13 are common", 1, 240),
+  };
+  s.push_back(segy_section);
+
+  RecipeSection synthetic{"input.synthetic", {}, {}, {}};
+  synthetic.keys = {
+      key("kind", ParamType::choice, in.synthetic_kind, "a synthetic cube with ground truth (docs/synthetic.md)", {},
+          {}, {"seismic", "analytic"}),
+      list_key("shape",
+               "[" + std::to_string(in.shape[0]) + ", " + std::to_string(in.shape[1]) + ", " +
+                   std::to_string(in.shape[2]) + "]",
+               "[NI, NJ, NK]: inline, crossline, sample counts; each " + std::to_string(synth::min_edge) +
+                   " to 100000 (the planted bodies need room)"),
+      key("seed", ParamType::integer, std::to_string(in.seed), "same seed, same cube, bit for bit", 0,
+          static_cast<double>(std::int64_t{1} << 40)),
+      key("snr", ParamType::real, number_text(in.snr), "signal-to-noise ratio of the seismic kind", 1e-3, 1e6),
+  };
+  s.push_back(synthetic);
+
+  RecipeSection output{"output", {}, {}, {}};
+  output.keys = {
+      key("directory", ParamType::text, std::nullopt,
+          "where everything goes; a relative path is relative to the working directory you run from"),
+      key("store", ParamType::text, out.store,
+          "the component store, inside `directory` (not `.`, the directory itself, nor a directory holding it)"),
+      key("report", ParamType::text, out.report,
+          "the HTML report, relative to `directory`; each run replaces its own report there, but an existing file "
+          "outside `directory` (an absolute path, or `../`), a device or a FIFO is never replaced (exit 3, after the "
+          "store and exports are written), as for exports"),
+      key("attribute", ParamType::text, std::nullopt,
+          "also write the final attribute cube there (format from the extension: .nc, .zarr, .raw); an existing file "
+          "there is replaced only when a previous run of the recipe wrote it (or with `--fresh`, never the input "
+          "cube)"),
+      list_key("exports", std::nullopt,
+               "a list of exports, each with the parameters of the `export` step (below): selection defaults to the "
+               "last one written (a named one must be written by a component step of the recipe), path to "
+               "`bodies.FORMAT` (two exports may not share a file, however named; an export may not be one of the "
+               "run's own files, `report.html`, `state.json`, `truth.json`, the attribute cube or anything in the "
+               "store: `validate` refuses it at its line). An export whose selection holds no component writes no "
+               "file, removes the one an earlier run wrote in the output directory, and warns"),
+  };
+  output.absent = {{"directory", "`<recipe name>-out`"}, {"attribute", "none"}, {"exports", "none"}};
+  s.push_back(output);
+
+  std::string backends;
+  for (const auto& b : schedulers::scheduler_backends())
+    backends += (backends.empty() ? "" : "; ") + ("`" + b.name + "`: " + b.summary);
+  RecipeSection execution{"execution", {}, {}, {"resources"}};
+  execution.keys = {
+      key("scheduler", ParamType::choice, ex.scheduler, "where workers run (`--scheduler`): " + backends, {}, {},
+          schedulers::scheduler_names()),
+      key("workers", ParamType::integer, std::nullopt, "worker count", 1, 4096),
+      key("relay_memory", ParamType::text, std::nullopt,
+          "a size (`256M`, `1G`, `0`): partial surfaces the manager holds in memory while they wait for their merge; "
+          "past it they wait on disk beside the store (docs/runtime.md). Only with workers: an extraction in one "
+          "process warns that it ignores it"),
+      key("bind", ParamType::text, std::nullopt,
+          "an interface, IPv4 address[:port] or `loopback`: where the manager listens (`--bind`); anything but "
+          "loopback turns CurveZMQ on; a wildcard (0.0.0.0) or an unknown interface is refused at validation"),
+  };
+  execution.absent = {{"workers", "`local`: one per core, at most one per block (a cube of one block: in this "
+                                  "process); `slurm`, `lsf`: 1"},
+                      {"relay_memory", "`1G`"},
+                      {"bind", "loopback"}};
+  s.push_back(execution);
+
+  RecipeSection resources{"execution.resources", {}, {}, {}};
+  resources.keys = {
+      key("cpus_per_worker", ParamType::integer, std::to_string(res.cpus_per_worker), "cores asked for each worker", 1,
+          1024),
+      key("memory", ParamType::text, std::nullopt, "a size (`2048M`, `4G`): memory asked for each worker"),
+      key("walltime", ParamType::text, std::nullopt, "`hh:mm:ss`, `hh:mm` or minutes: each worker's time limit"),
+      key("queue", ParamType::text, std::nullopt, "Slurm partition or LSF queue"),
+      key("account", ParamType::text, std::nullopt, "the account jobs are charged to"),
+      list_key("extra_args", std::nullopt, "a list of words passed to sbatch / bsub verbatim"),
+  };
+  resources.absent = {{"memory", "scheduler default"}, {"walltime", "scheduler default"},
+                      {"queue", "—"},                 {"account", "—"},
+                      {"extra_args", "—"}};
+  s.push_back(resources);
+  return s;
+}
+
+std::string code(const std::string& text) {
+  return "`" + text + "`";
+}
+
+std::string type_text(const ParamSpec& p) {
+  std::string t;
+  switch (p.type) {
+  case ParamType::choice:
+    for (const auto& c : p.choices)
+      t += (t.empty() ? "" : " \\| ") + code(c);
+    return t;
+  case ParamType::text: return p.list ? "list" : "text";
+  case ParamType::boolean: return "boolean";
+  case ParamType::integer: t = p.odd ? "odd integer" : "integer"; break;
+  case ParamType::real: t = "real"; break;
+  }
+  if (p.min_value || p.max_value) t += " " + p.range_text();
+  if (!p.unit.empty()) t += ", " + p.unit;
+  return t;
+}
+
+} // namespace
+
+std::vector<std::string> RecipeSection::key_names() const {
+  std::vector<std::string> names;
+  for (const auto& k : keys)
+    names.push_back(k.name);
+  for (const auto& nested : sections)
+    names.push_back(nested);
+  return names;
+}
+
+const std::vector<RecipeSection>& recipe_sections() {
+  static const std::vector<RecipeSection> sections = make_sections();
+  return sections;
+}
+
+const RecipeSection& recipe_section(std::string_view path) {
+  for (const auto& s : recipe_sections())
+    if (s.path == path) return s;
+  throw std::out_of_range("no recipe section '" + std::string(path) + "' is declared");
+}
+
+std::string params_table(const std::vector<ParamSpec>& keys, const std::map<std::string, std::string>& absent) {
+  std::ostringstream t;
+  t << "| key | type | default | meaning |\n| --- | --- | --- | --- |\n";
+  for (const auto& p : keys) {
+    std::string def;
+    if (p.default_value)
+      def = p.default_value->empty() ? "`\"\"`" : code(*p.default_value);
+    else if (auto at = absent.find(p.name); at != absent.end())
+      def = at->second;
+    else
+      def = "required";
+    t << "| " << code(p.name) << " | " << type_text(p) << " | " << def << " | " << p.help << " |\n";
+  }
+  return t.str();
+}
+
+std::string regenerate_schema_doc(const std::string& document, const PluginRegistry& registry) {
+  static const std::string open = "<!-- generated: ", close = "<!-- end generated -->";
+  std::istringstream in(document);
+  std::ostringstream out;
+  std::string line;
+  while (std::getline(in, line)) {
+    out << line << "\n";
+    if (line.rfind(open, 0) != 0) continue;
+    const std::string what = line.substr(open.size(), line.find(" -->") - open.size());
+    bool closed = false;
+    while (std::getline(in, line))
+      if (line == close) {
+        closed = true;
+        break;
+      }
+    if (!closed) throw InvalidArgument("the generated table '" + what + "' has no '" + close + "' line");
+    if (what.rfind("step ", 0) == 0) {
+      const Plugin& step = registry.get(what.substr(5));
+      out << params_table(step.params());
+    } else {
+      try {
+        const RecipeSection& section = recipe_section(what);
+        out << params_table(section.keys, section.absent);
+      } catch (const std::out_of_range&) {
+        throw InvalidArgument("no recipe section '" + what + "' is declared", {},
+                              "use a section's path (input, input.synthetic, execution.resources, ...) or 'step NAME'");
+      }
+    }
+    out << close << "\n";
+  }
+  return out.str();
+}
+
+} // namespace geotandem::workflow

@@ -196,7 +196,10 @@ void add_export(CLI::App* parent, Context& context, Runner& run) {
   auto args = std::make_shared<ExportArgs>();
   auto* cmd = parent->add_subcommand("export", "Export the components a filter selects (all by default).");
   cmd->add_option("store", args->store, "the store directory")->required();
-  cmd->add_option("--format", args->format, "ply, obj, vtp (ParaView) or ts (GOCAD TSurf)")->required();
+  std::string formats;
+  for (const auto& f : store::export_formats())
+    formats += std::string(formats.empty() ? "" : "; ") + f.name + " (" + f.summary + ")";
+  cmd->add_option("--format", args->format, formats)->required();
   cmd->add_option("--out", args->out, "the output file, or directory with --per-component")->required();
   cmd->add_flag("--per-component", args->per_component, "one file per component, named geobody_<key>.<ext>");
   cmd->add_flag("--float32", args->float32, "PLY: float32 vertices instead of float64");

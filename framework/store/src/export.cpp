@@ -10,6 +10,7 @@
 #include "geotandem/core/atomic_file.hpp"
 #include "geotandem/core/error.hpp"
 #include "geotandem/core/output_path.hpp"
+#include "geotandem/core/suggest.hpp"
 #include "geotandem/mesh/caps.hpp"
 #include "geotandem/store/check.hpp"
 
@@ -17,22 +18,58 @@ namespace geotandem::store {
 
 using namespace detail;
 
+namespace {
+
+using Writer = void (*)(SurfaceSource&, std::ostream&, const ExportOptions&);
+struct FormatRow {
+  ExportFormatInfo info;
+  Writer write;
+};
+
+const std::vector<FormatRow>& format_rows() {
+  static const std::vector<FormatRow> rows = {
+      {{ExportFormat::ply, "ply", "PLY: ParaView, MeshLab, CloudCompare, Blender"}, write_ply},
+      {{ExportFormat::obj, "obj", "Wavefront OBJ"}, write_obj},
+      {{ExportFormat::vtp, "vtp", "VTK XML PolyData: ParaView, with each body's key, volume and azimuth"}, write_vtp},
+      {{ExportFormat::tsurf, "ts", "GOCAD TSurf: Petrel, SKUA-GOCAD, OpendTect"}, write_tsurf},
+  };
+  return rows;
+}
+
+const FormatRow& row_of(ExportFormat format) {
+  for (const auto& r : format_rows())
+    if (r.info.format == format) return r;
+  throw InvalidArgument("unknown export format");
+}
+
+} // namespace
+
+const std::vector<ExportFormatInfo>& export_formats() {
+  static const std::vector<ExportFormatInfo> formats = [] {
+    std::vector<ExportFormatInfo> out;
+    for (const auto& r : format_rows())
+      out.push_back(r.info);
+    return out;
+  }();
+  return formats;
+}
+
+std::vector<std::string> export_format_names() {
+  std::vector<std::string> names;
+  for (const auto& f : export_formats())
+    names.emplace_back(f.name);
+  return names;
+}
+
 ExportFormat parse_export_format(const std::string& text) {
-  if (text == "ply") return ExportFormat::ply;
-  if (text == "obj") return ExportFormat::obj;
-  if (text == "vtp") return ExportFormat::vtp;
-  if (text == "ts" || text == "tsurf") return ExportFormat::tsurf;
-  throw InvalidArgument("unknown export format '" + text + "'", {}, "use ply, obj, vtp or ts (GOCAD TSurf)");
+  for (const auto& f : export_formats())
+    if (text == f.name) return f.format;
+  if (text == "tsurf") return ExportFormat::tsurf;
+  throw InvalidArgument("unknown export format '" + text + "'", {}, suggestion_hint(text, export_format_names()));
 }
 
 const char* file_extension(ExportFormat format) {
-  switch (format) {
-  case ExportFormat::ply: return "ply";
-  case ExportFormat::obj: return "obj";
-  case ExportFormat::vtp: return "vtp";
-  case ExportFormat::tsurf: return "ts";
-  }
-  return "dat";
+  return row_of(format).info.name;
 }
 
 namespace detail {
@@ -80,12 +117,7 @@ void write_file(const ComponentStore& store, const std::vector<const ComponentRo
   AtomicFile file(path);
   std::ostream& out = file.stream();
   SurfaceSource source(store, rows, tick, 256ull << 20, options.caps);
-  switch (options.format) {
-  case ExportFormat::ply: write_ply(source, out, options); break;
-  case ExportFormat::obj: write_obj(source, out, options); break;
-  case ExportFormat::vtp: write_vtp(source, out, options); break;
-  case ExportFormat::tsurf: write_tsurf(source, out, options); break;
-  }
+  row_of(options.format).write(source, out, options);
   file.commit("the export file");
 }
 

@@ -27,6 +27,14 @@ bool inside_output_directory(const std::string& path) {
   return normal.is_relative() && !normal.empty() && *normal.begin() != "..";
 }
 
+// "file format: ply (PLY: ParaView, ...), obj (...), ...": from the export formats' table.
+std::string format_help() {
+  std::string help;
+  for (const auto& f : store::export_formats())
+    help += std::string(help.empty() ? "" : "; ") + f.name + " (" + f.summary + ")";
+  return "file format: " + help;
+}
+
 class BuiltinStep : public Plugin {
 public:
   BuiltinStep(std::string name, StepKind kind, std::string summary, std::vector<ParamSpec> params)
@@ -123,8 +131,8 @@ class ExportStep final : public BuiltinStep {
 public:
   ExportStep()
       : BuiltinStep("export", StepKind::export_step, "writes the components of a selection as surface files",
-                    {param_spec("format", ParamType::choice, std::nullopt, "file format: ply, obj, vtp or ts", {}, {},
-                                {"ply", "obj", "vtp", "ts"}),
+                    {param_spec("format", ParamType::choice, std::nullopt, format_help(), {}, {},
+                                store::export_format_names()),
                      param_spec("selection", ParamType::text, "", "the selection to write (empty: the newest one)"),
                      param_spec("path", ParamType::text, "",
                                 "file (or directory with per_component), relative to the output directory; "

@@ -16,7 +16,21 @@ namespace geotandem::store {
 
 enum class ExportFormat { ply, obj, vtp, tsurf };
 
-// "ply", "obj", "vtp", "ts" (or "tsurf"); throws InvalidArgument otherwise.
+// The export formats as a table, like the steps' registry: the export step's `format` choices,
+// `geotandem store export --format`, the docs and the writers are read from it, and it is the only
+// list of their names. Adding a format: a writer (export_<format>.cpp) and one row in export.cpp.
+struct ExportFormatInfo {
+  ExportFormat format;
+  const char* name;    // as recipes and the command line spell it; also the file extension
+  const char* summary; // which programs open it
+};
+// ply, obj, vtp, ts: in that order.
+const std::vector<ExportFormatInfo>& export_formats();
+// Their names, in the same order.
+std::vector<std::string> export_format_names();
+
+// A name of export_formats() (or "tsurf" for ts); throws InvalidArgument otherwise, with the
+// nearest name.
 ExportFormat parse_export_format(const std::string& text);
 // The file extension without dot: ply, obj, vtp, ts.
 const char* file_extension(ExportFormat format);

@@ -1,10 +1,15 @@
 // geotandem plugins [NAME] and geotandem validate RECIPE: what a recipe may use, and whether a
 // recipe is right, without running anything.
 
+#include <fstream>
 #include <iomanip>
+#include <iterator>
 #include <iostream>
 
 #include "command.hpp"
+#include "geotandem/core/error.hpp"
+#include "geotandem/builtin/register.hpp"
+#include "geotandem/workflow/recipe_schema.hpp"
 #include "geotandem/workflow/recipe.hpp"
 #include "geotandem/workflow/registry.hpp"
 #include "plugins_setup.hpp"
@@ -41,8 +46,24 @@ void add_plugins_command(CLI::App& app, Context& context, Runner& run) {
                                             "steps, exports, the report; built-in or loaded) with its kind and "
                                             "parameters, or describe one.");
   cmd->add_option("name", *name, "a step to describe");
-  cmd->callback([name, &context, &run] {
-    run = [name, &context] {
+  auto schema_doc = std::make_shared<std::string>();
+  cmd->add_option("--schema-doc", *schema_doc,
+                  "print FILE (docs/recipe-schema.md) with its generated tables made anew from the declarations of "
+                  "the recipe's sections and the built-in steps (the lines between '<!-- generated: WHAT -->' and "
+                  "'<!-- end generated -->')")
+      ->type_name("FILE");
+  cmd->callback([name, schema_doc, &context, &run] {
+    run = [name, schema_doc, &context] {
+      if (!schema_doc->empty()) {
+        // The built-in steps only: a plugin on this machine's search path is not part of the docs.
+        workflow::PluginRegistry builtins;
+        builtin::register_builtins(builtins);
+        std::ifstream in(*schema_doc);
+        if (!in) throw IoError("cannot read the schema document", {*schema_doc});
+        const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+        std::cout << workflow::regenerate_schema_doc(text, builtins);
+        return 0;
+      }
       auto registry = make_plugin_registry(context.log);
       if (!name->empty()) {
         const auto& p = registry.get(*name);

@@ -3,10 +3,10 @@
 // defaults, ranges, help and checks as in recipes, made into command-line options here.
 
 #include <algorithm>
-#include <map>
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
+#include <map>
 #include <optional>
 #include <string>
 #include <thread>
@@ -14,8 +14,8 @@
 #include "command.hpp"
 #include "geotandem/core/error.hpp"
 #include "geotandem/store/store.hpp"
-#include "geotandem/volume/io.hpp"
 #include "geotandem/tandem/extraction_options.hpp"
+#include "geotandem/volume/io.hpp"
 #include "geotandem/workflow/extract_step.hpp"
 
 namespace geotandem::app {

@@ -3,14 +3,14 @@
 
 #include <fstream>
 #include <iomanip>
-#include <iterator>
 #include <iostream>
+#include <iterator>
 
 #include "command.hpp"
-#include "geotandem/core/error.hpp"
 #include "geotandem/builtin/register.hpp"
-#include "geotandem/workflow/recipe_schema.hpp"
+#include "geotandem/core/error.hpp"
 #include "geotandem/workflow/recipe.hpp"
+#include "geotandem/workflow/recipe_schema.hpp"
 #include "geotandem/workflow/registry.hpp"
 #include "plugins_setup.hpp"
 

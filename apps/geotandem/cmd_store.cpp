@@ -1,9 +1,9 @@
 // geotandem store ls|show|export|runs|selections|check STORE: look into a component store without
 // reading its raw data (ls, show, runs), export what a filter selects, verify every record.
 
-#include <functional>
 #include <charconv>
 #include <cstdio>
+#include <functional>
 #include <iostream>
 #include <nlohmann/json.hpp>
 

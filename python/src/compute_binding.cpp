@@ -167,8 +167,7 @@ py::dict extract_impl(const ExtractCall& c, ReportMode mode, py::object sink) {
         // An array handed to workers through a copy: the store knows the samples by the array's own
         // identity (its digest, or its memmap's file), as a run in this process does, so that a
         // rerun resumes whatever the copy's name and time, in process or with workers.
-        if (!c.cube_path.empty() && !c.source.empty())
-          s.record["input_content"] = volume::input_fingerprint(c.source);
+        if (!c.cube_path.empty() && !c.source.empty()) s.record["input_content"] = volume::input_fingerprint(c.source);
         auto store =
             store::ComponentStore::open_or_create(c.out, cube->geometry(), {"geotandem.extract", s.record["cube"]});
         auto progress = reporting.progress();

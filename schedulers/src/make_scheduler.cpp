@@ -9,8 +9,7 @@
 namespace geotandem::schedulers {
 namespace {
 
-template <class Backend>
-std::function<std::unique_ptr<Scheduler>(SchedulerOptions)> maker() {
+template <class Backend> std::function<std::unique_ptr<Scheduler>(SchedulerOptions)> maker() {
   return [](SchedulerOptions options) { return std::make_unique<Backend>(std::move(options)); };
 }
 

@@ -125,7 +125,8 @@ TEST(ExtractionOptionsEverywhere, EveryDefaultIsTheSameOnEveryRoute) {
   // 4. The Python API: geotandem.extract's keyword defaults and extract_parameters().
   const std::filesystem::path python_dir =
       std::filesystem::path(test_paths::binary()).parent_path().parent_path() / "python";
-  if (!std::filesystem::exists(python_dir / "geotandem" / "__init__.py") || !std::filesystem::exists("/usr/bin/python3")) {
+  if (!std::filesystem::exists(python_dir / "geotandem" / "__init__.py") ||
+      !std::filesystem::exists("/usr/bin/python3")) {
     std::cout << "[ SKIPPED PART ] the Python package is not built in this build tree (" << python_dir << ")\n";
     return;
   }
@@ -160,11 +161,11 @@ TEST(ExtractionOptionsEverywhere, BlockSizeZeroIsOneBlockWithAndWithoutWorkers) 
   ScratchDir dir;
   const std::string cube = dir.file("cube.raw");
   ASSERT_EQ(run_geotandem("-q synth --kind analytic --shape 64 56 48 --seed 3 --out '" + cube + "'").exit_code, 0);
-  auto alone = run_geotandem("-q extract '" + cube + "' --iso 0.5 --block-size 0 --workers 0 --out '" +
-                             dir.file("alone") + "'");
+  auto alone =
+      run_geotandem("-q extract '" + cube + "' --iso 0.5 --block-size 0 --workers 0 --out '" + dir.file("alone") + "'");
   ASSERT_EQ(alone.exit_code, 0) << alone.err;
-  auto workers = run_geotandem("extract '" + cube + "' --iso 0.5 --block-size 0 --workers 2 --out '" +
-                               dir.file("workers") + "'");
+  auto workers =
+      run_geotandem("extract '" + cube + "' --iso 0.5 --block-size 0 --workers 2 --out '" + dir.file("workers") + "'");
   ASSERT_EQ(workers.exit_code, 0) << workers.err;
   EXPECT_NE(workers.err.find("the whole cube one block"), std::string::npos) << workers.err;
 

@@ -79,7 +79,8 @@ struct Manager::Impl {
   Impl(ManagerOptions o, store::ComponentStore& s, Launcher* l, Logger& lg, Progress& p, const CancelToken& c)
       : options(std::move(o)), store(s), launcher(l), log(lg), progress(p), cancel(c),
         socket(options.bind, options.max_message, beside(s.directory(), ".keys").string(), lg),
-        tree(tandem::cube_cells(s.geometry().shape), tandem::leaf_size(options.settings.extraction, s.geometry().shape)) {
+        tree(tandem::cube_cells(s.geometry().shape),
+             tandem::leaf_size(options.settings.extraction, s.geometry().shape)) {
     report.leaves = tree.leaves().size();
   }
 

@@ -8,8 +8,11 @@
 namespace geotandem::runtime {
 
 std::string RunSettings::to_json() const {
-  const nlohmann::json j = {{"version", kProtocolVersion},   {"volume", volume}, {"store", store},
-                            {"extraction", tandem::to_json(extraction)}, {"run", run},
+  const nlohmann::json j = {{"version", kProtocolVersion},
+                            {"volume", volume},
+                            {"store", store},
+                            {"extraction", tandem::to_json(extraction)},
+                            {"run", run},
                             {"chunk_bytes", chunk_bytes}};
   return j.dump();
 }

@@ -218,7 +218,7 @@ private:
     const volume::Box cells{{m.box[0], m.box[1], m.box[2]}, {m.box[3], m.box[4], m.box[5]}};
     std::unique_ptr<tandem::WorkingSurface> piece;
     tandem::extract_block(*volume_, cells, options_tandem_, &*sink_, &piece,
-                           settings_.extraction.mode == tandem::ExtractMode::brute);
+                          settings_.extraction.mode == tandem::ExtractMode::brute);
     absorb(std::move(piece));
     report(m, start);
   }

@@ -30,8 +30,7 @@ ParamSpec declare(std::string name, ParamType type, std::string help, std::strin
 
 // A number or a boolean member. A float is read as the shortest decimal that reads back to it
 // (0.6f is 0.6, not 0.6000000238418579), so that its text and its JSON are what a user wrote.
-template <class T>
-ExtractionField field(ParamSpec spec, T ExtractionOptions::*member) {
+template <class T> ExtractionField field(ParamSpec spec, T ExtractionOptions::*member) {
   ExtractionField f;
   f.spec = std::move(spec);
   f.get = [member](const ExtractionOptions& o) -> ParamValue {
@@ -57,8 +56,7 @@ ExtractionField field(ParamSpec spec, T ExtractionOptions::*member) {
 }
 
 // A member whose values are 0, 1, 2, ... (an int or an enum), written as the words of spec.choices.
-template <class T>
-ExtractionField choice_field(ParamSpec spec, T ExtractionOptions::*member) {
+template <class T> ExtractionField choice_field(ParamSpec spec, T ExtractionOptions::*member) {
   ExtractionField f;
   f.spec = std::move(spec);
   f.get = [member, words = f.spec.choices](const ExtractionOptions& o) {
@@ -83,13 +81,13 @@ std::vector<ExtractionField> make_fields() {
                                  "E0: the simplified surface stays within E0 of the full-resolution one (guaranteed)",
                                  "voxels", 1e-6, 100.0),
                          &O::max_error));
-  fields.push_back(field(declare("isotropy", ParamType::real,
-                                 "alpha, weight of triangle shape against surface fidelity", {}, 0.0, 1.0),
-                         &O::isotropy));
-  fields.push_back(choice_field(declare("axis", ParamType::choice,
-                                        "extraction axis: i (inline), j (crossline) or k (sample)", {}, {}, {},
-                                        {"i", "j", "k"}),
-                                &O::axis));
+  fields.push_back(field(
+      declare("isotropy", ParamType::real, "alpha, weight of triangle shape against surface fidelity", {}, 0.0, 1.0),
+      &O::isotropy));
+  fields.push_back(
+      choice_field(declare("axis", ParamType::choice, "extraction axis: i (inline), j (crossline) or k (sample)", {},
+                           {}, {}, {"i", "j", "k"}),
+                   &O::axis));
   fields.push_back(field(declare("block_size", ParamType::integer,
                                  "leaf block edge of the block tree: 0 (the whole cube as one block, with or without "
                                  "workers) or at least " +
@@ -210,8 +208,7 @@ ExtractionOptions options_from_json(const nlohmann::json& json) {
     else if ((f.spec.type == ParamType::choice || f.spec.type == ParamType::text) && v.is_string())
       given = ParamValue(v.get<std::string>());
     else
-      throw InvalidArgument(std::string(kOwner) + ": '" + name + "' is " + v.dump() + ", not " +
-                            f.spec.valid_values());
+      throw InvalidArgument(std::string(kOwner) + ": '" + name + "' is " + v.dump() + ", not " + f.spec.valid_values());
     values[name] = check_param(f.spec, given, kOwner);
   }
   return options_from_params(values);

@@ -63,8 +63,8 @@ public:
   void check(const ParamValues& values) const override { tandem::check_params(values); }
   ExtractResult extract(const volume::Volume& input, store::ComponentStore& store, const ParamValues& values,
                         const ExecutionContext& execution, StepContext& context) const override {
-    return extract_to_store(input, store, tandem::options_from_params(values), execution, context.log,
-                            context.progress, context.cancel);
+    return extract_to_store(input, store, tandem::options_from_params(values), execution, context.log, context.progress,
+                            context.cancel);
   }
 };
 
@@ -130,17 +130,17 @@ public:
 class ExportStep final : public BuiltinStep {
 public:
   ExportStep()
-      : BuiltinStep("export", StepKind::export_step, "writes the components of a selection as surface files",
-                    {param_spec("format", ParamType::choice, std::nullopt, format_help(), {}, {},
-                                store::export_format_names()),
-                     param_spec("selection", ParamType::text, "", "the selection to write (empty: the newest one)"),
-                     param_spec("path", ParamType::text, "",
-                                "file (or directory with per_component), relative to the output directory; "
-                                "empty: bodies.FORMAT"),
-                     param_spec("per_component", ParamType::boolean, "false", "one file per component"),
-                     param_spec("caps", ParamType::boolean, "true",
-                                "keep the caps that close bodies cut by the cube's border (false: their open "
-                                "surface)")}) {}
+      : BuiltinStep(
+            "export", StepKind::export_step, "writes the components of a selection as surface files",
+            {param_spec("format", ParamType::choice, std::nullopt, format_help(), {}, {}, store::export_format_names()),
+             param_spec("selection", ParamType::text, "", "the selection to write (empty: the newest one)"),
+             param_spec("path", ParamType::text, "",
+                        "file (or directory with per_component), relative to the output directory; "
+                        "empty: bodies.FORMAT"),
+             param_spec("per_component", ParamType::boolean, "false", "one file per component"),
+             param_spec("caps", ParamType::boolean, "true",
+                        "keep the caps that close bodies cut by the cube's border (false: their open "
+                        "surface)")}) {}
   ExportOutcome export_components(const store::ComponentStore& store, const ParamValues& p, const std::string& current,
                                   const std::filesystem::path& out_dir, StepContext& context) const override {
     store::Query q;

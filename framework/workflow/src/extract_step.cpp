@@ -116,8 +116,7 @@ ExtractResult extract_to_store(const volume::Volume& volume, store::ComponentSto
     throw InvalidArgument("the store was made for another cube geometry", {store.directory().string()},
                           "extract into a new store directory");
   extraction.validate(); // block_size 0 or at least min_block_size, every value in its range
-  if (context.workers > 0)
-    return extract_with_workers(volume, store, extraction, context, log, progress, cancel);
+  if (context.workers > 0) return extract_with_workers(volume, store, extraction, context, log, progress, cancel);
   auto start = std::chrono::steady_clock::now();
   tandem::TandemOptions options = tandem::loop_options(extraction);
   options.simplify.validate();

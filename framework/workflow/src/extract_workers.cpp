@@ -98,10 +98,10 @@ ExtractResult extract_with_workers(const volume::Volume& volume, store::Componen
   options.workers = std::min(context.workers, leaves);
   if (options.workers < context.workers)
     log.warning("asked for " + std::to_string(context.workers) + " workers, but " +
-                (extraction.block_size > 0 ? "blocks of " + std::to_string(extraction.block_size) +
-                                                 " cells split this cube into " + std::to_string(leaves) +
-                                                 (leaves == 1 ? " block" : " blocks")
-                                           : std::string("block_size 0 makes the whole cube one block")) +
+                (extraction.block_size > 0
+                     ? "blocks of " + std::to_string(extraction.block_size) + " cells split this cube into " +
+                           std::to_string(leaves) + (leaves == 1 ? " block" : " blocks")
+                     : std::string("block_size 0 makes the whole cube one block")) +
                 ": starting " + std::to_string(options.workers) +
                 " (smaller blocks give more workers something to do)");
   options.bind = runtime::manager_bind_endpoint(ex.bind);

@@ -29,8 +29,8 @@ std::shared_ptr<volume::Volume> Plugin::make_attribute(std::vector<std::shared_p
   refuse("compute an attribute");
 }
 
-ExtractResult Plugin::extract(const volume::Volume&, store::ComponentStore&, const ParamValues&, const ExecutionContext&,
-                              StepContext&) const {
+ExtractResult Plugin::extract(const volume::Volume&, store::ComponentStore&, const ParamValues&,
+                              const ExecutionContext&, StepContext&) const {
   refuse("extract an isosurface");
 }
 

@@ -47,8 +47,7 @@ void parse_execution(MapReader& m, ExecutionSpec& ex) {
     MapReader r(m.source(), m.node("resources"), declared.path);
     const ParamValues rv = read_section(r, declared);
     ex.resources.cpus_per_worker = static_cast<int>(rv.at("cpus_per_worker").integer);
-    if (rv.count("memory"))
-      ex.resources.memory_mb = parse_memory(m.source(), r.node("memory"), rv.at("memory").text);
+    if (rv.count("memory")) ex.resources.memory_mb = parse_memory(m.source(), r.node("memory"), rv.at("memory").text);
     if (rv.count("walltime"))
       ex.resources.walltime_s = parse_walltime(m.source(), r.node("walltime"), rv.at("walltime").text);
     if (rv.count("queue")) ex.resources.queue = rv.at("queue").text;

@@ -154,8 +154,10 @@ std::vector<RecipeSection> make_sections() {
       key("account", ParamType::text, std::nullopt, "the account jobs are charged to"),
       list_key("extra_args", std::nullopt, "a list of words passed to sbatch / bsub verbatim"),
   };
-  resources.absent = {{"memory", "scheduler default"}, {"walltime", "scheduler default"},
-                      {"queue", "—"},                 {"account", "—"},
+  resources.absent = {{"memory", "scheduler default"},
+                      {"walltime", "scheduler default"},
+                      {"queue", "—"},
+                      {"account", "—"},
                       {"extra_args", "—"}};
   s.push_back(resources);
   return s;

@@ -368,8 +368,8 @@ private:
 
 } // namespace
 
-RunOutcome run_workflow(const Recipe& recipe, const PluginRegistry& plugins, const WorkflowSettings& settings, Logger& log,
-                        const CancelToken& cancel) {
+RunOutcome run_workflow(const Recipe& recipe, const PluginRegistry& plugins, const WorkflowSettings& settings,
+                        Logger& log, const CancelToken& cancel) {
   // The input and the attribute chain: lazy volumes, nothing is computed or written until the
   // extraction reads them.
   const ChainDescription chain = describe_chain(recipe, plugins);

@@ -14,68 +14,45 @@ const char* to_string(ChaosFormula formula) {
   return formula == ChaosFormula::planarity ? "planarity" : "marfurt";
 }
 
-const AttributeSpec& ChaosOptions::spec() {
-  static const AttributeSpec spec{
-      "chaos", "chaos from the eigenvalues l1 >= l2 >= l3 of the gradient structure tensor", 1,
-      with_defaults({{.name = "formula",
-                      .type = ParamType::choice,
-                      .help = "planarity: 2 l2/(l1+l2) in [0, 1]; marfurt: 2 l2/(l1+l3) in [0, 2]",
-                      .choices = {"planarity", "marfurt"}},
-                     {.name = "sigma_g",
-                      .type = ParamType::real,
-                      .help = "Gaussian width of the gradient (derivative-of-Gaussian filters, truncated at 3 sigma)",
-                      .min_value = 0,
-                      .max_value = 20,
-                      .min_open = true,
-                      .unit = "samples"},
-                     {.name = "sigma_t_across",
-                      .type = ParamType::real,
-                      .help = "Gaussian width of the tensor smoothing on the inline and crossline axes (truncated "
-                              "at 3 sigma)",
-                      .min_value = 0,
-                      .max_value = 20,
-                      .min_open = true,
-                      .unit = "samples"},
-                     {.name = "sigma_t_along",
-                      .type = ParamType::real,
-                      .help = "Gaussian width of the tensor smoothing along the trace (truncated at 3 sigma)",
-                      .min_value = 0,
-                      .max_value = 20,
-                      .min_open = true,
-                      .unit = "samples"}},
-                    ChaosOptions{}.to_params())};
-  return spec;
-}
-
-ChaosOptions ChaosOptions::from_params(const ParamValues& params) {
-  const ParamValues p = resolve(spec(), params);
-  ChaosOptions options;
-  options.formula = p.at("formula").text == "marfurt" ? ChaosFormula::marfurt : ChaosFormula::planarity;
-  options.sigma_g = p.at("sigma_g").real;
-  options.sigma_t_across = p.at("sigma_t_across").real;
-  options.sigma_t_along = p.at("sigma_t_along").real;
-  return options;
-}
-
-ParamValues ChaosOptions::to_params() const {
-  return {{"formula", to_string(formula)},
-          {"sigma_g", sigma_g},
-          {"sigma_t_across", sigma_t_across},
-          {"sigma_t_along", sigma_t_along}};
-}
-
-void ChaosOptions::validate() const {
-  if (formula != ChaosFormula::planarity && formula != ChaosFormula::marfurt)
-    throw InvalidArgument("attribute 'chaos': unknown formula value " + std::to_string(static_cast<int>(formula)));
-  resolve(spec(), to_params());
+const OptionsTable<ChaosOptions>& ChaosOptions::table() {
+  static const OptionsTable<ChaosOptions> table{
+      "chaos",
+      "chaos from the eigenvalues l1 >= l2 >= l3 of the gradient structure tensor",
+      1,
+      {choice(ParamSpec{.name = "formula",
+                        .type = ParamType::choice,
+                        .help = "planarity: 2 l2/(l1+l2) in [0, 1]; marfurt: 2 l2/(l1+l3) in [0, 2]",
+                        .choices = {"planarity", "marfurt"}},
+              &ChaosOptions::formula),
+       option(ParamSpec{.name = "sigma_g",
+                        .type = ParamType::real,
+                        .help = "Gaussian width of the gradient (derivative-of-Gaussian filters, truncated at 3 sigma)",
+                        .min_value = 0,
+                        .max_value = 20,
+                        .min_open = true,
+                        .unit = "samples"},
+              &ChaosOptions::sigma_g),
+       option(ParamSpec{.name = "sigma_t_across",
+                        .type = ParamType::real,
+                        .help = "Gaussian width of the tensor smoothing on the inline and crossline axes (truncated "
+                                "at 3 sigma)",
+                        .min_value = 0,
+                        .max_value = 20,
+                        .min_open = true,
+                        .unit = "samples"},
+              &ChaosOptions::sigma_t_across),
+       option(ParamSpec{.name = "sigma_t_along",
+                        .type = ParamType::real,
+                        .help = "Gaussian width of the tensor smoothing along the trace (truncated at 3 sigma)",
+                        .min_value = 0,
+                        .max_value = 20,
+                        .min_open = true,
+                        .unit = "samples"},
+              &ChaosOptions::sigma_t_along)}};
+  return table;
 }
 
 namespace {
-
-ChaosOptions validated(const ChaosOptions& options) {
-  options.validate();
-  return options;
-}
 
 // The chaos of n samples from their smoothed tensor components T00, T11, T22, T01, T02, T12.
 // Branch-free, so it vectorises; an AVX2 clone is picked at run time where the processor has it
@@ -104,7 +81,8 @@ Index3 chaos_halo(const ChaosOptions& o) {
 } // namespace
 
 Chaos::Chaos(VolumePtr input, const ChaosOptions& options)
-    : Attribute("chaos", to_string(validated(options).to_params()), {std::move(input)}, chaos_halo(options)),
+    : Attribute("chaos", to_string(ChaosOptions::validated(options).to_params()), {std::move(input)},
+                chaos_halo(options)),
       options_(options) {}
 
 void Chaos::compute(const Box& box, std::span<float> out) const {

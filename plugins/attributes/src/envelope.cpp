@@ -7,45 +7,26 @@
 
 namespace geotandem::attributes {
 
-const AttributeSpec& EnvelopeOptions::spec() {
-  static const AttributeSpec spec{
-      "envelope", "instantaneous amplitude |u + i H[u]|, Hilbert transform along the trace", 1,
-      with_defaults({{.name = "half_length",
-                      .type = ParamType::integer,
-                      .help = "half-length of the Blackman-windowed FIR Hilbert transformer (2*half_length+1 taps, "
-                              "and the halo along the trace); 32 keeps the gain within 4e-4 of 1 from 0.05 to 0.45 "
-                              "cycles per sample",
-                      .min_value = 2,
-                      .max_value = 512,
-                      .unit = "samples"}},
-                    EnvelopeOptions{}.to_params())};
-  return spec;
+const OptionsTable<EnvelopeOptions>& EnvelopeOptions::table() {
+  static const OptionsTable<EnvelopeOptions> table{
+      "envelope",
+      "instantaneous amplitude |u + i H[u]|, Hilbert transform along the trace",
+      1,
+      {option(ParamSpec{.name = "half_length",
+                        .type = ParamType::integer,
+                        .help = "half-length of the Blackman-windowed FIR Hilbert transformer (2*half_length+1 taps, "
+                                "and the halo along the trace); 32 keeps the gain within 4e-4 of 1 from 0.05 to 0.45 "
+                                "cycles per sample",
+                        .min_value = 2,
+                        .max_value = 512,
+                        .unit = "samples"},
+              &EnvelopeOptions::half_length)}};
+  return table;
 }
-
-EnvelopeOptions EnvelopeOptions::from_params(const ParamValues& params) {
-  const ParamValues p = resolve(spec(), params);
-  EnvelopeOptions options;
-  options.half_length = static_cast<int>(p.at("half_length").integer);
-  return options;
-}
-
-ParamValues EnvelopeOptions::to_params() const {
-  return {{"half_length", half_length}};
-}
-
-void EnvelopeOptions::validate() const {
-  resolve(spec(), to_params());
-}
-
-namespace {
-EnvelopeOptions validated(const EnvelopeOptions& options) {
-  options.validate();
-  return options;
-}
-} // namespace
 
 Envelope::Envelope(VolumePtr input, const EnvelopeOptions& options)
-    : Attribute("envelope", to_string(validated(options).to_params()), {std::move(input)}, {0, 0, options.half_length}),
+    : Attribute("envelope", to_string(EnvelopeOptions::validated(options).to_params()), {std::move(input)},
+                {0, 0, options.half_length}),
       options_(options), taps_(detail::hilbert_kernel(options.half_length).half) {}
 
 void Envelope::compute(const Box& box, std::span<float> out) const {

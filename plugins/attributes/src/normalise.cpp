@@ -11,73 +11,49 @@ const char* to_string(ScaleMethod method) {
   return method == ScaleMethod::percentile ? "percentile" : "fixed";
 }
 
-const AttributeSpec& NormaliseOptions::spec() {
-  static const AttributeSpec spec{
+const OptionsTable<NormaliseOptions>& NormaliseOptions::table() {
+  static const OptionsTable<NormaliseOptions> table{
       "normalise",
-      "the input divided by a robust scale (a percentile of |input| on a sample of the cube) or a fixed value", 1,
-      with_defaults({{.name = "method",
-                      .type = ParamType::choice,
-                      .help = "percentile: divide by a percentile of |input| estimated on a deterministic sample; "
-                              "fixed: divide by 'scale'",
-                      .choices = {"percentile", "fixed"}},
-                     {.name = "percentile",
-                      .type = ParamType::real,
-                      .help = "percentile (nearest rank) of |input| used as the scale by method percentile",
-                      .min_value = 0,
-                      .max_value = 100,
-                      .min_open = true,
-                      .unit = "percent"},
-                     {.name = "scale",
-                      .type = ParamType::real,
-                      .help = "the divisor used by method fixed, in the input's units",
-                      .min_value = 0,
-                      .min_open = true,
-                      .single_precision = true}, // divides float samples: 1e39 would make every sample 0
-                     {.name = "sample_boxes",
-                      .type = ParamType::integer,
-                      .help = "boxes per axis in the regular grid sampled by method percentile",
-                      .min_value = 1,
-                      .max_value = 16},
-                     {.name = "sample_edge",
-                      .type = ParamType::integer,
-                      .help = "edge of one sampling box (clipped to the cube)",
-                      .min_value = 1,
-                      .max_value = 256,
-                      .unit = "samples"}},
-                    NormaliseOptions{}.to_params())};
-  return spec;
-}
-
-NormaliseOptions NormaliseOptions::from_params(const ParamValues& params) {
-  const ParamValues p = resolve(spec(), params);
-  NormaliseOptions options;
-  options.method = p.at("method").text == "fixed" ? ScaleMethod::fixed : ScaleMethod::percentile;
-  options.percentile = p.at("percentile").real;
-  options.scale = p.at("scale").real;
-  options.sample_boxes = static_cast<int>(p.at("sample_boxes").integer);
-  options.sample_edge = static_cast<int>(p.at("sample_edge").integer);
-  return options;
-}
-
-ParamValues NormaliseOptions::to_params() const {
-  return {{"method", to_string(method)},
-          {"percentile", percentile},
-          {"scale", scale},
-          {"sample_boxes", sample_boxes},
-          {"sample_edge", sample_edge}};
-}
-
-void NormaliseOptions::validate() const {
-  if (method != ScaleMethod::percentile && method != ScaleMethod::fixed)
-    throw InvalidArgument("attribute 'normalise': unknown method value " + std::to_string(static_cast<int>(method)));
-  resolve(spec(), to_params());
+      "the input divided by a robust scale (a percentile of |input| on a sample of the cube) or a fixed value",
+      1,
+      {choice(ParamSpec{.name = "method",
+                        .type = ParamType::choice,
+                        .help = "percentile: divide by a percentile of |input| estimated on a deterministic sample; "
+                                "fixed: divide by 'scale'",
+                        .choices = {"percentile", "fixed"}},
+              &NormaliseOptions::method),
+       option(ParamSpec{.name = "percentile",
+                        .type = ParamType::real,
+                        .help = "percentile (nearest rank) of |input| used as the scale by method percentile",
+                        .min_value = 0,
+                        .max_value = 100,
+                        .min_open = true,
+                        .unit = "percent"},
+              &NormaliseOptions::percentile),
+       option(ParamSpec{.name = "scale",
+                        .type = ParamType::real,
+                        .help = "the divisor used by method fixed, in the input's units",
+                        .min_value = 0,
+                        .min_open = true,
+                        .single_precision = true},
+              &NormaliseOptions::scale),
+       option(ParamSpec{.name = "sample_boxes",
+                        .type = ParamType::integer,
+                        .help = "boxes per axis in the regular grid sampled by method percentile",
+                        .min_value = 1,
+                        .max_value = 16},
+              &NormaliseOptions::sample_boxes),
+       option(ParamSpec{.name = "sample_edge",
+                        .type = ParamType::integer,
+                        .help = "edge of one sampling box (clipped to the cube)",
+                        .min_value = 1,
+                        .max_value = 256,
+                        .unit = "samples"},
+              &NormaliseOptions::sample_edge)}};
+  return table;
 }
 
 namespace {
-NormaliseOptions validated(const NormaliseOptions& options) {
-  options.validate();
-  return options;
-}
 
 // The parameters that matter for the chosen method, for source().
 std::string describe(const NormaliseOptions& o) {
@@ -89,7 +65,8 @@ std::string describe(const NormaliseOptions& o) {
 } // namespace
 
 Normalise::Normalise(VolumePtr input, const NormaliseOptions& options)
-    : Attribute("normalise", describe(validated(options)), {std::move(input)}, {0, 0, 0}, Tiling::whole_box),
+    : Attribute("normalise", describe(NormaliseOptions::validated(options)), {std::move(input)}, {0, 0, 0},
+                Tiling::whole_box),
       options_(options) {}
 
 std::vector<Box> Normalise::sample_boxes() const {

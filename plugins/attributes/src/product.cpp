@@ -4,14 +4,10 @@
 
 namespace geotandem::attributes {
 
-const AttributeSpec& ProductOptions::spec() {
-  static const AttributeSpec spec{"product", "sample-by-sample product of two volumes of the same shape", 2, {}};
-  return spec;
-}
-
-ProductOptions ProductOptions::from_params(const ParamValues& params) {
-  resolve(spec(), params);
-  return {};
+const OptionsTable<ProductOptions>& ProductOptions::table() {
+  static const OptionsTable<ProductOptions> table{
+      "product", "sample-by-sample product of two volumes of the same shape", 2, {}};
+  return table;
 }
 
 Product::Product(VolumePtr first, VolumePtr second)

@@ -7,44 +7,25 @@
 
 namespace geotandem::attributes {
 
-const AttributeSpec& RmsOptions::spec() {
-  static const AttributeSpec spec{
-      "rms", "root mean square amplitude in a sliding window along the trace", 1,
-      with_defaults({{.name = "window",
-                      .type = ParamType::integer,
-                      .help = "length of the centred window along the trace, about one dominant period",
-                      .min_value = 1,
-                      .max_value = 1001,
-                      .odd = true,
-                      .unit = "samples"}},
-                    RmsOptions{}.to_params())};
-  return spec;
+const OptionsTable<RmsOptions>& RmsOptions::table() {
+  static const OptionsTable<RmsOptions> table{
+      "rms",
+      "root mean square amplitude in a sliding window along the trace",
+      1,
+      {option(ParamSpec{.name = "window",
+                        .type = ParamType::integer,
+                        .help = "length of the centred window along the trace, about one dominant period",
+                        .min_value = 1,
+                        .max_value = 1001,
+                        .odd = true,
+                        .unit = "samples"},
+              &RmsOptions::window)}};
+  return table;
 }
-
-RmsOptions RmsOptions::from_params(const ParamValues& params) {
-  const ParamValues p = resolve(spec(), params);
-  RmsOptions options;
-  options.window = static_cast<int>(p.at("window").integer);
-  return options;
-}
-
-ParamValues RmsOptions::to_params() const {
-  return {{"window", window}};
-}
-
-void RmsOptions::validate() const {
-  resolve(spec(), to_params());
-}
-
-namespace {
-RmsOptions validated(const RmsOptions& options) {
-  options.validate();
-  return options;
-}
-} // namespace
 
 Rms::Rms(VolumePtr input, const RmsOptions& options)
-    : Attribute("rms", to_string(validated(options).to_params()), {std::move(input)}, {0, 0, (options.window - 1) / 2}),
+    : Attribute("rms", to_string(RmsOptions::validated(options).to_params()), {std::move(input)},
+                {0, 0, (options.window - 1) / 2}),
       options_(options) {}
 
 void Rms::compute(const Box& box, std::span<float> out) const {

@@ -7,52 +7,32 @@
 
 namespace geotandem::attributes {
 
-const AttributeSpec& SemblanceOptions::spec() {
-  static const AttributeSpec spec{
-      "semblance", "Marfurt semblance of a square of traces in a window along the trace (1 = identical traces)", 1,
-      with_defaults({{.name = "traces",
-                      .type = ParamType::integer,
-                      .help = "width of the square of traces centred on the output trace (3 gives 3 x 3 traces)",
-                      .min_value = 3,
-                      .max_value = 21,
-                      .odd = true,
-                      .unit = "traces"},
-                     {.name = "window",
-                      .type = ParamType::integer,
-                      .help = "length of the centred window along the trace",
-                      .min_value = 1,
-                      .max_value = 1001,
-                      .odd = true,
-                      .unit = "samples"}},
-                    SemblanceOptions{}.to_params())};
-  return spec;
+const OptionsTable<SemblanceOptions>& SemblanceOptions::table() {
+  static const OptionsTable<SemblanceOptions> table{
+      "semblance",
+      "Marfurt semblance of a square of traces in a window along the trace (1 = identical traces)",
+      1,
+      {option(ParamSpec{.name = "traces",
+                        .type = ParamType::integer,
+                        .help = "width of the square of traces centred on the output trace (3 gives 3 x 3 traces)",
+                        .min_value = 3,
+                        .max_value = 21,
+                        .odd = true,
+                        .unit = "traces"},
+              &SemblanceOptions::traces),
+       option(ParamSpec{.name = "window",
+                        .type = ParamType::integer,
+                        .help = "length of the centred window along the trace",
+                        .min_value = 1,
+                        .max_value = 1001,
+                        .odd = true,
+                        .unit = "samples"},
+              &SemblanceOptions::window)}};
+  return table;
 }
-
-SemblanceOptions SemblanceOptions::from_params(const ParamValues& params) {
-  const ParamValues p = resolve(spec(), params);
-  SemblanceOptions options;
-  options.traces = static_cast<int>(p.at("traces").integer);
-  options.window = static_cast<int>(p.at("window").integer);
-  return options;
-}
-
-ParamValues SemblanceOptions::to_params() const {
-  return {{"traces", traces}, {"window", window}};
-}
-
-void SemblanceOptions::validate() const {
-  resolve(spec(), to_params());
-}
-
-namespace {
-SemblanceOptions validated(const SemblanceOptions& options) {
-  options.validate();
-  return options;
-}
-} // namespace
 
 Semblance::Semblance(VolumePtr input, const SemblanceOptions& options)
-    : Attribute("semblance", to_string(validated(options).to_params()), {std::move(input)},
+    : Attribute("semblance", to_string(SemblanceOptions::validated(options).to_params()), {std::move(input)},
                 {(options.traces - 1) / 2, (options.traces - 1) / 2, (options.window - 1) / 2}),
       options_(options) {}
 

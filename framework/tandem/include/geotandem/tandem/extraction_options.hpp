@@ -39,12 +39,12 @@ enum class ExtractMode { tandem_dump, tandem, brute };
 inline constexpr std::int64_t min_block_size = 8;
 
 struct ExtractionOptions {
-  float iso = 0.0f;                                       // isovalue: samples >= iso are inside (required)
-  double max_error = SimplifyOptions{}.max_error;         // E0, voxels
-  double isotropy = SimplifyOptions{}.isotropy;           // alpha
-  int axis = 0;                                           // 0 = i (inline), 1 = j, 2 = k
-  std::int64_t block_size = 128;                          // leaf edge of the block tree, in cells; 0: one block
-  ExtractMode mode = ExtractMode::tandem_dump;            //
+  float iso = 0.0f;                               // isovalue: samples >= iso are inside (required)
+  double max_error = SimplifyOptions{}.max_error; // E0, voxels
+  double isotropy = SimplifyOptions{}.isotropy;   // alpha
+  int axis = 0;                                   // 0 = i (inline), 1 = j, 2 = k
+  std::int64_t block_size = 128;                  // leaf edge of the block tree, in cells; 0: one block
+  ExtractMode mode = ExtractMode::tandem_dump;    //
   bool extended_time_lag = SimplifyOptions{}.extended_time_lag;
 
   // Throws InvalidArgument naming the option when a value is out of its declared range, or

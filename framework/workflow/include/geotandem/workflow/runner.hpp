@@ -39,7 +39,7 @@ struct RunOutcome {
 // Throws InvalidArgument (the output holds another extraction: pass fresh), and what each step
 // throws; components committed before a failure stay in the store and state.json says which steps
 // finished.
-RunOutcome run_workflow(const Recipe& recipe, const PluginRegistry& plugins, const WorkflowSettings& settings, Logger& log,
-                        const CancelToken& cancel);
+RunOutcome run_workflow(const Recipe& recipe, const PluginRegistry& plugins, const WorkflowSettings& settings,
+                        Logger& log, const CancelToken& cancel);
 
 } // namespace geotandem::workflow

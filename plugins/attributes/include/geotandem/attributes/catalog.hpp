@@ -1,6 +1,7 @@
 #pragma once
-// The built-in attributes as data: their specs, and a factory by name for the recipe and plugin
-// layers. Nothing registers itself; this list is the whole catalogue.
+// The built-in attributes as data: one table of factories (catalog.cpp), each row an attribute's
+// declaration, check and factory, for the recipe and plugin layers. Nothing registers itself; the
+// table is the whole catalogue: adding an attribute is its one file and one row there.
 
 #include <memory>
 #include <string_view>

@@ -21,17 +21,14 @@ namespace geotandem::attributes {
 enum class ChaosFormula { planarity, marfurt };
 const char* to_string(ChaosFormula formula);
 
-struct ChaosOptions {
+struct ChaosOptions : DeclaredOptions<ChaosOptions> {
   ChaosFormula formula = ChaosFormula::planarity;
   double sigma_g = 1.0;        // samples, gradient smoothing (all axes)
   double sigma_t_across = 2.0; // samples, tensor smoothing on inline and crossline
   double sigma_t_along = 3.0;  // samples, tensor smoothing along the trace
 
-  static const AttributeSpec& spec();
-  static ChaosOptions from_params(const ParamValues& params);
-  ParamValues to_params() const;
-  // Throws InvalidArgument naming the parameter and its valid range.
-  void validate() const;
+  // Its declaration (spec(), from_params(), to_params() and validate() follow: DeclaredOptions).
+  static const OptionsTable<ChaosOptions>& table();
 };
 
 class Chaos final : public Attribute {

@@ -13,15 +13,11 @@
 
 namespace geotandem::attributes {
 
-struct EnvelopeOptions {
+struct EnvelopeOptions : DeclaredOptions<EnvelopeOptions> {
   int half_length = 32; // samples
 
-  static const AttributeSpec& spec();
-  // Throws InvalidArgument (see params.hpp) for unknown, mistyped or out-of-range parameters.
-  static EnvelopeOptions from_params(const ParamValues& params);
-  ParamValues to_params() const;
-  // Throws InvalidArgument naming the parameter and its valid range.
-  void validate() const;
+  // Its declaration (spec(), from_params(), to_params() and validate() follow: DeclaredOptions).
+  static const OptionsTable<EnvelopeOptions>& table();
 };
 
 class Envelope final : public Attribute {

@@ -20,18 +20,15 @@ namespace geotandem::attributes {
 enum class ScaleMethod { percentile, fixed };
 const char* to_string(ScaleMethod method);
 
-struct NormaliseOptions {
+struct NormaliseOptions : DeclaredOptions<NormaliseOptions> {
   ScaleMethod method = ScaleMethod::percentile;
   double percentile = 99.0; // percent, of |input|
   double scale = 1.0;       // the divisor when method is fixed
   int sample_boxes = 4;     // boxes per axis in the sampling grid
   int sample_edge = 16;     // samples, edge of a sampling box
 
-  static const AttributeSpec& spec();
-  static NormaliseOptions from_params(const ParamValues& params);
-  ParamValues to_params() const;
-  // Throws InvalidArgument naming the parameter and its valid range.
-  void validate() const;
+  // Its declaration (spec(), from_params(), to_params() and validate() follow: DeclaredOptions).
+  static const OptionsTable<NormaliseOptions>& table();
 };
 
 class Normalise final : public Attribute {

@@ -6,8 +6,10 @@
 // member initialisers are its defaults; its spec() states them by reading a default-constructed
 // struct, so they are stated once.
 
+#include <functional>
 #include <string>
 #include <string_view>
+#include <type_traits>
 #include <vector>
 
 #include "geotandem/core/params.hpp"
@@ -43,5 +45,93 @@ std::vector<ParamSpec> with_defaults(std::vector<ParamSpec> params, const ParamV
 // attribute and the parameter for an unknown name (listing the known ones), a wrong type, or a
 // value outside the valid values (geotandem::resolve_params).
 ParamValues resolve(const AttributeSpec& spec, const ParamValues& given);
+
+// The options boilerplate, once for every attribute. An attribute's options struct derives from
+// DeclaredOptions<Self> and defines, in its one .cpp, `static const OptionsTable<Self>& table()`:
+// its name, summary, number of inputs, and one OptionField per member (option() for numbers and
+// booleans, choice() for an enum whose values are its words). spec(), from_params(), to_params()
+// and validate() follow; each default is read from a default-constructed struct, so it is stated
+// once, in the member's initialiser.
+template <class Options> struct OptionField {
+  ParamSpec spec;
+  std::function<ParamValue(const Options&)> get;
+  std::function<void(Options&, const ParamValue&)> set;
+};
+
+template <class Options> struct OptionsTable {
+  std::string name;
+  std::string summary;
+  int inputs = 1;
+  std::vector<OptionField<Options>> fields;
+};
+
+// An int, double or bool member.
+template <class Options, class T> OptionField<Options> option(ParamSpec spec, T Options::*member) {
+  return {std::move(spec), [member](const Options& o) { return ParamValue(o.*member); },
+          [member](Options& o, const ParamValue& v) {
+            if constexpr (std::is_same_v<T, bool>)
+              o.*member = v.boolean;
+            else if constexpr (std::is_floating_point_v<T>)
+              o.*member = static_cast<T>(v.real);
+            else
+              o.*member = static_cast<T>(v.integer);
+          }};
+}
+
+// An enum member whose values 0, 1, ... are the words spec.choices (an out-of-range value reads as
+// its number, which validate() refuses by name).
+template <class Options, class E> OptionField<Options> choice(ParamSpec spec, E Options::*member) {
+  spec.type = ParamType::choice;
+  const std::vector<std::string> words = spec.choices;
+  return {std::move(spec),
+          [member, words](const Options& o) {
+            const auto n = static_cast<std::size_t>(o.*member);
+            return ParamValue(n < words.size() ? words[n] : std::to_string(n));
+          },
+          [member, words](Options& o, const ParamValue& v) {
+            std::size_t n = 0;
+            while (n < words.size() && words[n] != v.text)
+              ++n;
+            o.*member = static_cast<E>(n);
+          }};
+}
+
+template <class Options> struct DeclaredOptions {
+  // The declaration: name, summary, inputs, parameters with their defaults.
+  static const AttributeSpec& spec() {
+    static const AttributeSpec declared = [] {
+      const OptionsTable<Options>& table = Options::table();
+      AttributeSpec s{table.name, table.summary, table.inputs, {}};
+      const Options defaults{};
+      for (const auto& f : table.fields) {
+        s.params.push_back(f.spec);
+        s.params.back().default_value = f.get(defaults).text;
+      }
+      return s;
+    }();
+    return declared;
+  }
+  // Throws InvalidArgument (see params.hpp) for unknown, mistyped or out-of-range parameters.
+  static Options from_params(const ParamValues& params) {
+    const ParamValues p = resolve(spec(), params);
+    Options options{};
+    for (const auto& f : Options::table().fields)
+      f.set(options, p.at(f.spec.name));
+    return options;
+  }
+  ParamValues to_params() const {
+    ParamValues values;
+    for (const auto& f : Options::table().fields)
+      values[f.spec.name] = f.get(static_cast<const Options&>(*this));
+    return values;
+  }
+  // Throws InvalidArgument naming the parameter and its valid values.
+  void validate() const { resolve(spec(), to_params()); }
+  // The options, validated (for an attribute's constructor).
+  static const Options& validated(const Options& options) {
+    options.validate();
+    return options;
+  }
+};
 
 } // namespace geotandem::attributes

@@ -7,10 +7,9 @@
 
 namespace geotandem::attributes {
 
-struct ProductOptions {
-  static const AttributeSpec& spec();
-  // Throws InvalidArgument for any parameter (the product takes none).
-  static ProductOptions from_params(const ParamValues& params);
+struct ProductOptions : DeclaredOptions<ProductOptions> {
+  // Its declaration (spec(), from_params(), to_params() and validate() follow: DeclaredOptions).
+  static const OptionsTable<ProductOptions>& table();
 };
 
 class Product final : public Attribute {

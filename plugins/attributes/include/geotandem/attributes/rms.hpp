@@ -9,14 +9,11 @@
 
 namespace geotandem::attributes {
 
-struct RmsOptions {
+struct RmsOptions : DeclaredOptions<RmsOptions> {
   int window = 9; // samples, odd
 
-  static const AttributeSpec& spec();
-  static RmsOptions from_params(const ParamValues& params);
-  ParamValues to_params() const;
-  // Throws InvalidArgument naming the parameter and its valid range.
-  void validate() const;
+  // Its declaration (spec(), from_params(), to_params() and validate() follow: DeclaredOptions).
+  static const OptionsTable<RmsOptions>& table();
 };
 
 class Rms final : public Attribute {

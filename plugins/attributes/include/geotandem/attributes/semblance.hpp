@@ -11,15 +11,12 @@
 
 namespace geotandem::attributes {
 
-struct SemblanceOptions {
+struct SemblanceOptions : DeclaredOptions<SemblanceOptions> {
   int traces = 3; // width of the square of traces, odd
   int window = 9; // samples along the trace, odd
 
-  static const AttributeSpec& spec();
-  static SemblanceOptions from_params(const ParamValues& params);
-  ParamValues to_params() const;
-  // Throws InvalidArgument naming the parameter and its valid range.
-  void validate() const;
+  // Its declaration (spec(), from_params(), to_params() and validate() follow: DeclaredOptions).
+  static const OptionsTable<SemblanceOptions>& table();
 };
 
 class Semblance final : public Attribute {

@@ -282,4 +282,18 @@ ParamValues default_values(const std::vector<ParamSpec>& specs) {
   return values;
 }
 
+ParamSpec param_spec(std::string name, ParamType type, std::optional<std::string> default_value, std::string help,
+                     std::optional<double> min_value, std::optional<double> max_value,
+                     std::vector<std::string> choices) {
+  ParamSpec s;
+  s.name = std::move(name);
+  s.type = type;
+  s.default_value = std::move(default_value);
+  s.help = std::move(help);
+  s.min_value = min_value;
+  s.max_value = max_value;
+  s.choices = std::move(choices);
+  return s;
+}
+
 } // namespace geotandem

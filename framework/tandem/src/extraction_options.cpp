@@ -15,16 +15,11 @@ namespace {
 
 constexpr const char* kOwner = "extraction options";
 
+// A declaration with a unit; its default is set from ExtractionOptions{} (make_fields()).
 ParamSpec declare(std::string name, ParamType type, std::string help, std::string unit = {},
                   std::optional<double> lo = {}, std::optional<double> hi = {}, std::vector<std::string> choices = {}) {
-  ParamSpec s;
-  s.name = std::move(name);
-  s.type = type;
-  s.help = std::move(help);
+  ParamSpec s = param_spec(std::move(name), type, std::nullopt, std::move(help), lo, hi, std::move(choices));
   s.unit = std::move(unit);
-  s.min_value = lo;
-  s.max_value = hi;
-  s.choices = std::move(choices);
   return s;
 }
 

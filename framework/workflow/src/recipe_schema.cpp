@@ -15,21 +15,8 @@
 namespace geotandem::workflow {
 namespace {
 
-ParamSpec key(std::string name, ParamType type, std::optional<std::string> default_value, std::string help,
-              std::optional<double> lo = {}, std::optional<double> hi = {}, std::vector<std::string> choices = {}) {
-  ParamSpec s;
-  s.name = std::move(name);
-  s.type = type;
-  s.default_value = std::move(default_value);
-  s.help = std::move(help);
-  s.min_value = lo;
-  s.max_value = hi;
-  s.choices = std::move(choices);
-  return s;
-}
-
 ParamSpec list_key(std::string name, std::optional<std::string> default_value, std::string help) {
-  ParamSpec s = key(std::move(name), ParamType::text, std::move(default_value), std::move(help));
+  ParamSpec s = param_spec(std::move(name), ParamType::text, std::move(default_value), std::move(help));
   s.list = true;
   return s;
 }
@@ -46,20 +33,24 @@ std::vector<RecipeSection> make_sections() {
 
   RecipeSection input{"input", {}, {}, {"segy", "synthetic"}};
   input.keys = {
-      key("file", ParamType::text, std::nullopt,
+      param_spec(
+          "file", ParamType::text, std::nullopt,
           "the cube: SEG-Y, netCDF-4, Zarr, HDF5, GeoTIFF/ENVI, or raw float32 with its JSON sidecar. The format is "
           "found from the file itself. A relative path is relative to the recipe's directory. Exactly one of `file` "
           "or `synthetic`"),
-      key("no_data", ParamType::real, std::nullopt,
+      param_spec(
+          "no_data", ParamType::real, std::nullopt,
           "samples of this value are missing too, as NaN samples are (`nan` decides): the null of a SEG-Y or raw "
           "cube, which cannot declare one (-999.25 is common). A netCDF, Zarr, GeoTIFF or ENVI file's own no-data "
           "value is honoured without it. A file input only",
           -static_cast<double>(std::numeric_limits<float>::max()),
           static_cast<double>(std::numeric_limits<float>::max())),
-      key("variable", ParamType::text, std::nullopt,
+      param_spec(
+          "variable", ParamType::text, std::nullopt,
           "the array to read from a netCDF, Zarr or HDF5 file holding several cubes (a name such as `chaos` or a "
           "full name such as `/group/chaos`); without it such a file is refused with the list of its arrays"),
-      key("nan", ParamType::choice, in.nan,
+      param_spec(
+          "nan", ParamType::choice, in.nan,
           "missing samples (NaN, infinite, or equal to the no-data value the file declares: docs/formats-gdal.md): "
           "stop with an error naming the file, the box and the first bad sample, or fill them. Filled, they are "
           "never inside a body: read directly by `extract`, they are the lowest float; under attributes, the "
@@ -73,41 +64,44 @@ std::vector<RecipeSection> make_sections() {
 
   RecipeSection segy_section{"input.segy", {}, {}, {}};
   segy_section.keys = {
-      key("inline_byte", ParamType::integer, std::to_string(segy.inline_byte),
-          "SEG-Y only: the trace header byte (1-based) holding the inline number; 9, 5 and 17 are common "
-          "(docs/formats-segy-raw.md). `geotandem info` names the positions that work when these do not",
-          1, 240),
-      key("crossline_byte", ParamType::integer, std::to_string(segy.crossline_byte),
-          "SEG-Y only: the trace header byte (1-based) holding the crossline number; 21 and 13 are common", 1, 240),
+      param_spec("inline_byte", ParamType::integer, std::to_string(segy.inline_byte),
+                 "SEG-Y only: the trace header byte (1-based) holding the inline number; 9, 5 and 17 are common "
+                 "(docs/formats-segy-raw.md). `geotandem info` names the positions that work when these do not",
+                 1, 240),
+      param_spec("crossline_byte", ParamType::integer, std::to_string(segy.crossline_byte),
+                 "SEG-Y only: the trace header byte (1-based) holding the crossline number; 21 and 13 are common", 1,
+                 240),
   };
   s.push_back(segy_section);
 
   RecipeSection synthetic{"input.synthetic", {}, {}, {}};
   synthetic.keys = {
-      key("kind", ParamType::choice, in.synthetic_kind, "a synthetic cube with ground truth (docs/synthetic.md)", {},
-          {}, {"seismic", "analytic"}),
+      param_spec("kind", ParamType::choice, in.synthetic_kind, "a synthetic cube with ground truth (docs/synthetic.md)",
+                 {}, {}, {"seismic", "analytic"}),
       list_key("shape",
                "[" + std::to_string(in.shape[0]) + ", " + std::to_string(in.shape[1]) + ", " +
                    std::to_string(in.shape[2]) + "]",
                "[NI, NJ, NK]: inline, crossline, sample counts; each " + std::to_string(synth::min_edge) +
                    " to 100000 (the planted bodies need room)"),
-      key("seed", ParamType::integer, std::to_string(in.seed), "same seed, same cube, bit for bit", 0,
-          static_cast<double>(std::int64_t{1} << 40)),
-      key("snr", ParamType::real, number_text(in.snr), "signal-to-noise ratio of the seismic kind", 1e-3, 1e6),
+      param_spec("seed", ParamType::integer, std::to_string(in.seed), "same seed, same cube, bit for bit", 0,
+                 static_cast<double>(std::int64_t{1} << 40)),
+      param_spec("snr", ParamType::real, number_text(in.snr), "signal-to-noise ratio of the seismic kind", 1e-3, 1e6),
   };
   s.push_back(synthetic);
 
   RecipeSection output{"output", {}, {}, {}};
   output.keys = {
-      key("directory", ParamType::text, std::nullopt,
-          "where everything goes; a relative path is relative to the working directory you run from"),
-      key("store", ParamType::text, out.store,
-          "the component store, inside `directory` (not `.`, the directory itself, nor a directory holding it)"),
-      key("report", ParamType::text, out.report,
+      param_spec("directory", ParamType::text, std::nullopt,
+                 "where everything goes; a relative path is relative to the working directory you run from"),
+      param_spec("store", ParamType::text, out.store,
+                 "the component store, inside `directory` (not `.`, the directory itself, nor a directory holding it)"),
+      param_spec(
+          "report", ParamType::text, out.report,
           "the HTML report, relative to `directory`; each run replaces its own report there, but an existing file "
           "outside `directory` (an absolute path, or `../`), a device or a FIFO is never replaced (exit 3, after the "
           "store and exports are written), as for exports"),
-      key("attribute", ParamType::text, std::nullopt,
+      param_spec(
+          "attribute", ParamType::text, std::nullopt,
           "also write the final attribute cube there (format from the extension: .nc, .zarr, .raw); an existing file "
           "there is replaced only when a previous run of the recipe wrote it (or with `--fresh`, never the input "
           "cube)"),
@@ -127,16 +121,17 @@ std::vector<RecipeSection> make_sections() {
     backends += (backends.empty() ? "" : "; ") + ("`" + b.name + "`: " + b.summary);
   RecipeSection execution{"execution", {}, {}, {"resources"}};
   execution.keys = {
-      key("scheduler", ParamType::choice, ex.scheduler, "where workers run (`--scheduler`): " + backends, {}, {},
-          schedulers::scheduler_names()),
-      key("workers", ParamType::integer, std::nullopt, "worker count", 1, 4096),
-      key("relay_memory", ParamType::text, std::nullopt,
+      param_spec("scheduler", ParamType::choice, ex.scheduler, "where workers run (`--scheduler`): " + backends, {}, {},
+                 schedulers::scheduler_names()),
+      param_spec("workers", ParamType::integer, std::nullopt, "worker count", 1, 4096),
+      param_spec(
+          "relay_memory", ParamType::text, std::nullopt,
           "a size (`256M`, `1G`, `0`): partial surfaces the manager holds in memory while they wait for their merge; "
           "past it they wait on disk beside the store (docs/runtime.md). Only with workers: an extraction in one "
           "process warns that it ignores it"),
-      key("bind", ParamType::text, std::nullopt,
-          "an interface, IPv4 address[:port] or `loopback`: where the manager listens (`--bind`); anything but "
-          "loopback turns CurveZMQ on; a wildcard (0.0.0.0) or an unknown interface is refused at validation"),
+      param_spec("bind", ParamType::text, std::nullopt,
+                 "an interface, IPv4 address[:port] or `loopback`: where the manager listens (`--bind`); anything but "
+                 "loopback turns CurveZMQ on; a wildcard (0.0.0.0) or an unknown interface is refused at validation"),
   };
   execution.absent = {{"workers", "`local`: one per core, at most one per block (a cube of one block: in this "
                                   "process); `slurm`, `lsf`: 1"},
@@ -146,12 +141,12 @@ std::vector<RecipeSection> make_sections() {
 
   RecipeSection resources{"execution.resources", {}, {}, {}};
   resources.keys = {
-      key("cpus_per_worker", ParamType::integer, std::to_string(res.cpus_per_worker), "cores asked for each worker", 1,
-          1024),
-      key("memory", ParamType::text, std::nullopt, "a size (`2048M`, `4G`): memory asked for each worker"),
-      key("walltime", ParamType::text, std::nullopt, "`hh:mm:ss`, `hh:mm` or minutes: each worker's time limit"),
-      key("queue", ParamType::text, std::nullopt, "Slurm partition or LSF queue"),
-      key("account", ParamType::text, std::nullopt, "the account jobs are charged to"),
+      param_spec("cpus_per_worker", ParamType::integer, std::to_string(res.cpus_per_worker),
+                 "cores asked for each worker", 1, 1024),
+      param_spec("memory", ParamType::text, std::nullopt, "a size (`2048M`, `4G`): memory asked for each worker"),
+      param_spec("walltime", ParamType::text, std::nullopt, "`hh:mm:ss`, `hh:mm` or minutes: each worker's time limit"),
+      param_spec("queue", ParamType::text, std::nullopt, "Slurm partition or LSF queue"),
+      param_spec("account", ParamType::text, std::nullopt, "the account jobs are charged to"),
       list_key("extra_args", std::nullopt, "a list of words passed to sbatch / bsub verbatim"),
   };
   resources.absent = {{"memory", "scheduler default"},

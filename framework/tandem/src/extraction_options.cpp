@@ -5,7 +5,6 @@
 #include <algorithm>
 #include <cstdlib>
 #include <optional>
-#include <type_traits>
 
 #include "geotandem/core/error.hpp"
 #include "geotandem/core/suggest.hpp"
@@ -23,80 +22,40 @@ ParamSpec declare(std::string name, ParamType type, std::string help, std::strin
   return s;
 }
 
-// A number or a boolean member. A float is read as the shortest decimal that reads back to it
-// (0.6f is 0.6, not 0.6000000238418579), so that its text and its JSON are what a user wrote.
-template <class T> ExtractionField field(ParamSpec spec, T ExtractionOptions::*member) {
-  ExtractionField f;
-  f.spec = std::move(spec);
-  f.get = [member](const ExtractionOptions& o) -> ParamValue {
-    const T v = o.*member;
-    if constexpr (std::is_same_v<T, bool>)
-      return ParamValue(v);
-    else if constexpr (std::is_same_v<T, float>)
-      return ParamValue(std::strtod(number_text(v).c_str(), nullptr));
-    else if constexpr (std::is_floating_point_v<T>)
-      return ParamValue(static_cast<double>(v));
-    else
-      return ParamValue(static_cast<std::int64_t>(v));
-  };
-  f.set = [member](ExtractionOptions& o, const ParamValue& v) {
-    if constexpr (std::is_same_v<T, bool>)
-      o.*member = v.boolean;
-    else if constexpr (std::is_floating_point_v<T>)
-      o.*member = static_cast<T>(v.real);
-    else
-      o.*member = static_cast<T>(v.integer);
-  };
-  return f;
-}
-
-// A member whose values are 0, 1, 2, ... (an int or an enum), written as the words of spec.choices.
-template <class T> ExtractionField choice_field(ParamSpec spec, T ExtractionOptions::*member) {
-  ExtractionField f;
-  f.spec = std::move(spec);
-  f.get = [member, words = f.spec.choices](const ExtractionOptions& o) {
-    const auto index = static_cast<std::size_t>(o.*member);
-    return ParamValue(index < words.size() ? words[index] : std::to_string(index)); // refused by check_param
-  };
-  f.set = [member, words = f.spec.choices](ExtractionOptions& o, const ParamValue& v) {
-    const auto at = std::find(words.begin(), words.end(), v.text);
-    o.*member = static_cast<T>(at - words.begin());
-  };
-  return f;
-}
-
 // The options. A default is not written here: it is the member initialiser's (defaults() below).
 std::vector<ExtractionField> make_fields() {
   using O = ExtractionOptions;
   std::vector<ExtractionField> fields;
   ParamSpec iso = declare("iso", ParamType::real, "isovalue: samples >= iso are inside a body");
   iso.single_precision = true; // compared with float samples: beyond the float range is refused, not inf
-  fields.push_back(field(std::move(iso), &O::iso));
-  fields.push_back(field(declare("max_error", ParamType::real,
-                                 "E0: the simplified surface stays within E0 of the full-resolution one (guaranteed)",
-                                 "voxels", 1e-6, 100.0),
-                         &O::max_error));
-  fields.push_back(field(
+  fields.push_back(member_param(std::move(iso), &O::iso));
+  fields.push_back(
+      member_param(declare("max_error", ParamType::real,
+                           "E0: the simplified surface stays within E0 of the full-resolution one (guaranteed)",
+                           "voxels", 1e-6, 100.0),
+                   &O::max_error));
+  fields.push_back(member_param(
       declare("isotropy", ParamType::real, "alpha, weight of triangle shape against surface fidelity", {}, 0.0, 1.0),
       &O::isotropy));
   fields.push_back(
-      choice_field(declare("axis", ParamType::choice, "extraction axis: i (inline), j (crossline) or k (sample)", {},
+      choice_param(declare("axis", ParamType::choice, "extraction axis: i (inline), j (crossline) or k (sample)", {},
                            {}, {}, {"i", "j", "k"}),
                    &O::axis));
-  fields.push_back(field(declare("block_size", ParamType::integer,
-                                 "leaf block edge of the block tree: 0 (the whole cube as one block, with or without "
-                                 "workers) or at least " +
-                                     std::to_string(min_block_size),
-                                 "cells", 0.0, 4096.0),
-                         &O::block_size));
-  fields.push_back(choice_field(declare("mode", ParamType::choice,
+  fields.push_back(
+      member_param(declare("block_size", ParamType::integer,
+                           "leaf block edge of the block tree: 0 (the whole cube as one block, with or without "
+                           "workers) or at least " +
+                               std::to_string(min_block_size),
+                           "cells", 0.0, 4096.0),
+                   &O::block_size));
+  fields.push_back(choice_param(declare("mode", ParamType::choice,
                                         "tandem-dump (default), tandem (no early dumping), brute (extract, then "
                                         "simplify)",
                                         {}, {}, {}, {"tandem-dump", "tandem", "brute"}),
                                 &O::mode));
-  fields.push_back(field(declare("extended_time_lag", ParamType::boolean,
-                                 "delay collapses near open block faces (the seed's section 3.2)"),
-                         &O::extended_time_lag));
+  fields.push_back(member_param(declare("extended_time_lag", ParamType::boolean,
+                                        "delay collapses near open block faces (the seed's section 3.2)"),
+                                &O::extended_time_lag));
   // The defaults, read from a default-constructed value. iso has none: a recipe must give it.
   const ExtractionOptions defaults;
   for (auto& f : fields)

@@ -15,12 +15,12 @@
 // reads it in loop_options() (or where it is used).
 
 #include <cstdint>
-#include <functional>
 #include <string>
 #include <vector>
 
 #include <nlohmann/json.hpp>
 
+#include "geotandem/core/param_fields.hpp"
 #include "geotandem/core/params.hpp"
 #include "geotandem/tandem/simplify.hpp"
 #include "geotandem/tandem/tandem.hpp"
@@ -54,12 +54,8 @@ struct ExtractionOptions {
 };
 
 // One option of the table: its declaration (default from ExtractionOptions{}), and how it is read
-// from and written into the value.
-struct ExtractionField {
-  ParamSpec spec;
-  std::function<ParamValue(const ExtractionOptions&)> get; // of the spec's type (a choice: its word)
-  std::function<void(ExtractionOptions&, const ParamValue&)> set;
-};
+// from and written into the value (geotandem/core/param_fields.hpp).
+using ExtractionField = ParamField<ExtractionOptions>;
 // Every option, in the order recipes, help and docs list them.
 const std::vector<ExtractionField>& extraction_fields();
 // Their declarations (recipes, `geotandem plugins`, the command line, Python, the docs).

@@ -6,12 +6,11 @@
 // member initialisers are its defaults; its spec() states them by reading a default-constructed
 // struct, so they are stated once.
 
-#include <functional>
 #include <string>
 #include <string_view>
-#include <type_traits>
 #include <vector>
 
+#include "geotandem/core/param_fields.hpp"
 #include "geotandem/core/params.hpp"
 
 namespace geotandem::attributes {
@@ -52,11 +51,7 @@ ParamValues resolve(const AttributeSpec& spec, const ParamValues& given);
 // booleans, choice() for an enum whose values are its words). spec(), from_params(), to_params()
 // and validate() follow; each default is read from a default-constructed struct, so it is stated
 // once, in the member's initialiser.
-template <class Options> struct OptionField {
-  ParamSpec spec;
-  std::function<ParamValue(const Options&)> get;
-  std::function<void(Options&, const ParamValue&)> set;
-};
+template <class Options> using OptionField = ParamField<Options>;
 
 template <class Options> struct OptionsTable {
   std::string name;
@@ -65,35 +60,12 @@ template <class Options> struct OptionsTable {
   std::vector<OptionField<Options>> fields;
 };
 
-// An int, double or bool member.
+// An int, double or bool member; an enum member whose values 0, 1, ... are its words.
 template <class Options, class T> OptionField<Options> option(ParamSpec spec, T Options::*member) {
-  return {std::move(spec), [member](const Options& o) { return ParamValue(o.*member); },
-          [member](Options& o, const ParamValue& v) {
-            if constexpr (std::is_same_v<T, bool>)
-              o.*member = v.boolean;
-            else if constexpr (std::is_floating_point_v<T>)
-              o.*member = static_cast<T>(v.real);
-            else
-              o.*member = static_cast<T>(v.integer);
-          }};
+  return member_param(std::move(spec), member);
 }
-
-// An enum member whose values 0, 1, ... are the words spec.choices (an out-of-range value reads as
-// its number, which validate() refuses by name).
 template <class Options, class E> OptionField<Options> choice(ParamSpec spec, E Options::*member) {
-  spec.type = ParamType::choice;
-  const std::vector<std::string> words = spec.choices;
-  return {std::move(spec),
-          [member, words](const Options& o) {
-            const auto n = static_cast<std::size_t>(o.*member);
-            return ParamValue(n < words.size() ? words[n] : std::to_string(n));
-          },
-          [member, words](Options& o, const ParamValue& v) {
-            std::size_t n = 0;
-            while (n < words.size() && words[n] != v.text)
-              ++n;
-            o.*member = static_cast<E>(n);
-          }};
+  return choice_param(std::move(spec), member);
 }
 
 template <class Options> struct DeclaredOptions {

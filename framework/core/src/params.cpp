@@ -1,4 +1,5 @@
 #include "geotandem/core/params.hpp"
+#include "geotandem/core/param_fields.hpp"
 
 #include <cerrno>
 #include <charconv>

@@ -7,6 +7,7 @@
 #include <stdexcept>
 
 #include "geotandem/core/error.hpp"
+#include "geotandem/core/param_fields.hpp"
 #include "geotandem/schedulers/make_scheduler.hpp"
 #include "geotandem/synth/options.hpp"
 #include "geotandem/volume/io.hpp"

@@ -14,6 +14,12 @@
 
 namespace geotandem {
 
+// A declaration in one call, for the tables of declarations (steps, the extraction's options, the
+// recipe's sections): name, type, default (empty: required), help, closed range, choices.
+ParamSpec param_spec(std::string name, ParamType type, std::optional<std::string> default_value, std::string help,
+                     std::optional<double> min_value = {}, std::optional<double> max_value = {},
+                     std::vector<std::string> choices = {});
+
 template <class Struct> struct ParamField {
   ParamSpec spec;
   std::function<ParamValue(const Struct&)> get; // of the spec's type (a choice: its word)

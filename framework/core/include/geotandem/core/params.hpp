@@ -93,12 +93,6 @@ std::string to_string(const ParamValues& values);
 // range: it must be a real in (0, 20]"), with a hint (the range in words, the nearest choice, the
 // odd neighbours, or the parameter's help).
 
-// A declaration in one call, for the tables of declarations (steps, the extraction's options, the
-// recipe's sections): name, type, default (empty: required), help, closed range, choices.
-ParamSpec param_spec(std::string name, ParamType type, std::optional<std::string> default_value, std::string help,
-                     std::optional<double> min_value = {}, std::optional<double> max_value = {},
-                     std::vector<std::string> choices = {});
-
 // Parses `text` (a recipe value or a default) for `spec` and checks it.
 ParamValue parse_param(const ParamSpec& spec, const std::string& text, std::string_view owner = {});
 // Checks a typed value against `spec` and returns it as the spec's type: an integer is accepted for

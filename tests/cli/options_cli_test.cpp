@@ -119,7 +119,9 @@ TEST(ExtractionOptionsEverywhere, EveryDefaultIsTheSameOnEveryRoute) {
   ASSERT_EQ(workers.exit_code, 0) << workers.err;
   identity = run_parameters(dir.file("workers")).at("identity");
   for (const auto& [key, value] : expected.items())
-    if (key != "block_size") EXPECT_EQ(identity.at(key), value) << "the workers' " << key;
+    if (key != "block_size") {
+      EXPECT_EQ(identity.at(key), value) << "the workers' " << key;
+    }
   EXPECT_EQ(identity.at("block_size"), 16);
 
   // 4. The Python API: geotandem.extract's keyword defaults and extract_parameters().

@@ -36,13 +36,13 @@ void parse_input(MapReader& m, InputSpec& in) {
     throw error_at(m.source(), m.map(), "input needs exactly one of 'file' or 'synthetic'",
                    "file: path/to/cube.segy, or synthetic: {kind: seismic, shape: [160, 160, 128]}");
   const RecipeSection& section = recipe_section("input");
-  const ParamValues v = detail::read_section(m, section);
-  in.nan = v.at("nan").text;
+  const ParamValues given = detail::read_section(m, section);
+  in.nan = given.at("nan").text;
   if (m.has("no_data") && has_synth)
     throw error_at(m.source(), m.node("no_data"), "'no_data' applies to a file input",
                    "a synthetic cube has no missing samples");
-  if (v.count("no_data")) in.no_data = v.at("no_data").real; // a float sample's value
-  if (v.count("variable")) in.variable = v.at("variable").text;
+  if (given.count("no_data")) in.no_data = given.at("no_data").real; // a float sample's value
+  if (given.count("variable")) in.variable = given.at("variable").text;
   if (m.has("segy")) {
     const RecipeSection& segy = recipe_section("input.segy");
     MapReader s(m.source(), m.node("segy"), segy.path);

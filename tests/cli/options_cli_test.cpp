@@ -86,7 +86,7 @@ TEST(ExtractionOptionsEverywhere, EveryDefaultIsTheSameOnEveryRoute) {
     ASSERT_NE(at, std::string::npos) << "--" << option << " missing from\n" << help.out;
     const std::string line = help.out.substr(at, help.out.find('\n', at) - at);
     if (spec.default_value) {
-      EXPECT_NE(line.find("[" + *spec.default_value + "]"), std::string::npos)
+      EXPECT_NE(line.find("=" + *spec.default_value), std::string::npos)
           << "--" << option << " does not show the default " << *spec.default_value << ": " << line;
     }
   }

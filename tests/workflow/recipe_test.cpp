@@ -289,7 +289,7 @@ TEST_F(Recipes, NoDataValueComesFromTheInputSection) {
   EXPECT_NE(range.find("no_data"), std::string::npos) << range;
   EXPECT_NE(range.find("out of range"), std::string::npos) << range;
   std::string text = error_of(file_input, {"input.no_data=dead"});
-  EXPECT_NE(text.find("not a number"), std::string::npos) << text;
+  EXPECT_NE(text.find("parameter 'no_data' is 'dead', not a real"), std::string::npos) << text;
   std::string synthetic = error_of(replaced("seed: 3}", "seed: 3}\n  no_data: 0"));
   EXPECT_NE(synthetic.find("dir/recipe.yaml:4:"), std::string::npos) << synthetic;
   EXPECT_NE(synthetic.find("file input"), std::string::npos) << synthetic;

@@ -91,7 +91,7 @@ TEST(ExtractionOptionsEverywhere, EveryDefaultIsTheSameOnEveryRoute) {
     }
   }
   const std::string cube = dir.file("cube.raw");
-  ASSERT_EQ(run_geotandem("-q synth --kind analytic --shape 40 36 32 --seed 2 --out '" + cube + "'").exit_code, 0);
+  ASSERT_EQ(run_geotandem("-q synth --kind analytic --shape 48 44 40 --seed 2 --out '" + cube + "'").exit_code, 0);
   auto cli = run_geotandem("-q extract '" + cube + "' --iso 0.5 --workers 0 --out '" + dir.file("cli") + "'");
   ASSERT_EQ(cli.exit_code, 0) << cli.err;
   nlohmann::json identity = run_parameters(dir.file("cli")).at("identity");
@@ -102,7 +102,7 @@ TEST(ExtractionOptionsEverywhere, EveryDefaultIsTheSameOnEveryRoute) {
   workflow::PluginRegistry registry;
   workflow::register_builtin_steps(registry);
   const workflow::Recipe recipe = workflow::parse_recipe(
-      "input: {synthetic: {kind: analytic, shape: [40, 36, 32]}}\nsteps:\n  - step: extract\n    iso: 0.5\n",
+      "input: {synthetic: {kind: analytic, shape: [48, 44, 40]}}\nsteps:\n  - step: extract\n    iso: 0.5\n",
       dir.file("defaults.yaml"), registry);
   const tandem::ExtractionOptions from_recipe = tandem::options_from_params(recipe.steps.at(0).params);
   EXPECT_EQ(tandem::to_json(from_recipe), expected) << "the recipe's";

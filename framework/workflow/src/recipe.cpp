@@ -26,7 +26,6 @@ using detail::MapReader;
 using detail::parse_execution;
 using detail::RecipeSource;
 
-
 // The input section, read through its declaration (recipe_schema.cpp); what the declaration cannot
 // say alone (file or synthetic, a shape of three sizes that fits this machine) is checked here.
 void parse_input(MapReader& m, InputSpec& in) {

@@ -50,6 +50,11 @@ void CommitQueue::drain() {
   rethrow_failure();
 }
 
+double CommitQueue::busy_seconds() {
+  std::lock_guard lock(mutex_);
+  return busy_seconds_;
+}
+
 void CommitQueue::loop() {
   std::unique_lock lock(mutex_);
   for (;;) {
@@ -66,6 +71,7 @@ void CommitQueue::loop() {
     queue_.pop_front();
     busy_ = true;
     lock.unlock();
+    const auto began = std::chrono::steady_clock::now();
     std::exception_ptr failed;
     try {
       if (auto* entries = std::get_if<std::vector<store::IndexEntry>>(&work))
@@ -75,7 +81,9 @@ void CommitQueue::loop() {
     } catch (...) {
       failed = std::current_exception();
     }
+    const double spent = std::chrono::duration<double>(std::chrono::steady_clock::now() - began).count();
     lock.lock();
+    busy_seconds_ += spent;
     busy_ = false;
     if (failed && !failure_) failure_ = failed;
     if (queue_.empty() || failure_) idle_.notify_all();

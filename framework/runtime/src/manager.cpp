@@ -159,6 +159,7 @@ ManagerReport Manager::Impl::run() {
           [this](const std::string& token, std::span<const std::byte> body) { handle(token, body); },
           [this](const std::string& why) { drop(why); });
       heartbeats();
+      if (Clock::now() - last_record > std::chrono::milliseconds(100)) record_finished();
       commits.rethrow_failure();
       if (schedule.complete()) {
         if (!completed) completed = Clock::now();
@@ -178,6 +179,7 @@ ManagerReport Manager::Impl::run() {
     relay.close(); // a rerun redoes unmerged surfaces from the volume
     stop_workers();
     progress.stop();
+    record_finished();
     const bool failed_before = commits.failed(); // then that failure is what goes up
     try {
       commits.drain(); // what the workers committed stays committed
@@ -193,6 +195,7 @@ ManagerReport Manager::Impl::run() {
     std::this_thread::sleep_for(std::chrono::milliseconds(10));
   stop_workers();
   progress.end();
+  record_finished();
   commits.drain();
   report.manager_cpu_seconds = cpu_seconds() - cpu_at_start;
   report.messages_in = messages_in;

@@ -159,6 +159,19 @@ struct Manager::Impl {
     ++progress_done;
   }
 
+  // Finished leaves wait in `unrecorded` and are recorded (appended to the store's file and synced)
+  // together, at most every 100 ms, after every COMMIT received so far: one fdatasync per batch,
+  // not per task. A manager killed meanwhile loses their lines only: they are re-done on resume.
+  std::vector<tandem::NodeId> unrecorded;
+  Clock::time_point last_record{};
+  void record_finished() {
+    last_record = Clock::now();
+    if (unrecorded.empty()) return;
+    commits.then([this, leaves = std::move(unrecorded)] { finished.record(leaves); });
+    unrecorded.clear();
+  }
+  static bool final_task(const Peer& p) { return p.task && p.task->kind == TaskKind::finished; }
+
   void task_done(Peer& p, const Message& m);
   void handle(const std::string& token, std::span<const std::byte> frame);
   void heartbeats();

@@ -125,8 +125,8 @@ void Manager::Impl::task_done(Peer& p, const Message& m) {
     if (log.enabled(LogLevel::debug))
       log.debug("worker " + p.token + ": surface empty after " + task_text(p) + "; " + std::to_string(leaves.size()) +
                 " more leaves finished");
-    if (!leaves.empty()) // once their COMMITs are in the index
-      commits.then([this, leaves = std::move(leaves)] { finished.record(leaves); });
+    unrecorded.insert(unrecorded.end(), leaves.begin(), leaves.end());
+    if (final_task(p)) record_finished(); // the run's last leaves: at once
   }
   const bool final = p.task->kind == TaskKind::finished;
   p.task.reset();

@@ -91,7 +91,8 @@ void Manager::Impl::task_done(Peer& p, const Message& m) {
     std::uint64_t leaves = 1;
     if (p.task->kind == TaskKind::merge) leaves = schedule.transfer_leaves(p.task->transfer);
     if (p.task->kind == TaskKind::finished) leaves = schedule.leaves_held(p.id);
-    log_task(p, leaves, static_cast<double>(m.number));
+    // box[5]: microseconds (0 from a worker that does not send them: the milliseconds then).
+    log_task(p, leaves, m.box[5] > 0 ? static_cast<double>(m.box[5]) / 1000.0 : static_cast<double>(m.number));
   }
   report.worker_peak_rss_kb = std::max(report.worker_peak_rss_kb, m.box[0]);
   switch (p.task->kind) {

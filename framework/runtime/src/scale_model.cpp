@@ -93,8 +93,10 @@ ScaleModelCalibration calibrate(const TaskLogRun& run) {
   }
   const double messages = static_cast<double>(run.messages_in + run.messages_out);
   c.manager_per_message = messages > 0 ? run.manager_cpu_seconds / messages : 0;
-  c.index_per_row = run.rows > 0 ? run.commit_seconds / static_cast<double>(run.rows) : 0;
-  c.rows_per_leaf = static_cast<double>(run.rows) / static_cast<double>(extracts);
+  // The index writer's whole busy time (rows, and the finished leaves it records) spread over the
+  // leaves: per row it would make a run of few rows and many records look absurd.
+  c.index_per_row = run.commit_seconds / static_cast<double>(extracts);
+  c.rows_per_leaf = 1;
   for (const auto& [w, t] : first_task)
     c.startup += t / static_cast<double>(first_task.size());
   c.recorded_workers = run.workers ? run.workers : first_task.size();

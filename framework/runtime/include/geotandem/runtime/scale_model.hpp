@@ -13,7 +13,7 @@
 //   recorded ones; the final pass scales with the bytes of the whole surface;
 // - the manager spends the recorded CPU per message (its total CPU over its messages) on each of
 //   the simulated ones: ASK, the task, DONE and COMMIT per task, chunks and credits per MiB of a
-//   surface both ways; the index writer the recorded time per row;
+//   surface both ways; the index writer its recorded busy time per leaf extracted;
 // - workers start when the recorded ones did (the mean delay to their first task), every worker
 //   runs on its own core, and a WAIT lasts what the manager says (20 ms).
 #include <cstdint>
@@ -36,7 +36,7 @@ struct ScaleModelCalibration {
   double finish_seconds = 0;                   // of the recorded final pass
   std::uint64_t finish_leaves = 0;             // the leaves it covered
   double manager_per_message = 0;              // CPU seconds
-  double index_per_row = 0, rows_per_leaf = 0; // seconds; rows committed per leaf
+  double index_per_row = 0, rows_per_leaf = 0; // the index writer's seconds per leaf; 1
   double startup = 0;                          // seconds before a worker's first task
   std::size_t recorded_workers = 0;
   double recorded_wall = 0, recorded_manager_cpu = 0;

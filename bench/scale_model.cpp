@@ -45,11 +45,11 @@ int bench_main(int argc, char** argv) {
               static_cast<unsigned long long>(c.recorded_workers), c.recorded_wall, c.recorded_manager_cpu);
   std::printf("calibration: EXTRACT mean %.2f ms; surface bytes = %.3g x leaves^%.3f; MERGE %.2f ms + %.3g ms/MiB; "
               "SEND %.2f ms + %.3g ms/MiB; final pass %.2f s over %llu leaves; manager %.1f us/message; index "
-              "writer %.1f us/leaf; worker start %.2f s\n",
+              "writer %.1f us/leaf; worker start %.2f s; per task overhead %.2f ms (EXTRACT), gap %.2f ms\n",
               1e3 * c.extract_mean, c.bytes_k, c.bytes_p, 1e3 * c.merge_fixed, 1e3 * c.merge_per_byte * 1048576.0,
               1e3 * c.send_fixed, 1e3 * c.send_per_byte * 1048576.0, c.finish_seconds,
               static_cast<unsigned long long>(c.finish_leaves), 1e6 * c.manager_per_message, 1e6 * c.index_per_row,
-              c.startup);
+              c.startup, 1e3 * c.overhead_extract, 1e3 * c.gap);
   std::printf("predicted for cube %s, leaves of %lld (%zu leaves):\n", cube.to_string().c_str(),
               static_cast<long long>(leaf), tree.leaves().size());
   std::printf("%8s %11s %10s %9s %9s %9s %9s %8s %8s  %s\n", "workers", "wall_s", "efficiency", "manager", "index",

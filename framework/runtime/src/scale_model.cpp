@@ -43,6 +43,12 @@ std::int64_t cells_of(const volume::Box& b) {
 constexpr double kWait = 0.020;                         // the manager's WAIT (manager_support.cpp)
 constexpr double kChunk = static_cast<double>(1 << 20); // bytes per surface chunk (protocol.hpp)
 
+double median(std::vector<double> v) {
+  if (v.empty()) return 0;
+  std::nth_element(v.begin(), v.begin() + static_cast<long>(v.size() / 2), v.end());
+  return std::max(0.0, v[v.size() / 2]);
+}
+
 } // namespace
 
 ScaleModelCalibration calibrate(const TaskLogRun& run) {
@@ -55,7 +61,13 @@ ScaleModelCalibration calibrate(const TaskLogRun& run) {
   std::map<std::string, double> first_task;
   double extract_sum = 0;
   std::size_t extracts = 0;
+  std::map<std::string, std::vector<double>> over;
+  std::map<std::string, double> last_end;
+  std::vector<double> gaps;
   for (const TaskRecord& t : run.tasks) {
+    if (t.kind != "SEND") over[t.kind].push_back(t.end - t.start - t.worker_ms / 1000.0);
+    if (auto e = last_end.find(t.worker); e != last_end.end()) gaps.push_back(t.start - e->second);
+    last_end[t.worker] = t.end;
     auto [it, fresh] = first_task.try_emplace(t.worker, t.start);
     if (!fresh) it->second = std::min(it->second, t.start);
     const double s = t.worker_ms / 1000.0;
@@ -76,6 +88,10 @@ ScaleModelCalibration calibrate(const TaskLogRun& run) {
   }
   if (extracts == 0) throw InvalidArgument("the task log's run has no EXTRACT: nothing to model");
   c.extract_mean = extract_sum / static_cast<double>(extracts);
+  c.overhead_extract = median(over["EXTRACT"]);
+  c.overhead_merge = median(over["MERGE"]);
+  c.overhead_finish = median(over["FINISHED"]);
+  c.gap = median(gaps);
   std::tie(c.merge_fixed, c.merge_per_byte) = fit_line(merges);
   std::tie(c.send_fixed, c.send_per_byte) = fit_line(sends);
   if (!sizes.empty()) {
@@ -178,7 +194,7 @@ ScalePrediction predict(const ScaleModelCalibration& c, const tandem::BlockTree&
         continue;
       case TaskKind::extract:
         ++out.extract;
-        busy = extract[static_cast<std::size_t>(d.leaf)];
+        busy = extract[static_cast<std::size_t>(d.leaf)] + c.overhead_extract;
         last_extract_end = std::max(last_extract_end, t + busy);
         task_bytes[it.w] = 0;
         break;
@@ -192,7 +208,7 @@ ScalePrediction predict(const ScaleModelCalibration& c, const tandem::BlockTree&
       case TaskKind::merge: {
         ++out.merge;
         const double bytes = bytes_of(schedule.transfer_leaves(d.transfer));
-        busy = c.merge_fixed + c.merge_per_byte * bytes;
+        busy = c.merge_fixed + c.merge_per_byte * bytes + c.overhead_merge;
         task_bytes[it.w] = bytes;
         break;
       }
@@ -201,7 +217,7 @@ ScalePrediction predict(const ScaleModelCalibration& c, const tandem::BlockTree&
           schedule.leave(it.w);
           continue;
         }
-        busy = finish;
+        busy = finish + c.overhead_finish;
         task_bytes[it.w] = 0;
         break;
       }
@@ -229,7 +245,7 @@ ScalePrediction predict(const ScaleModelCalibration& c, const tandem::BlockTree&
         break;
       }
     }
-    events.push({t, seq++, it.w, Event::ask});
+    events.push({t + c.gap, seq++, it.w, Event::ask});
   }
   if (out.wall <= 0) throw Error("the scale model's replay did not finish the run");
   out.manager_busy = manager_busy / out.wall;

@@ -15,7 +15,9 @@
 //   the simulated ones: ASK, the task, DONE and COMMIT per task, chunks and credits per MiB of a
 //   surface both ways; the index writer its recorded busy time per leaf extracted;
 // - workers start when the recorded ones did (the mean delay to their first task), every worker
-//   runs on its own core, and a WAIT lasts what the manager says (20 ms).
+//   runs on its own core, and a WAIT lasts what the manager says (20 ms);
+// - a task costs, beyond its own time, the recorded median overhead of its kind (messages there
+//   and back, the shard's sync), and a worker asks again after the recorded median gap.
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -38,6 +40,10 @@ struct ScaleModelCalibration {
   double manager_per_message = 0;              // CPU seconds
   double index_per_row = 0, rows_per_leaf = 0; // the index writer's seconds per leaf; 1
   double startup = 0;                          // seconds before a worker's first task
+  // What a task costs beyond the worker's own time, as the manager saw it (median of its end -
+  // start - the worker's time: messages there and back, the shard's sync before the COMMIT), by
+  // kind, and the median gap between a worker's result and its next task (its ASK on the way).
+  double overhead_extract = 0, overhead_merge = 0, overhead_finish = 0, gap = 0;
   std::size_t recorded_workers = 0;
   double recorded_wall = 0, recorded_manager_cpu = 0;
 };

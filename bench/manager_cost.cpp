@@ -170,6 +170,7 @@ int bench_main(int argc, char** argv) {
   std::printf("%8s %8s %8s %9s %9s %10s %10s %9s %11s %11s\n", "workers", "leaves", "tasks", "wall_s", "mgr_cpu_s",
               "us/message", "us/task", "kmsg/s", "rows/s", "mgr_share");
   for (const std::int64_t w : counts) {
+    std::fflush(stdout); // the child would print what is buffered again
     int fds[2];
     if (::pipe(fds) != 0) throw std::runtime_error("pipe");
     const pid_t child = ::fork();

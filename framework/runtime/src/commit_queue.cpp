@@ -1,6 +1,7 @@
 // The manager's index writes on their own thread (commit_queue.hpp).
 #include "commit_queue.hpp"
 
+#include <iterator>
 #include <utility>
 
 namespace geotandem::runtime::detail {
@@ -69,6 +70,15 @@ void CommitQueue::loop() {
     }
     Work work = std::move(queue_.front());
     queue_.pop_front();
+    // The COMMITs queued one after another go in one transaction (one sync of the index, not one
+    // per worker message: at 1 row per COMMIT the writer managed 100-400 rows/s). An action
+    // queued between them still runs after those before it and before those after it.
+    if (auto* entries = std::get_if<std::vector<store::IndexEntry>>(&work))
+      while (!queue_.empty() && std::holds_alternative<std::vector<store::IndexEntry>>(queue_.front())) {
+        auto& more = std::get<std::vector<store::IndexEntry>>(queue_.front());
+        entries->insert(entries->end(), std::make_move_iterator(more.begin()), std::make_move_iterator(more.end()));
+        queue_.pop_front();
+      }
     busy_ = true;
     lock.unlock();
     const auto began = std::chrono::steady_clock::now();

@@ -9,8 +9,8 @@
 // - a leaf takes the time the recorded run took for the leaf at the same relative position of the
 //   cube (the recorded leaf's time, scaled by the ratio of cells when the leaf sizes differ);
 // - a partial surface's bytes follow a power law in the leaves it covers, fitted on the recorded
-//   SENDs (bytes = k leaves^p); a MERGE's and a SEND's time are linear in those bytes, fitted on the
-//   recorded ones; the final pass scales with the bytes of the whole surface;
+//   SENDs (bytes = k leaves^p, p within [1/2, 1], 2/3 when the SENDs cover one size); a MERGE's and a SEND's time are
+//   linear in those bytes, fitted on the recorded ones; the final pass scales with the bytes of the whole surface;
 // - the manager spends the recorded CPU per message (its total CPU over its messages) on each of
 //   the simulated ones: ASK, the task, DONE and COMMIT per task, chunks and credits per MiB of a
 //   surface both ways; the index writer its recorded busy time per leaf extracted;

@@ -40,6 +40,7 @@ public:
 private:
   using Work = std::variant<std::vector<store::IndexEntry>, std::function<void()>>;
   void loop();
+  void commit_together(std::vector<store::IndexEntry> first, std::vector<std::vector<store::IndexEntry>> more);
 
   ComponentCommitter& committer_;
   std::mutex mutex_;

@@ -13,3 +13,18 @@ add_dependencies(bench_runtime_speedup geotandem)
 add_executable(bench_surface_route ${CMAKE_CURRENT_SOURCE_DIR}/surface_route.cpp)
 target_link_libraries(bench_surface_route PRIVATE geotandem::runtime cppzmq)
 geotandem_target_defaults(bench_surface_route)
+
+# bench_manager_cost: the manager's own cost per message and per task (real Manager, CURVE socket,
+# schedule, relay, index writer) with workers that answer at once (issue 55, part 3). Run it as
+#   build/release/bin/bench_manager_cost 256,256,64 8 2,8,64 1
+add_executable(bench_manager_cost ${CMAKE_CURRENT_SOURCE_DIR}/manager_cost.cpp)
+target_link_libraries(bench_manager_cost PRIVATE geotandem::runtime geotandem::store cppzmq)
+target_include_directories(bench_manager_cost PRIVATE ${PROJECT_SOURCE_DIR}/framework/store/src)
+geotandem_target_defaults(bench_manager_cost)
+
+# bench_scale_model: a run's task log replayed through the real Schedule with 1 to 1024 simulated
+# workers (issue 55, part 4). Run it as
+#   build/release/bin/bench_scale_model OUT/store/task-log.tsv [1,2,...,1024] [cube X,Y,Z] [leaf]
+add_executable(bench_scale_model ${CMAKE_CURRENT_SOURCE_DIR}/scale_model.cpp)
+target_link_libraries(bench_scale_model PRIVATE geotandem::runtime)
+geotandem_target_defaults(bench_scale_model)

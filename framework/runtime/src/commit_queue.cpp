@@ -1,6 +1,7 @@
 // The manager's index writes on their own thread (commit_queue.hpp).
 #include "commit_queue.hpp"
 
+#include <iterator>
 #include <utility>
 
 namespace geotandem::runtime::detail {
@@ -50,6 +51,31 @@ void CommitQueue::drain() {
   rethrow_failure();
 }
 
+double CommitQueue::busy_seconds() {
+  std::lock_guard lock(mutex_);
+  return busy_seconds_;
+}
+
+// One transaction for all; when it is refused, batch by batch, so that a batch the store refuses
+// (a worker's bad entry) does not take the good ones queued before it along: those are committed,
+// the refused one's failure goes up, and nothing after it is done.
+void CommitQueue::commit_together(std::vector<store::IndexEntry> first,
+                                  std::vector<std::vector<store::IndexEntry>> more) {
+  if (more.empty()) return committer_.commit(std::move(first));
+  std::vector<store::IndexEntry> all = first;
+  for (const auto& batch : more)
+    all.insert(all.end(), batch.begin(), batch.end());
+  try {
+    committer_.commit(std::move(all));
+    return;
+  } catch (const std::exception&) {
+    // The transaction left nothing behind: the batches again, one at a time.
+  }
+  committer_.commit(std::move(first));
+  for (auto& batch : more)
+    committer_.commit(std::move(batch));
+}
+
 void CommitQueue::loop() {
   std::unique_lock lock(mutex_);
   for (;;) {
@@ -64,18 +90,30 @@ void CommitQueue::loop() {
     }
     Work work = std::move(queue_.front());
     queue_.pop_front();
+    // The COMMITs queued one after another go in one transaction (one sync of the index, not one
+    // per worker message: at 1 row per COMMIT the writer managed 100-400 rows/s). An action
+    // queued between them still runs after those before it and before those after it.
+    std::vector<std::vector<store::IndexEntry>> batches;
+    if (std::holds_alternative<std::vector<store::IndexEntry>>(work))
+      while (!queue_.empty() && std::holds_alternative<std::vector<store::IndexEntry>>(queue_.front())) {
+        batches.push_back(std::move(std::get<std::vector<store::IndexEntry>>(queue_.front())));
+        queue_.pop_front();
+      }
     busy_ = true;
     lock.unlock();
+    const auto began = std::chrono::steady_clock::now();
     std::exception_ptr failed;
     try {
       if (auto* entries = std::get_if<std::vector<store::IndexEntry>>(&work))
-        committer_.commit(std::move(*entries));
+        commit_together(std::move(*entries), std::move(batches));
       else
         std::get<std::function<void()>>(work)();
     } catch (...) {
       failed = std::current_exception();
     }
+    const double spent = std::chrono::duration<double>(std::chrono::steady_clock::now() - began).count();
     lock.lock();
+    busy_seconds_ += spent;
     busy_ = false;
     if (failed && !failure_) failure_ = failed;
     if (queue_.empty() || failure_) idle_.notify_all();

@@ -3,6 +3,7 @@
 // such as recording the leaves whose components are all committed) are done in order by one
 // thread, so that a worker's next task does not wait for the index transaction and its fsync.
 // Internal to the runtime.
+#include <chrono>
 #include <condition_variable>
 #include <deque>
 #include <exception>
@@ -33,16 +34,20 @@ public:
   bool failed();
   // Waits until everything queued is done, then rethrow_failure().
   void drain();
+  // The time the thread spent on work (commits and actions), so far.
+  double busy_seconds();
 
 private:
   using Work = std::variant<std::vector<store::IndexEntry>, std::function<void()>>;
   void loop();
+  void commit_together(std::vector<store::IndexEntry> first, std::vector<std::vector<store::IndexEntry>> more);
 
   ComponentCommitter& committer_;
   std::mutex mutex_;
   std::condition_variable wake_, idle_;
   std::deque<Work> queue_;
   bool busy_ = false, stop_ = false;
+  double busy_seconds_ = 0;
   std::exception_ptr failure_;
   std::thread thread_; // last: starts once the members above exist
 };

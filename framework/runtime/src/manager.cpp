@@ -37,6 +37,7 @@ void Manager::Impl::kill_peer(const std::string& token, const std::string& why) 
   if (it == peers.end()) return;
   Peer& p = it->second;
   const std::vector<tandem::NodeId> redo = schedule.leave(p.id);
+  held_triangles -= p.held_triangles;
   relay.forget(token);
   relay.drop_kept([&](TransferId t) { return !schedule.transfer_target(t); });
   log.warning("worker " + token + " (pid " + std::to_string(p.pid) + ") " + why + " during " + task_text(p) + ": " +
@@ -56,6 +57,12 @@ void Manager::Impl::kill_peer(const std::string& token, const std::string& why) 
 }
 
 void Manager::Impl::heartbeats() {
+  // Every worker is looked at (ended, silent, overdue, due a heartbeat) at most every 20 ms, not
+  // after every batch of messages: with many workers this loop would otherwise cost O(workers)
+  // per task.
+  const auto now = Clock::now();
+  if (now - last_watch < std::chrono::milliseconds(20)) return;
+  last_watch = now;
   // Asked before ended(), so that every worker it no longer counts is handled below first.
   const bool exhausted = launcher && peers.empty() && !schedule.complete() && report.restarts >= options.max_restarts &&
                          launcher->running() == 0;
@@ -82,7 +89,6 @@ void Manager::Impl::heartbeats() {
                 {},
                 "see the log above for why each worker died; the finished blocks are in the store, and a rerun "
                 "of the same command resumes from them");
-  const auto now = Clock::now();
   std::vector<std::string> silent;
   for (auto& [token, p] : peers)
     if (now - p.heard > options.lease) silent.push_back(token);
@@ -153,6 +159,7 @@ ManagerReport Manager::Impl::run() {
           [this](const std::string& token, std::span<const std::byte> body) { handle(token, body); },
           [this](const std::string& why) { drop(why); });
       heartbeats();
+      if (Clock::now() - last_record > std::chrono::milliseconds(100)) record_finished();
       commits.rethrow_failure();
       if (schedule.complete()) {
         if (!completed) completed = Clock::now();
@@ -172,6 +179,7 @@ ManagerReport Manager::Impl::run() {
     relay.close(); // a rerun redoes unmerged surfaces from the volume
     stop_workers();
     progress.stop();
+    record_finished();
     const bool failed_before = commits.failed(); // then that failure is what goes up
     try {
       commits.drain(); // what the workers committed stays committed
@@ -187,8 +195,23 @@ ManagerReport Manager::Impl::run() {
     std::this_thread::sleep_for(std::chrono::milliseconds(10));
   stop_workers();
   progress.end();
+  record_finished();
   commits.drain();
   report.manager_cpu_seconds = cpu_seconds() - cpu_at_start;
+  report.messages_in = messages_in;
+  report.messages_out = messages_out;
+  report.commit_seconds = commits.busy_seconds();
+  {
+    TaskLogRun totals;
+    totals.manager_cpu_seconds = report.manager_cpu_seconds;
+    totals.wall_seconds = report.seconds;
+    totals.messages_in = messages_in;
+    totals.messages_out = messages_out;
+    totals.rows = rows_in;
+    totals.commit_seconds = report.commit_seconds;
+    totals.workers = report.workers;
+    task_log.close(totals);
+  }
   report.components = committer.added();
   report.duplicates = committer.duplicates();
   report.repaired = committer.repaired();

@@ -16,6 +16,7 @@
 #include "manager_socket.hpp"
 #include "manager_support.hpp"
 #include "surface_relay.hpp"
+#include "task_log.hpp"
 #include "worker_failure.hpp"
 
 namespace geotandem::runtime {
@@ -44,6 +45,7 @@ struct Manager::Impl {
     Lease lease;        // of the task in progress
     std::optional<Decision> task;
     Clock::time_point task_start;
+    std::uint64_t task_bytes = 0, task_rows = 0; // of the task in progress, for the task log
     std::uint64_t tasks = 0;
     std::uint64_t held_triangles = 0; // its surface's, after its last task
   };
@@ -64,6 +66,8 @@ struct Manager::Impl {
   tandem::BlockTree tree;
   Schedule schedule{tree};
   detail::FinishedBlocks finished{store.directory(), tree};
+  detail::TaskLogWriter task_log{store.directory() / kTaskLogName, tree.cube(), tree.leaf_size()};
+  std::uint64_t messages_in = 0, messages_out = 0, rows_in = 0;
   detail::CommitQueue commits{committer}; // after what its thread uses
   detail::SurfaceRelay relay{options.max_surface, static_cast<std::size_t>(options.settings.chunk_bytes),
                              options.relay_memory, beside(store.directory(), ".relay")};
@@ -74,7 +78,9 @@ struct Manager::Impl {
   Clock::time_point start = Clock::now(), last_beat = Clock::now();
   double cpu_at_start = cpu_seconds();
   std::uint64_t progress_done = 0;
-  Clock::duration longest_task{}; // of the tasks finished so far (the task bound grows with it)
+  std::uint64_t held_triangles = 0; // the sum of the peers' held_triangles
+  Clock::time_point last_watch{};   // of the last look at every worker (heartbeats())
+  Clock::duration longest_task{};   // of the tasks finished so far (the task bound grows with it)
 
   Impl(ManagerOptions o, store::ComponentStore& s, Launcher* l, Logger& lg, Progress& p, const CancelToken& c)
       : options(std::move(o)), store(s), launcher(l), log(lg), progress(p), cancel(c),
@@ -94,7 +100,24 @@ struct Manager::Impl {
 
   void launch_one();
 
-  bool send(const std::string& token, const Message& m) { return socket.send(token, encode(m)); }
+  bool send(const std::string& token, const Message& m) {
+    ++messages_out;
+    return socket.send(token, encode(m));
+  }
+  // The task log's line for the peer's task that just ended (before the schedule forgets it).
+  void log_task(const Peer& p, std::uint64_t leaves, double worker_ms) {
+    const double end = since(start);
+    const double begun = std::chrono::duration<double>(p.task_start - start).count();
+    task_log.add({.worker = p.token,
+                  .kind = to_string(p.task->kind),
+                  .leaf = p.task->kind == TaskKind::extract ? p.task->leaf : -1,
+                  .leaves = leaves,
+                  .start = begun,
+                  .end = end,
+                  .worker_ms = worker_ms < 0 ? 1000.0 * (end - begun) : worker_ms,
+                  .bytes = p.task_bytes,
+                  .rows = p.task_rows});
+  }
 
   void drop(const std::string& why) {
     ++report.dropped_messages;
@@ -136,6 +159,19 @@ struct Manager::Impl {
     if (progress_done < report.leaves + 1) progress.advance();
     ++progress_done;
   }
+
+  // Finished leaves wait in `unrecorded` and are recorded (appended to the store's file and synced)
+  // together, at most every 100 ms, after every COMMIT received so far: one fdatasync per batch,
+  // not per task. A manager killed meanwhile loses their lines only: they are re-done on resume.
+  std::vector<tandem::NodeId> unrecorded;
+  Clock::time_point last_record{};
+  void record_finished() {
+    last_record = Clock::now();
+    if (unrecorded.empty()) return;
+    commits.then([this, leaves = std::move(unrecorded)] { finished.record(leaves); });
+    unrecorded.clear();
+  }
+  static bool final_task(const Peer& p) { return p.task && p.task->kind == TaskKind::finished; }
 
   void task_done(Peer& p, const Message& m);
   void handle(const std::string& token, std::span<const std::byte> frame);

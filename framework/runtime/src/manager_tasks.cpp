@@ -45,11 +45,13 @@ void Manager::Impl::decide(Peer& p) {
     p.lease = m.lease;
     p.task = d;
     p.task_start = Clock::now();
-    log.debug("worker " + p.token + ": " + task_text(p));
+    p.task_bytes = p.task_rows = 0;
+    if (log.enabled(LogLevel::debug)) log.debug("worker " + p.token + ": " + task_text(p));
   }
   if (d.kind == TaskKind::merge) {
     const detail::SurfaceRelay::Header h = relay.begin_outbound(p.token, d.transfer);
     m.number = h.total;
+    p.task_bytes = h.total;
     m.box[0] = static_cast<std::int64_t>(h.checksum);
   }
   if (d.kind == TaskKind::send) relay.begin_inbound(p.token);
@@ -76,6 +78,7 @@ void Manager::Impl::depart(const std::string& token) {
   if (it == peers.end()) return;
   log.info("worker " + token + " done after " + std::to_string(it->second.tasks) + " task(s)");
   schedule.leave(it->second.id);
+  held_triangles -= it->second.held_triangles;
   relay.forget(token);
   dead.insert(token);
   departed.insert(token);
@@ -84,6 +87,13 @@ void Manager::Impl::depart(const std::string& token) {
 
 void Manager::Impl::task_done(Peer& p, const Message& m) {
   const double s = static_cast<double>(m.number) / 1000.0;
+  {
+    std::uint64_t leaves = 1;
+    if (p.task->kind == TaskKind::merge) leaves = schedule.transfer_leaves(p.task->transfer);
+    if (p.task->kind == TaskKind::finished) leaves = schedule.leaves_held(p.id);
+    // box[5]: microseconds (0 from a worker that does not send them: the milliseconds then).
+    log_task(p, leaves, m.box[5] > 0 ? static_cast<double>(m.box[5]) / 1000.0 : static_cast<double>(m.number));
+  }
   report.worker_peak_rss_kb = std::max(report.worker_peak_rss_kb, m.box[0]);
   switch (p.task->kind) {
   case TaskKind::extract: ++report.extract, report.seconds_extract += s, advance(); break;
@@ -104,18 +114,20 @@ void Manager::Impl::task_done(Peer& p, const Message& m) {
   }
   task_finished(p);
   ++p.tasks;
+  held_triangles -= p.held_triangles;
   p.held_triangles = static_cast<std::uint64_t>(std::max<std::int64_t>(m.box[4], 0));
-  std::uint64_t held = 0;
-  for (const auto& [token, peer] : peers)
-    held += peer.held_triangles;
-  report.peak_held_triangles = std::max(report.peak_held_triangles, held);
-  log.debug("triangles held by the workers: " + std::to_string(held));
-  // An empty surface: its leaves' components are all committed (the COMMIT came first).
+  held_triangles += p.held_triangles;
+  report.peak_held_triangles = std::max(report.peak_held_triangles, held_triangles);
+  if (log.enabled(LogLevel::debug)) log.debug("triangles held by the workers: " + std::to_string(held_triangles));
+  // An empty surface: its leaves' components are all committed (the COMMIT came first). The leaves
+  // recorded before are not looked at again: the cost stays with the leaves new to its surface.
   if (m.box[1] == 1) {
-    const std::vector<tandem::NodeId> leaves = schedule.held(p.id);
-    log.debug("worker " + p.token + ": surface empty after " + task_text(p) + "; " + std::to_string(leaves.size()) +
-              " leaves finished");
-    commits.then([this, leaves] { finished.record(leaves); }); // once their COMMITs are in the index
+    std::vector<tandem::NodeId> leaves = schedule.take_unrecorded(p.id);
+    if (log.enabled(LogLevel::debug))
+      log.debug("worker " + p.token + ": surface empty after " + task_text(p) + "; " + std::to_string(leaves.size()) +
+                " more leaves finished");
+    unrecorded.insert(unrecorded.end(), leaves.begin(), leaves.end());
+    if (final_task(p)) record_finished(); // the run's last leaves: at once
   }
   const bool final = p.task->kind == TaskKind::finished;
   p.task.reset();
@@ -134,6 +146,7 @@ void Manager::Impl::handle(const std::string& token, std::span<const std::byte> 
     return;
   }
   if (!allowed.count(token)) return drop("from an unknown sender (not a token this manager issued)");
+  ++messages_in;
   Message m;
   try {
     m = decode(frame, options.max_message);
@@ -202,7 +215,11 @@ void Manager::Impl::handle(const std::string& token, std::span<const std::byte> 
     return drop(std::string(to_string(m.kind)) + " from worker " + token + " with a stale lease (task " +
                 std::to_string(m.lease.task) + ", attempt " + std::to_string(m.lease.attempt) + ")");
   switch (m.kind) {
-  case MessageKind::commit: commits.commit(std::move(m.entries)); return;
+  case MessageKind::commit:
+    p.task_rows += m.entries.size();
+    rows_in += m.entries.size();
+    commits.commit(std::move(m.entries));
+    return;
   case MessageKind::surface_chunk: {
     if (p.task->kind != TaskKind::send) return drop("a surface chunk from worker " + token + " outside a SEND");
     const auto size_hint = static_cast<std::uint64_t>(std::max<std::int64_t>(0, m.box[0]));
@@ -230,6 +247,8 @@ void Manager::Impl::handle(const std::string& token, std::span<const std::byte> 
       return kill_peer(token, "sent a damaged partial surface");
     }
     report.surface_bytes += bytes;
+    p.task_bytes = bytes;
+    log_task(p, schedule.transfer_leaves(t), -1.0);
     report.largest_surface = std::max<std::uint64_t>(report.largest_surface, bytes);
     ++report.send;
     task_finished(p);

@@ -3,8 +3,10 @@
 
 #include <stdexcept>
 #include <string>
+#include <utility>
 
 #include "geotandem/core/error.hpp"
+#include "leaf_counts.hpp"
 
 namespace geotandem::runtime {
 
@@ -22,17 +24,89 @@ const char* to_string(TaskKind kind) {
   return "?";
 }
 
-Schedule::Schedule(const tandem::BlockTree& tree) : tree_(tree), unprocessed_(tree.size(), 0) {
+Schedule::Schedule(const tandem::BlockTree& tree)
+    : tree_(tree), unprocessed_(tree.size(), 0), unprocessed_count_(tree.leaves().size()),
+      open_(std::make_unique<detail::LeafCounts>(tree)), taken_(std::make_unique<detail::LeafCounts>(tree)),
+      owner_(tree.size(), 0) {
   for (NodeId leaf : tree.leaves())
     unprocessed_[static_cast<std::size_t>(leaf)] = 1;
+  open_->count_every_leaf();
+}
+
+Schedule::~Schedule() = default;
+
+// A node of which `id` claims every leaf, none before: it becomes a maximal node of the worker's
+// claim, merged with its brother when that one is claimed whole too.
+void Schedule::claim_node(WorkerId id, NodeId node) {
+  while (node != tree_.root()) {
+    const auto brother = static_cast<std::size_t>(tree_.brother(node));
+    if (owner_[brother] != id) break;
+    owner_[brother] = 0;
+    node = tree_.node(node).parent;
+  }
+  owner_[static_cast<std::size_t>(node)] = id;
+}
+
+// A node of which `id` claims every leaf stops being claimed: the maximal node above it is split
+// into the brothers of the path down to it.
+void Schedule::unclaim_node(WorkerId id, NodeId node) {
+  NodeId top = node;
+  while (top != kNoNode && owner_[static_cast<std::size_t>(top)] != id)
+    top = tree_.node(top).parent;
+  if (top == kNoNode)
+    throw std::logic_error("schedule: worker " + std::to_string(id) + " does not claim " + tree_.describe(node));
+  owner_[static_cast<std::size_t>(top)] = 0;
+  for (NodeId x = node; x != top; x = tree_.node(x).parent)
+    owner_[static_cast<std::size_t>(tree_.brother(x))] = id;
+}
+
+void Schedule::claim(WorkerId id, const Aggregate& leaves) {
+  for (const auto& [node, n] : leaves.maximal())
+    claim_node(id, node);
+  worker(id).claimed += leaves.size();
+}
+
+void Schedule::unclaim(WorkerId id, const Aggregate& leaves) {
+  for (const auto& [node, n] : leaves.maximal())
+    unclaim_node(id, node);
+  Worker& w = worker(id);
+  w.claimed -= std::min(w.claimed, leaves.size());
+}
+
+void Schedule::move_claim(const Aggregate& leaves, WorkerId from, WorkerId to) {
+  unclaim(from, leaves);
+  claim(to, leaves);
+}
+
+void Schedule::owners_on_face(NodeId node, int axis, int side, WorkerId id, std::vector<WorkerId>& out) const {
+  std::vector<NodeId> stack{node};
+  while (!stack.empty()) {
+    const NodeId x = stack.back();
+    stack.pop_back();
+    if (const WorkerId v = owner_[static_cast<std::size_t>(x)]) {
+      if (v != id) out.push_back(v);
+      continue;
+    }
+    const tandem::BlockNode& n = tree_.node(x);
+    if (n.is_leaf() || taken_->on_face(x, axis, side) == 0) continue;
+    if (n.split_axis == axis) {
+      stack.push_back(n.children[static_cast<std::size_t>(side)]);
+    } else {
+      stack.push_back(n.children[1]);
+      stack.push_back(n.children[0]);
+    }
+  }
 }
 
 void Schedule::skip(NodeId leaf) {
   if (started_) throw std::logic_error("schedule: skip() after the first decision");
   if (leaf < 0 || static_cast<std::size_t>(leaf) >= tree_.size() || !tree_.node(leaf).is_leaf())
     throw InvalidArgument("schedule: node " + std::to_string(leaf) + " is not a leaf of the block tree");
-  if (unprocessed_[static_cast<std::size_t>(leaf)]) ++skipped_;
+  if (!unprocessed_[static_cast<std::size_t>(leaf)]) return;
+  ++skipped_;
   unprocessed_[static_cast<std::size_t>(leaf)] = 0;
+  --unprocessed_count_;
+  open_->change(leaf, -1);
 }
 
 Schedule::Worker& Schedule::worker(WorkerId id) {
@@ -53,25 +127,40 @@ bool Schedule::busy(WorkerId id) const {
 
 Aggregate Schedule::claimed(const Worker& w) const {
   Aggregate all = w.held;
-  for (TransferId t : w.incoming)
+  for (const auto& [order, t] : w.incoming)
     all.add(transfers_.at(t).leaves);
   return all;
 }
 
 // has_neighbor_worker: the live worker, other than this one, whose claimed leaves are
-// restricted-adjacent to this one's and at least as many; the one claiming most leaves first.
+// restricted-adjacent to this one's and at least as many; the one claiming most leaves first (the
+// lowest id among equals). The candidates come from the owners of the nodes next to each maximal
+// node a of this worker: inside brother(a) on its face towards a, and the brothers of a and of its
+// ancestors (aggregate.cpp explains the two directions of the test).
 std::optional<WorkerId> Schedule::neighbor(WorkerId id) {
   const Aggregate& mine = worker(id).held;
+  std::vector<WorkerId> found;
+  for (const auto& [a, n] : mine.maximal()) {
+    if (a == tree_.root()) continue;
+    const auto [axis, side] = detail::LeafCounts::face_towards(tree_, a);
+    owners_on_face(tree_.brother(a), axis, side, id, found);
+    for (NodeId c = a; c != tree_.root(); c = tree_.node(c).parent) {
+      const NodeId b = tree_.brother(c);
+      const WorkerId v = owner_[static_cast<std::size_t>(b)];
+      if (v != 0 && v != id && tree_.restricted_adjacent(b, a)) found.push_back(v);
+    }
+  }
   std::optional<WorkerId> best;
   std::size_t best_size = 0;
-  for (const auto& [other, w] : workers_) {
-    if (other == id || w.retiring) continue;
-    const Aggregate theirs = claimed(w);
+  for (WorkerId other : found) {
+    const Worker& w = workers_.at(other);
+    if (w.retiring) continue;
     // The smaller side travels: a worker does not send to a smaller neighbour (that one sends to
     // it when it asks), so large aggregates stay put and their workers go on extracting.
-    if (!theirs.empty() && theirs.size() >= mine.size() && mine.adjacent(theirs) && theirs.size() > best_size) {
+    const std::size_t theirs = w.claimed;
+    if (theirs > 0 && theirs >= mine.size() && (theirs > best_size || (theirs == best_size && other < *best))) {
       best = other;
-      best_size = theirs.size();
+      best_size = theirs;
     }
   }
   return best;
@@ -87,7 +176,7 @@ std::optional<WorkerId> Schedule::any_holder(WorkerId id) const {
   std::size_t best_size = 0;
   for (const auto& [other, w] : workers_) {
     if (other == id || w.retiring) continue;
-    const std::size_t theirs = claimed(w).size();
+    const std::size_t theirs = w.claimed;
     if (theirs > 0 && theirs >= mine && theirs > best_size) {
       best = other;
       best_size = theirs;
@@ -96,18 +185,23 @@ std::optional<WorkerId> Schedule::any_holder(WorkerId id) const {
   return best;
 }
 
-// has_unprocessed_block: one restricted-adjacent to the worker's aggregate first, any otherwise.
+// has_unprocessed_block: the first (in tree order) restricted-adjacent to the worker's aggregate,
+// the first of all otherwise. For each maximal node a of the aggregate: the first unprocessed leaf
+// of brother(a) on its face towards a, and the brothers of a and of its ancestors that are
+// unprocessed leaves passing the test.
 NodeId Schedule::unprocessed_leaf(const Worker& w) const {
-  NodeId any = kNoNode;
-  const std::vector<NodeId> mine = w.held.maximal_nodes();
-  for (NodeId leaf : tree_.leaves()) {
-    if (!unprocessed_[static_cast<std::size_t>(leaf)]) continue;
-    if (any == kNoNode) any = leaf;
-    if (mine.empty()) break;
-    for (NodeId a : mine)
-      if (nodes_adjacent(tree_, a, leaf)) return leaf;
+  NodeId best = kNoNode;
+  const auto better = [&](NodeId leaf) { return leaf != kNoNode && (best == kNoNode || leaf < best); };
+  for (const auto& [a, n] : w.held.maximal()) {
+    if (a == tree_.root()) continue;
+    const auto [axis, side] = detail::LeafCounts::face_towards(tree_, a);
+    if (const NodeId leaf = open_->first(tree_.brother(a), axis, side); better(leaf)) best = leaf;
+    for (NodeId c = a; c != tree_.root(); c = tree_.node(c).parent) {
+      const NodeId b = tree_.brother(c);
+      if (better(b) && unprocessed_[static_cast<std::size_t>(b)] && tree_.restricted_adjacent(b, a)) best = b;
+    }
   }
-  return any;
+  return best != kNoNode ? best : open_->first(tree_.root());
 }
 
 Decision Schedule::assign(Worker& w, Decision d) {
@@ -127,8 +221,10 @@ Decision Schedule::assign(Worker& w, Decision d) {
 
 Decision Schedule::send_to(WorkerId id, Worker& w, WorkerId target) {
   const TransferId t = next_transfer_++;
-  transfers_.emplace(t, Transfer{.from = id, .to = target, .leaves = w.held});
-  worker(target).incoming.push_back(t);
+  move_claim(w.held, id, target);
+  transfers_.emplace(t, Transfer{.from = id, .to = target, .leaves = w.held, .fresh = std::move(w.fresh)});
+  w.fresh.clear();
+  address(t, target);
   w.held.clear();
   return assign(w, {.kind = TaskKind::send, .target = target, .transfer = t});
 }
@@ -141,7 +237,7 @@ std::optional<WorkerId> Schedule::successor(const Aggregate& leaves, WorkerId id
   std::size_t best_rank = 0;
   for (const auto& [other, w] : workers_) {
     if (other == id || w.retiring) continue;
-    const Aggregate theirs = claimed(w);
+    const Aggregate theirs = claimed(w); // O(maximal nodes): only for a retiring worker
     const bool adjacent = !theirs.empty() && !leaves.empty() && leaves.adjacent(theirs);
     const std::size_t rank = 1 + theirs.size() + (adjacent ? tree_.size() : 0);
     if (rank > best_rank) {
@@ -164,31 +260,48 @@ void Schedule::retire(WorkerId id) {
 
 // The surfaces on their way to a retiring worker (not yet being merged) go to its successor; the
 // manager keeps their bytes by transfer, so only the target changes.
+void Schedule::address(TransferId t, WorkerId to) {
+  Transfer& tr = transfers_.at(t);
+  Worker& w = worker(to);
+  tr.to = to;
+  tr.order = next_order_++;
+  w.incoming.emplace(tr.order, t);
+  if (tr.arrived && !tr.merging) w.ready.insert(tr.order);
+}
+
+TransferId Schedule::take_ready(Worker& w) {
+  if (w.ready.empty()) return 0;
+  const TransferId t = w.incoming.at(*w.ready.begin());
+  w.ready.erase(w.ready.begin());
+  Transfer& tr = transfers_.at(t);
+  tr.merging = true;
+  w.held.add(tr.leaves);
+  w.fresh.insert(w.fresh.end(), tr.fresh.begin(), tr.fresh.end());
+  tr.fresh.clear();
+  return t;
+}
+
 void Schedule::redirect_incoming(WorkerId id) {
   Worker& w = worker(id);
   for (auto it = w.incoming.begin(); it != w.incoming.end();) {
-    Transfer& tr = transfers_.at(*it);
+    const TransferId t = it->second;
+    Transfer& tr = transfers_.at(t);
     const std::optional<WorkerId> v = tr.merging ? std::nullopt : successor(tr.leaves, id);
     if (!v) {
       ++it;
       continue;
     }
-    tr.to = *v;
-    worker(*v).incoming.push_back(*it);
+    move_claim(tr.leaves, id, *v);
+    w.ready.erase(tr.order);
     it = w.incoming.erase(it);
+    address(t, *v);
   }
 }
 
 Decision Schedule::next_retiring(WorkerId id, Worker& w) {
   redirect_incoming(id); // a successor may have joined since
-  for (TransferId t : w.incoming) {
-    Transfer& tr = transfers_.at(t);
-    if (tr.arrived && !tr.merging) { // nobody else to take it: merged here, then handed back
-      tr.merging = true;
-      w.held.add(tr.leaves);
-      return assign(w, {.kind = TaskKind::merge, .transfer = t});
-    }
-  }
+  // Nobody else to take it: merged here, then handed back.
+  if (const TransferId t = take_ready(w)) return assign(w, {.kind = TaskKind::merge, .transfer = t});
   if (!w.incoming.empty()) return assign(w, {.kind = TaskKind::wait});
   if (!w.held.empty()) {
     if (const std::optional<WorkerId> v = successor(w.held, id)) {
@@ -214,14 +327,7 @@ Decision Schedule::next(WorkerId id) {
   if (w.retiring) return next_retiring(id, w);
 
   // 1. has_waiting_surface
-  for (TransferId t : w.incoming) {
-    Transfer& tr = transfers_.at(t);
-    if (tr.arrived && !tr.merging) {
-      tr.merging = true;
-      w.held.add(tr.leaves);
-      return assign(w, {.kind = TaskKind::merge, .transfer = t});
-    }
-  }
+  if (const TransferId t = take_ready(w)) return assign(w, {.kind = TaskKind::merge, .transfer = t});
   // A surface still on its way is not waiting yet: its target does not send its own away (it is
   // the target), but it extracts meanwhile rather than idle; it waits only with nothing to extract.
   const bool expecting = !w.incoming.empty();
@@ -235,7 +341,13 @@ Decision Schedule::next(WorkerId id) {
   if (expecting && leaf == kNoNode) return assign(w, {.kind = TaskKind::wait});
   if (leaf != kNoNode) {
     unprocessed_[static_cast<std::size_t>(leaf)] = 0;
+    --unprocessed_count_;
+    open_->change(leaf, -1);
+    taken_->change(leaf, +1);
     w.held.add(leaf);
+    w.fresh.push_back(leaf);
+    claim_node(id, leaf);
+    ++w.claimed;
     return assign(w, {.kind = TaskKind::extract, .leaf = leaf});
   }
 
@@ -259,8 +371,8 @@ void Schedule::done(WorkerId id) {
   if (d.kind == TaskKind::send) throw std::logic_error("schedule: a SEND ends with arrived(), not done()");
   w.task.reset();
   if (d.kind == TaskKind::merge) {
+    w.incoming.erase(transfers_.at(d.transfer).order);
     transfers_.erase(d.transfer);
-    std::erase(w.incoming, d.transfer);
   } else if (d.kind == TaskKind::finished) {
     w.held.clear();
     complete_ = true;
@@ -276,12 +388,17 @@ bool Schedule::arrived(WorkerId sender, TransferId t) {
     throw std::logic_error("schedule: transfer " + std::to_string(t) + " is not on its way from worker " +
                            std::to_string(sender));
   it->second.arrived = true;
+  if (!it->second.merging) worker(it->second.to).ready.insert(it->second.order);
   return true;
 }
 
 void Schedule::release(const Aggregate& leaves, std::vector<NodeId>& out) {
   for (NodeId leaf : leaves.leaves()) {
+    if (unprocessed_[static_cast<std::size_t>(leaf)]) continue;
     unprocessed_[static_cast<std::size_t>(leaf)] = 1;
+    ++unprocessed_count_;
+    open_->change(leaf, +1);
+    taken_->change(leaf, -1);
     out.push_back(leaf);
     ++counts_.redone_leaves;
   }
@@ -290,6 +407,13 @@ void Schedule::release(const Aggregate& leaves, std::vector<NodeId>& out) {
 std::vector<NodeId> Schedule::leave(WorkerId id) {
   std::vector<NodeId> out;
   Worker& w = worker(id);
+  if (!complete_) { // what it claims is no one's now (after the final pass nothing is claimed)
+    for (const auto& [order, t] : w.incoming)
+      if (!transfers_.at(t).merging) unclaim(id, transfers_.at(t).leaves);
+    unclaim(id, w.held);
+    for (const auto& [t, tr] : transfers_)
+      if (tr.from == id && !tr.arrived && tr.to != id) unclaim(tr.to, tr.leaves);
+  }
   release(w.held, out);
   // Surfaces addressed to it, and those it was still sending, are lost with it.
   for (auto it = transfers_.begin(); it != transfers_.end();) {
@@ -301,7 +425,10 @@ std::vector<NodeId> Schedule::leave(WorkerId id) {
       continue;
     }
     if (!t.merging) release(t.leaves, out); // a merging transfer's leaves are in w.held already
-    if (!to_it) std::erase(worker(t.to).incoming, it->first);
+    if (!to_it) {
+      worker(t.to).incoming.erase(t.order);
+      worker(t.to).ready.erase(t.order);
+    }
     it = transfers_.erase(it);
   }
   workers_.erase(id);
@@ -326,10 +453,12 @@ std::size_t Schedule::transfer_leaves(TransferId t) const {
 }
 
 std::size_t Schedule::unprocessed() const {
-  std::size_t n = 0;
-  for (NodeId leaf : tree_.leaves())
-    n += unprocessed_[static_cast<std::size_t>(leaf)] ? 1u : 0u;
-  return n;
+  return unprocessed_count_;
+}
+
+std::vector<NodeId> Schedule::take_unrecorded(WorkerId id) {
+  auto it = workers_.find(id);
+  return it == workers_.end() ? std::vector<NodeId>{} : std::exchange(it->second.fresh, {});
 }
 
 std::vector<NodeId> Schedule::held(WorkerId id) const {

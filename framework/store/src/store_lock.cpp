@@ -72,8 +72,9 @@ void ComponentStore::remove(const std::filesystem::path& dir) {
     throw IoError("cannot remove the store: the path is not a directory", {dir.string()});
   // Only what a store holds is deleted: a mistyped path must not cost the user other files.
   static const std::set<std::string> store_files = {
-      "store.json",           "store.json.tmp", "index.sqlite",       "index.sqlite-wal", "index.sqlite-shm",
-      "index.sqlite-journal", "shards",         "finished-blocks.txt"}; // the runtime's finished leaves (resume)
+      "store.json",           "store.json.tmp", "index.sqlite",        "index.sqlite-wal", "index.sqlite-shm",
+      "index.sqlite-journal", "shards",         "finished-blocks.txt", // the runtime's finished leaves (resume)
+      "task-log.tsv"}; // the runtime's task log (geotandem/runtime/task_log.hpp)
   for (const auto& entry : std::filesystem::directory_iterator(dir, ec))
     if (!store_files.count(entry.path().filename().string()) &&
         !is_store_json_temporary(entry.path().filename().string()))

@@ -69,10 +69,12 @@ struct ManagerReport {
   std::uint64_t repaired = 0;               // damaged records of an earlier run written again
   std::vector<std::uint64_t> repaired_keys; // the first of their keys (at most 20)
   std::size_t leaves = 0;
-  std::size_t skipped_leaves = 0;              // finished by an earlier run (resume): not redone
-  double seconds = 0, manager_cpu_seconds = 0; // the run's wall time; CPU the manager used in it
-  std::int64_t manager_peak_rss_kb = 0;        // of the manager's process, so far
-  std::int64_t worker_peak_rss_kb = 0;         // the largest over the workers
+  std::size_t skipped_leaves = 0;                  // finished by an earlier run (resume): not redone
+  double seconds = 0, manager_cpu_seconds = 0;     // the run's wall time; CPU the manager used in it
+  std::uint64_t messages_in = 0, messages_out = 0; // frames the manager received and sent
+  double commit_seconds = 0;                       // the index writer's busy time (its own thread)
+  std::int64_t manager_peak_rss_kb = 0;            // of the manager's process, so far
+  std::int64_t worker_peak_rss_kb = 0;             // the largest over the workers
   // Of the whole surface, as the final worker reports it (totals travel with the partial surfaces):
   // every counter of the collapse loop over every leaf extracted in this run, among them its
   // marching-cubes triangles (counters.input_triangles) and collapses (counters.collapses).

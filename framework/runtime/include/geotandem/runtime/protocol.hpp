@@ -43,7 +43,8 @@ enum class MessageKind : std::uint8_t {
   ask = 2,           // the seed's get_task()
   done = 3,          // lease, number = milliseconds, box[0] = peak RSS (KiB), box[1] = 1 when the worker's
                      // surface is empty after it: EXTRACT, MERGE or final over; after the final FINISHED,
-                     // box[2], box[3] = marching-cubes triangles and collapses of the whole surface
+                     // box[2], box[3] = marching-cubes triangles and collapses of the whole surface;
+                     // box[5] = the task's microseconds (0 from an older worker; for the task log)
   surface = 4,       // lease, number = total bytes, box[0] = XXH64 of them: the end of the worker's surface for
                      // its SEND (sent before as surface_chunk; relayed by the manager)
   commit = 5,        // lease, entries: components written (and synced) to the worker's shard

@@ -23,9 +23,16 @@
 // leaves (they are re-done).
 // A dead or departed worker's leaves, and those of every surface addressed to it or not yet
 // received from it, become unprocessed again: they are re-done from the volume.
+//
+// Cost (issue 55): a decision costs O(m depth log m) for a worker whose aggregate has m maximal
+// nodes, whatever the number of leaves and of workers (per-node counts of unprocessed and claimed
+// leaves, by face, find the adjacent ones; an owner per node finds the neighbour workers). Only a
+// retiring worker's hand-back and a resumed run's last hand-overs look at every worker.
 #include <cstdint>
 #include <map>
+#include <memory>
 #include <optional>
+#include <set>
 #include <vector>
 
 #include "geotandem/runtime/aggregate.hpp"
@@ -53,10 +60,17 @@ struct ScheduleCounts {
   std::uint64_t handback = 0;      // SENDs of retiring workers (counted in send too)
 };
 
+namespace detail {
+class LeafCounts;
+}
+
 class Schedule {
 public:
   // `tree` must outlive the schedule. Every leaf starts unprocessed.
   explicit Schedule(const tandem::BlockTree& tree);
+  ~Schedule();
+  Schedule(const Schedule&) = delete;
+  Schedule& operator=(const Schedule&) = delete;
 
   // A leaf whose components are already committed in full by an earlier run (resume): never
   // extracted. Only before the first decision. Throws InvalidArgument for a non-leaf.
@@ -92,8 +106,12 @@ public:
   std::size_t leaves_held(WorkerId worker) const;
   // The leaves a pending transfer carries (0 when it is no longer pending).
   std::size_t transfer_leaves(TransferId transfer) const;
-  // The leaves in the worker's surface (with those of a MERGE in progress), in tree order.
+  // The leaves in the worker's surface (with those of a MERGE in progress), in tree order. O(leaves).
   std::vector<tandem::NodeId> held(WorkerId worker) const;
+  // The leaves that entered the worker's surface since the last call (by EXTRACT, or in the
+  // surfaces it merged, which carry theirs from their sender): when its surface is empty after a
+  // task, these and the ones taken before are finished. O(leaves returned).
+  std::vector<tandem::NodeId> take_unrecorded(WorkerId worker);
   std::size_t skipped() const { return skipped_; }
   const ScheduleCounts& counts() const { return counts_; }
   std::size_t live_workers() const { return workers_.size(); }
@@ -102,15 +120,22 @@ private:
   struct Worker {
     explicit Worker(const tandem::BlockTree& tree) : held(tree) {}
     Aggregate held; // leaves in its surface (and the leaf it extracts)
-    std::vector<TransferId> incoming;
+    // The surfaces on their way to it, in the order they were addressed to it (by Transfer::order),
+    // and those of them that reached the manager and are not being merged yet.
+    std::map<std::uint64_t, TransferId> incoming;
+    std::set<std::uint64_t> ready;
     std::optional<Decision> task; // in progress
     bool retiring = false;
+    std::size_t claimed = 0;           // leaves held plus those on their way to it
+    std::vector<tandem::NodeId> fresh; // see take_unrecorded()
   };
   struct Transfer {
     WorkerId from = 0, to = 0;
     Aggregate leaves;
     bool arrived = false;
     bool merging = false;
+    std::vector<tandem::NodeId> fresh;
+    std::uint64_t order = 0; // in its target's incoming
   };
 
   Worker& worker(WorkerId id);
@@ -124,12 +149,28 @@ private:
   tandem::NodeId unprocessed_leaf(const Worker& w) const;
   void release(const Aggregate& leaves, std::vector<tandem::NodeId>& out);
   Decision assign(Worker& w, Decision d);
+  // The claimed leaves (held or on their way) of each worker as maximal nodes, in owner_.
+  void claim(WorkerId id, const Aggregate& leaves);
+  void unclaim(WorkerId id, const Aggregate& leaves);
+  void claim_node(WorkerId id, tandem::NodeId node);
+  void unclaim_node(WorkerId id, tandem::NodeId node);
+  void address(TransferId t, WorkerId to); // into `to`'s incoming
+  // The first surface that reached the manager for `w` (not merging): now merging. 0: none.
+  TransferId take_ready(Worker& w);
+  void move_claim(const Aggregate& leaves, WorkerId from, WorkerId to);
+  // The owners of the claimed maximal nodes inside `node` on its face (axis, side), but `id`.
+  void owners_on_face(tandem::NodeId node, int axis, int side, WorkerId id, std::vector<WorkerId>& out) const;
 
   const tandem::BlockTree& tree_;
   std::map<WorkerId, Worker> workers_;
   std::map<TransferId, Transfer> transfers_;
   std::vector<char> unprocessed_; // per node id
+  std::size_t unprocessed_count_ = 0;
+  std::unique_ptr<detail::LeafCounts> open_;  // unprocessed leaves
+  std::unique_ptr<detail::LeafCounts> taken_; // leaves a live worker claims
+  std::vector<WorkerId> owner_;               // per node: the worker claiming it as a maximal node, 0: none
   TransferId next_transfer_ = 1;
+  std::uint64_t next_order_ = 1;
   bool started_ = false;
   bool complete_ = false;
   std::size_t skipped_ = 0;

@@ -1,0 +1,51 @@
+#pragma once
+// The run's own task log (issue 55): one line per task the manager saw finish, written by the
+// manager to STORE/task-log.tsv, so that a run can be replayed (bench_scale_model) or examined.
+//
+// The file is text, tab-separated, one task a line after a header line naming the columns:
+//   worker kind leaf leaves start end worker_ms bytes rows
+// worker: the worker's token; kind: EXTRACT, SEND, MERGE or FINISHED (the final pass); leaf: the
+// extracted leaf's node id (-1 for other kinds); leaves: the leaves the task concerns (1 for an
+// EXTRACT, those of the surface sent or merged, those of the whole surface for FINISHED); start,
+// end: seconds since the run started when the manager sent the task and when its result arrived;
+// worker_ms: the task's time as the worker measured it (SEND: end - start); bytes: the partial
+// surface sent or merged (0 otherwise); rows: index rows the worker committed during the task.
+// Lines starting with '#' describe the run: "# cube LO0 LO1 LO2 HI0 HI1 HI2 leaf_size N" first,
+// and at the end "# manager cpu_seconds S wall_seconds W messages_in I messages_out O rows R
+// commit_seconds C workers K". A resumed run appends its own block to the file.
+#include <cstdint>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "geotandem/volume/box.hpp"
+
+namespace geotandem::runtime {
+
+struct TaskRecord {
+  std::string worker;
+  std::string kind; // EXTRACT, SEND, MERGE, FINISHED
+  std::int64_t leaf = -1;
+  std::uint64_t leaves = 0;
+  double start = 0, end = 0; // seconds since the run started
+  double worker_ms = 0;
+  std::uint64_t bytes = 0;
+  std::uint64_t rows = 0;
+};
+
+struct TaskLogRun {
+  volume::Box cube{};
+  std::int64_t leaf_size = 0;
+  std::vector<TaskRecord> tasks;
+  // From the closing line (0 when the run did not end: a killed manager).
+  double manager_cpu_seconds = 0, wall_seconds = 0, commit_seconds = 0;
+  std::uint64_t messages_in = 0, messages_out = 0, rows = 0, workers = 0;
+};
+
+inline constexpr const char* kTaskLogName = "task-log.tsv";
+
+// Every run of the file, in order. Throws IoError when it cannot be read, DataError naming the
+// line when a line is not a task log's.
+std::vector<TaskLogRun> read_task_log(const std::filesystem::path& path);
+
+} // namespace geotandem::runtime

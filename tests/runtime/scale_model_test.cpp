@@ -1,0 +1,58 @@
+// The scale model (issue 55, part 4) against this machine: a real run with 1 worker and one with 2
+// are recorded (their task logs); each log, replayed through the real Schedule, predicts its own
+// run's wall time within 15 % (the cross predictions are printed; see below why not asserted).
+// ctest -L scale_model. The machine is shared: a run slowed by others' load shows as a miss, and
+// the figures are printed for that reason.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <map>
+
+#include "geotandem/runtime/scale_model.hpp"
+#include "scratch.hpp"
+
+namespace geotandem::testing {
+namespace {
+
+double recorded_wall(const std::string& store) {
+  const auto runs = runtime::read_task_log(store + "/task-log.tsv");
+  EXPECT_EQ(runs.size(), 1u);
+  return runs.empty() ? 0.0 : runs.back().wall_seconds;
+}
+
+TEST(ScaleModel, PredictsTheOneAndTwoWorkerRunsWithin15Percent) {
+  ScratchDir dir;
+  const std::string cube = dir.file("cube.raw");
+  auto r = run_geotandem("-q synth --kind analytic --shape 161 161 161 --seed 2 --out '" + cube + "'");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  for (const int workers : {1, 2}) {
+    r = run_geotandem("-q extract '" + cube + "' --iso 0.5 --block-size 20 --workers " + std::to_string(workers) +
+                      " --out '" + dir.file("w" + std::to_string(workers)) + "'");
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+  }
+  const double one = recorded_wall(dir.file("w1")), two = recorded_wall(dir.file("w2"));
+  ASSERT_GT(one, 0.0);
+  ASSERT_GT(two, 0.0);
+  std::map<std::string, std::pair<double, double>> predicted; // from a log: 1 and 2 workers
+  for (const std::string from : {"w1", "w2"}) {
+    const auto runs = runtime::read_task_log(dir.file(from) + "/task-log.tsv");
+    const runtime::ScaleModelCalibration c = runtime::calibrate(runs.back());
+    const tandem::BlockTree tree(runs.back().cube, runs.back().leaf_size);
+    const double p1 = runtime::predict(c, tree, 1).wall, p2 = runtime::predict(c, tree, 2).wall;
+    predicted[from] = {p1, p2};
+    std::printf("from the %s log: 1 worker %.2f s predicted, %.2f s measured (%+.1f %%); 2 workers %.2f s predicted, "
+                "%.2f s measured (%+.1f %%)\n",
+                from.c_str(), p1, one, 100 * (p1 / one - 1), p2, two, 100 * (p2 / two - 1));
+  }
+  // Each run's log predicts that run within 15 %.
+  EXPECT_NEAR(predicted["w1"].first, one, 0.15 * one);
+  EXPECT_NEAR(predicted["w2"].second, two, 0.15 * two);
+  // Across worker counts it is printed, not asserted: a 1-worker log holds no SEND or MERGE, so
+  // the model has no surface sizes or merge times to give a 2-worker replay, and a leaf's time in a
+  // 2-worker log holds the merge into that worker's smaller surface, while one worker holding
+  // everything pays more per leaf. Measured 7 Dec 2026 at load 12: -17 % to +50 % and -23 % to -35 %.
+}
+
+} // namespace
+} // namespace geotandem::testing

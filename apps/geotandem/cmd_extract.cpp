@@ -176,7 +176,7 @@ void add_extract_command(CLI::App& app, Context& context, Runner& run) {
           if (detail.key == "array") s.parameters["variable"] = detail.value;
       }
       if (!(a->segy == volume::SegyOptions{}))
-        s.parameters["segy"] = {{"inline_byte", a->segy.inline_byte}, {"crossline_byte", a->segy.crossline_byte}};
+        s.parameters["segy"] = volume::to_json(a->segy);
       auto progress = context.progress();
       auto r = workflow::extract_to_store(*cube, store, s, context.log, *progress, context.cancel);
       workflow::remove_input_copy(copy, context.log);

@@ -47,9 +47,33 @@ void parse_input(MapReader& m, InputSpec& in) {
   in.variable = m.text("variable", "");
   if (m.has("segy")) {
     MapReader s(m.source(), m.node("segy"), "input.segy");
-    in.segy_inline_byte = static_cast<int>(s.integer("inline_byte", 189, 1, 240));
-    in.segy_crossline_byte = static_cast<int>(s.integer("crossline_byte", 193, 1, 240));
-    s.finish({"inline_byte", "crossline_byte"});
+    volume::SegyOptions& o = in.segy;
+    const auto type = [&](const std::string& key, volume::HeaderType& out) {
+      if (!s.has(key)) return;
+      const std::string text = s.text(key, "int32");
+      try {
+        out = volume::parse_header_type(text);
+      } catch (const Error& e) {
+        throw error_at(s.source(), s.node(key), "'" + key + "' is '" + text + "'", e.hint());
+      }
+    };
+    o.inline_byte = static_cast<int>(s.integer("inline_byte", 189, 1, 239));
+    o.crossline_byte = static_cast<int>(s.integer("crossline_byte", 193, 1, 239));
+    o.x_byte = static_cast<int>(s.integer("x_byte", 181, 1, 239));
+    o.y_byte = static_cast<int>(s.integer("y_byte", 185, 1, 239));
+    type("inline_type", o.inline_type);
+    type("crossline_type", o.crossline_type);
+    type("x_type", o.x_type);
+    type("y_type", o.y_type);
+    if (s.has("coordinate_scalar"))
+      o.coordinate_scalar = static_cast<int>(s.integer("coordinate_scalar", 1, -32768, 32767));
+    try {
+      volume::check_segy_options(o);
+    } catch (const Error& e) {
+      throw error_at(m.source(), m.node("segy"), e.message(), e.hint());
+    }
+    s.finish({"inline_byte", "crossline_byte", "inline_type", "crossline_type", "x_byte", "y_byte", "x_type", "y_type",
+              "coordinate_scalar"});
   }
   if (has_file) {
     in.file = m.required_text("file");
@@ -340,8 +364,7 @@ nlohmann::json to_json(const Recipe& r) {
   in["nan"] = r.input.nan;
   if (r.input.no_data) in["no_data"] = *r.input.no_data;
   if (!r.input.variable.empty()) in["variable"] = r.input.variable;
-  if (r.input.segy_inline_byte != 189 || r.input.segy_crossline_byte != 193)
-    in["segy"] = {{"inline_byte", r.input.segy_inline_byte}, {"crossline_byte", r.input.segy_crossline_byte}};
+  if (!(r.input.segy == volume::SegyOptions{})) in["segy"] = volume::to_json(r.input.segy);
   j["input"] = in;
   j["steps"] = json::array();
   for (const auto& s : r.steps) {

@@ -47,7 +47,7 @@ void put_float(unsigned char* p, float v) {
 // A big-endian SEG-Y rev 1 file of IEEE samples, its traces in `order` (bin numbers, row-major),
 // line numbers at 189/193, coordinates at 181/185 with scalar -100. Written in 4 MiB pieces: the
 // generator holds the order (4 bytes per trace) and one piece.
-void generate(const std::string& path, int ni, int nj, int ns, const std::vector<std::int32_t>& order) {
+void generate(const std::string& path, int nj, int ns, const std::vector<std::int32_t>& order) {
   std::ofstream out(path, std::ios::binary | std::ios::trunc);
   std::vector<unsigned char> head(3600, 0);
   std::memset(head.data(), ' ', 3200);
@@ -144,9 +144,9 @@ int main(int argc, char** argv) {
       std::vector<std::int32_t> order(traces);
       std::iota(order.begin(), order.end(), 0);
       auto t0 = Clock::now();
-      generate(sorted, ni, nj, ns, order);
+      generate(sorted, nj, ns, order);
       std::shuffle(order.begin(), order.end(), std::mt19937_64(54));
-      generate(unsorted, ni, nj, ns, order);
+      generate(unsorted, nj, ns, order);
       std::printf("generated %zu traces of %d samples (%d x %d), unsorted and sorted: %.1f MiB each, %.2f s\n", traces,
                   ns, ni, nj, static_cast<double>(std::filesystem::file_size(unsorted)) / (1 << 20),
                   std::chrono::duration<double>(Clock::now() - t0).count());

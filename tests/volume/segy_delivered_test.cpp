@@ -24,6 +24,7 @@
 namespace geotandem::volume::testing {
 namespace {
 
+using geotandem::testing::ScratchDir;
 using nlohmann::json;
 
 // Writes the case's file with segyio and returns segyio's reading of it.
@@ -126,7 +127,7 @@ INSTANTIATE_TEST_SUITE_P(Cases, SegyDelivered,
                                            Case{"unsorted", "unsorted: read through a trace index of 42 bins"},
                                            Case{"unsorted_221", "unsorted"}, Case{"revision_2", "inline-sorted"},
                                            Case{"revision_2_extensions", "unsorted"}),
-                         [](const auto& info) { return std::string(info.param.name); });
+                         [](const auto& test) { return std::string(test.param.name); });
 
 TEST(SegyDeliveredRevision, RevisionAndExtendedHeadersAreReported) {
   ScratchDir dir;

@@ -212,7 +212,7 @@ Probe scan(const HeaderFile& headers, const Layout& layout, const SegyOptions& b
   headers.scan(
       [&](int t, const TraceHeader& header) {
         if (placeholder(header, bytes)) return;
-        if (!frame) frame.emplace(header, bytes);
+        if (!frame) frame.emplace(header, bytes, t, path);
         const std::array<int, 2> bin{line_number(header, bytes.inline_field(), "inline", t, path),
                                      line_number(header, bytes.crossline_field(), "crossline", t, path)};
         live.push_back(t);

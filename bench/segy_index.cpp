@@ -75,7 +75,8 @@ void generate(const std::string& path, int nj, int ns, const std::vector<std::in
       put32(t + 188, 1000 + i);
       put32(t + 192, 2000 + j);
       for (int k = 0; k < ns; ++k)
-        put_float(t + 240 + 4 * k, static_cast<float>(i) + 0.001f * static_cast<float>(j) + 0.5f * static_cast<float>(k));
+        put_float(t + 240 + 4 * k,
+                  static_cast<float>(i) + 0.001f * static_cast<float>(j) + 0.5f * static_cast<float>(k));
     }
     out.write(reinterpret_cast<const char*>(piece.data()), static_cast<std::streamsize>(piece.size()));
   }

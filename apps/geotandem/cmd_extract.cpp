@@ -175,8 +175,7 @@ void add_extract_command(CLI::App& app, Context& context, Runner& run) {
         for (const auto& detail : cube->format_details())
           if (detail.key == "array") s.parameters["variable"] = detail.value;
       }
-      if (!(a->segy == volume::SegyOptions{}))
-        s.parameters["segy"] = volume::to_json(a->segy);
+      if (!(a->segy == volume::SegyOptions{})) s.parameters["segy"] = volume::to_json(a->segy);
       auto progress = context.progress();
       auto r = workflow::extract_to_store(*cube, store, s, context.log, *progress, context.cancel);
       workflow::remove_input_copy(copy, context.log);

@@ -185,8 +185,7 @@ TEST(SegyCli, AnUnsortedFileIsExtractedThroughItsIndex) {
   auto info = run_geotandem("-q info --json --no-stats" + bytes + " '" + cube + "'");
   ASSERT_EQ(info.exit_code, 0) << info.err;
   const auto j = nlohmann::json::parse(info.out);
-  EXPECT_EQ(j["details"]["sorting"].get<std::string>().rfind("unsorted: read through a trace index of 192 bins", 0),
-            0u)
+  EXPECT_EQ(j["details"]["sorting"].get<std::string>().rfind("unsorted: read through a trace index of 192 bins", 0), 0u)
       << info.out;
   EXPECT_EQ(j["details"]["inline_type"], "int32");
   EXPECT_NE(j["details"]["coordinate_fields"].get<std::string>().find("scalar -10 given for every trace"),

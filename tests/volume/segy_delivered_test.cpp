@@ -30,8 +30,8 @@ using nlohmann::json;
 // Writes the case's file with segyio and returns segyio's reading of it.
 json delivered(const std::string& name, const std::string& path) {
   const std::string oracle = path + ".json";
-  const std::string command = "/usr/bin/python3 '" + test_paths::source() + "/tests/volume/segy_delivered.py' " +
-                              name + " '" + path + "' '" + oracle + "'";
+  const std::string command = "/usr/bin/python3 '" + test_paths::source() + "/tests/volume/segy_delivered.py' " + name +
+                              " '" + path + "' '" + oracle + "'";
   EXPECT_EQ(std::system(command.c_str()), 0) << command;
   std::ifstream in(oracle);
   return json::parse(in);
@@ -186,7 +186,8 @@ TEST(SegyDeliveredBroken, ADuplicatedTraceIsRefusedNamingBothTraces) {
     EXPECT_NE(message.find(path), std::string::npos) << message;
     EXPECT_NE(message.find("traces 5 and 17 both hold inline " +
                            std::to_string(oracle["traces"][5]["inline"].get<int>()) + ", crossline " +
-                           std::to_string(oracle["traces"][5]["crossline"].get<int>()) + " (trace header bytes 189/193)"),
+                           std::to_string(oracle["traces"][5]["crossline"].get<int>()) +
+                           " (trace header bytes 189/193)"),
               std::string::npos)
         << message;
     EXPECT_EQ(e.exit_code(), 5); // a user's data error, not an internal one

@@ -58,8 +58,8 @@ public:
   // empty for lengths.
   // `stamp`: the file's when it was opened, which the grid handed to other processes carries.
   // `where`: where the coordinates were read and how they were scaled (TraceCoordinates::where).
-  SegyVolume(std::string path, segy::Handle file, segy::HeaderFile headers, Layout layout, Grid grid,
-             Geometry geometry, std::string coordinates, std::string where, segy::FileStamp stamp)
+  SegyVolume(std::string path, segy::Handle file, segy::HeaderFile headers, Layout layout, Grid grid, Geometry geometry,
+             std::string coordinates, std::string where, segy::FileStamp stamp)
       : path_(std::move(path)), file_(std::move(file)), headers_(std::move(headers)), layout_(layout),
         grid_(std::move(grid)), geometry_(std::move(geometry)), coordinates_(std::move(coordinates)),
         where_(std::move(where)), stamp_(stamp) {}
@@ -283,9 +283,9 @@ std::unique_ptr<Volume> open_segy(const std::string& path, const OpenOptions& op
   // its corners) as the reference of geographic coordinates.
   const segy::TraceCoordinates coordinates(origin, options.segy, origin_trace, path);
   const auto xy_at = [&](int i, int j) { return coordinates.xy(corner(i, j), grid.trace_of(i, j), path); };
-  g.affine = grid.fitted ? usable_or_default(grid.fitted_affine)
-                         : fit_affine(coordinates.xy(origin, origin_trace, path), xy_at(ni - 1, 0), xy_at(0, nj - 1),
-                                      ni, nj);
+  g.affine = grid.fitted
+                 ? usable_or_default(grid.fitted_affine)
+                 : fit_affine(coordinates.xy(origin, origin_trace, path), xy_at(ni - 1, 0), xy_at(0, nj - 1), ni, nj);
   return std::make_unique<SegyVolume>(path, std::move(file), headers, layout, std::move(grid), g,
                                       coordinates.description(), coordinates.where(), stamp);
 }

@@ -24,8 +24,8 @@ TraceCoordinates::TraceCoordinates(const TraceHeader& first, const SegyOptions& 
 }
 
 std::array<double, 2> TraceCoordinates::scaled(const TraceHeader& header, int trace, const std::string& path) const {
-  const double scalar = options_.coordinate_scalar ? *options_.coordinate_scalar
-                                                   : field(header, SEGY_TR_SOURCE_GROUP_SCALAR);
+  const double scalar =
+      options_.coordinate_scalar ? *options_.coordinate_scalar : field(header, SEGY_TR_SOURCE_GROUP_SCALAR);
   // Negative divides (as a product with 1/-scalar, which earlier versions used: same affines).
   const double factor = scalar == 0 ? 1.0 : scalar > 0 ? scalar : 1.0 / -scalar;
   const auto scale = [&](double v) { return v * factor; };
@@ -72,7 +72,7 @@ std::string TraceCoordinates::where() const {
   };
   std::string text = "CDP X at " + at(options_.x_field()) + ", CDP Y at " + at(options_.y_field()) + "; ";
   const auto effect = [](int scalar) {
-    return scalar == 0   ? std::string("0 means 1")
+    return scalar == 0  ? std::string("0 means 1")
            : scalar > 0 ? "multiply by " + std::to_string(scalar)
                         : "divide by " + std::to_string(-static_cast<long long>(scalar));
   };
@@ -80,8 +80,8 @@ std::string TraceCoordinates::where() const {
     return text + "scalar " + std::to_string(*options_.coordinate_scalar) + " given for every trace (" +
            effect(*options_.coordinate_scalar) + "; byte 71 ignored, " + std::to_string(first_scalar_) +
            " in the first trace)";
-  return text + "scalar from byte 71 of each trace (" + std::to_string(first_scalar_) + " in the first trace: " +
-         effect(first_scalar_) + ")";
+  return text + "scalar from byte 71 of each trace (" + std::to_string(first_scalar_) +
+         " in the first trace: " + effect(first_scalar_) + ")";
 }
 
 } // namespace geotandem::volume::detail::segy

@@ -14,12 +14,11 @@ namespace geotandem::volume::detail::segy {
 
 // How the CDP coordinates of a file's traces (bytes 181/185 by default, or the fields SegyOptions
 // declares, scaled by byte 71 or by the scalar SegyOptions gives: positive multiplies, negative
-// divides, 0 means 1) become x and y, after the coordinate units of its first trace (byte 89). Lengths (1, and 0 for unspecified) are
-// taken as written. Longitude and latitude (2: seconds of arc, 3: decimal degrees, 4: degrees,
-// minutes and seconds written DDDMMSS) are taken as metres east and north of the first trace, by
-// the WGS84 ellipsoid's radii of curvature at its latitude: across a survey of tens of kilometres
-// the scale is off by a few parts in a million, so bin spacing and azimuths are right, but the
-// coordinates are local, not those of a map projection.
+// divides, 0 means 1) become x and y, after the coordinate units of its first trace (byte 89). Lengths (1, and 0 for
+// unspecified) are taken as written. Longitude and latitude (2: seconds of arc, 3: decimal degrees, 4: degrees, minutes
+// and seconds written DDDMMSS) are taken as metres east and north of the first trace, by the WGS84 ellipsoid's radii of
+// curvature at its latitude: across a survey of tens of kilometres the scale is off by a few parts in a million, so bin
+// spacing and azimuths are right, but the coordinates are local, not those of a map projection.
 class TraceCoordinates {
 public:
   // `trace` and `path` name the trace in errors: a coordinate that is not finite (a float field

@@ -334,8 +334,7 @@ std::string missing_text(const Grid& grid) {
   return text;
 }
 
-int line_number(const TraceHeader& header, const HeaderField& f, const char* what, int trace,
-                const std::string& path) {
+int line_number(const TraceHeader& header, const HeaderField& f, const char* what, int trace, const std::string& path) {
   const double v = value(header, f);
   if (v == std::nearbyint(v) && v >= std::numeric_limits<int>::min() && v <= std::numeric_limits<int>::max())
     return static_cast<int>(v);
@@ -343,9 +342,8 @@ int line_number(const TraceHeader& header, const HeaderField& f, const char* wha
                         " number (trace header byte " + std::to_string(f.byte) + ", " + to_string(f.type) +
                         "): not a whole number",
                     {path},
-                    std::string("check the byte and type of the ") + what +
-                        " numbers (--" + what + "-byte, --" + what + "-type; segy: {" + what + "_byte, " + what +
-                        "_type} in a recipe)");
+                    std::string("check the byte and type of the ") + what + " numbers (--" + what + "-byte, --" + what +
+                        "-type; segy: {" + what + "_byte, " + what + "_type} in a recipe)");
 }
 
 bool placeholder(const TraceHeader& header, const SegyOptions& bytes) {

@@ -53,9 +53,7 @@ struct Grid {
   }
   int inline_of(std::int64_t i) const { return static_cast<int>(il0 + i * il_step); }
   int crossline_of(std::int64_t j) const { return static_cast<int>(xl0 + j * xl_step); }
-  const char* sorting() const {
-    return unsorted ? "unsorted" : inline_sorted ? "inline-sorted" : "crossline-sorted";
-  }
+  const char* sorting() const { return unsorted ? "unsorted" : inline_sorted ? "inline-sorted" : "crossline-sorted"; }
 };
 
 // The inline (or crossline) number of a trace at its declared field: a whole number within the

@@ -70,8 +70,9 @@ std::optional<std::vector<std::int32_t>> decode_index(const std::string& text, s
   if (bytes.size() != count * 4) return std::nullopt;
   std::vector<std::int32_t> traces(count);
   for (std::size_t n = 0; n < count; ++n)
-    traces[n] = static_cast<std::int32_t>(std::uint32_t{bytes[4 * n]} | std::uint32_t{bytes[4 * n + 1]} << 8 |
-                                          std::uint32_t{bytes[4 * n + 2]} << 16 | std::uint32_t{bytes[4 * n + 3]} << 24);
+    traces[n] =
+        static_cast<std::int32_t>(std::uint32_t{bytes[4 * n]} | std::uint32_t{bytes[4 * n + 1]} << 8 |
+                                  std::uint32_t{bytes[4 * n + 2]} << 16 | std::uint32_t{bytes[4 * n + 3]} << 24);
   return traces;
 }
 
@@ -141,8 +142,7 @@ std::optional<Grid> grid_from_hint(const std::string& hint, const FileStamp& sta
   try {
     const nlohmann::json h = nlohmann::json::parse(hint).at("segy_grid");
     if (h.at("size").get<std::uintmax_t>() != stamp.size ||
-        h.at("modified_ns").get<std::int64_t>() != stamp.modified_ns ||
-        h.at("options") != to_json(bytes))
+        h.at("modified_ns").get<std::int64_t>() != stamp.modified_ns || h.at("options") != to_json(bytes))
       return std::nullopt;
     Grid g;
     g.bytes = bytes;

@@ -56,8 +56,8 @@ void check_segy_options(const SegyOptions& o, const std::string& where) {
   check_field(o.x_field(), "CDP X", where);
   check_field(o.y_field(), "CDP Y", where);
   if (o.inline_byte == o.crossline_byte)
-    throw InvalidArgument("the inline and crossline byte positions are both " + std::to_string(o.inline_byte),
-                          {where}, "give two different positions, for example 189 and 193");
+    throw InvalidArgument("the inline and crossline byte positions are both " + std::to_string(o.inline_byte), {where},
+                          "give two different positions, for example 189 and 193");
   if (overlap(o.inline_field(), o.crossline_field()))
     throw InvalidArgument("the inline field (bytes " + std::to_string(o.inline_byte) + "-" +
                               std::to_string(o.inline_byte + width_of(o.inline_type) - 1) +

@@ -29,7 +29,7 @@ using nlohmann::json;
 
 // Writes the case's file with segyio and returns segyio's reading of it.
 json delivered(const std::string& name, const std::string& path) {
-  const std::string oracle = path + ".json";
+  const std::string oracle = path + ".segyio.json"; // not PATH.json, which would be a raw sidecar
   const std::string command = "/usr/bin/python3 '" + test_paths::source() + "/tests/volume/segy_delivered.py' " + name +
                               " '" + path + "' '" + oracle + "'";
   EXPECT_EQ(std::system(command.c_str()), 0) << command;

@@ -185,7 +185,11 @@ TEST(SegyCli, AnUnsortedFileIsExtractedThroughItsIndex) {
   auto info = run_geotandem("-q info --json --no-stats" + bytes + " '" + cube + "'");
   ASSERT_EQ(info.exit_code, 0) << info.err;
   const auto j = nlohmann::json::parse(info.out);
-  EXPECT_EQ(j["details"]["sorting"].get<std::string>().rfind("unsorted: read through a trace index of 192 bins", 0), 0u)
+  const auto bins = j["shape"]["inline"].get<int>() * j["shape"]["crossline"].get<int>();
+  EXPECT_EQ(bins, s.ni * s.nj);
+  EXPECT_EQ(j["details"]["sorting"].get<std::string>().rfind(
+                "unsorted: read through a trace index of " + std::to_string(bins) + " bins", 0),
+            0u)
       << info.out;
   EXPECT_EQ(j["details"]["inline_type"], "int32");
   EXPECT_NE(j["details"]["coordinate_fields"].get<std::string>().find("scalar -10 given for every trace"),
@@ -195,13 +199,17 @@ TEST(SegyCli, AnUnsortedFileIsExtractedThroughItsIndex) {
   auto text = run_geotandem("-q info --no-stats" + bytes + " '" + cube + "'");
   EXPECT_NE(text.out.find("sorting:        unsorted"), std::string::npos) << text.out;
 
-  const auto opened = volume::open_volume(cube, {.segy = {9, 21}});
+  volume::OpenOptions same; // the geometry the SEG-Y run sees: its coordinates divided by 10
+  same.segy = {9, 21};
+  same.segy.coordinate_scalar = -10;
+  const auto opened = volume::open_volume(cube, same);
   std::vector<float> samples;
   for (int i = 0; i < s.ni; ++i)
     for (int jj = 0; jj < s.nj; ++jj)
       for (int k = 0; k < s.ns; ++k)
         samples.push_back(volume::testing::expected_sample(s.format, i, jj, k));
   const std::string raw = dir.file("oracle.raw");
+  ASSERT_EQ(opened->read(opened->geometry().bounds()), samples) << "read in this process through the index";
   volume::write_volume(volume::MemoryVolume(opened->geometry(), samples), raw);
   const std::string iso = " --iso 900.5 --block-size 8 --workers 2 --out '";
   auto extracted = run_geotandem("-q extract '" + cube + "'" + bytes + iso + dir.file("segy") + "'");

@@ -16,7 +16,7 @@ cd "$here"
 packages=(
   build-essential cmake ninja-build pkg-config git ca-certificates ccache
   libgtest-dev libgmock-dev libbenchmark-dev
-  libgdal-dev gdal-bin libsegyio-dev
+  libgdal-dev gdal-bin libsegyio-dev python3-segyio
   libopenmesh-dev libeigen3-dev
   libzmq3-dev cppzmq-dev
   nlohmann-json3-dev libyaml-cpp-dev libcli11-dev

@@ -193,8 +193,7 @@ void add_extract_command(CLI::App& app, Context& context, Runner& run) {
         for (const auto& detail : cube->format_details())
           if (detail.key == "array") s.record["variable"] = detail.value;
       }
-      if (!(a->segy == volume::SegyOptions{}))
-        s.record["segy"] = {{"inline_byte", a->segy.inline_byte}, {"crossline_byte", a->segy.crossline_byte}};
+      if (!(a->segy == volume::SegyOptions{})) s.record["segy"] = volume::to_json(a->segy);
       auto progress = context.progress();
       auto r = workflow::extract_to_store(*cube, store, options, s, context.log, *progress, context.cancel);
       workflow::remove_input_copy(copy, context.log);

@@ -36,7 +36,7 @@ std::string describe_cube_file(const std::string& path, const std::string& nan, 
                    {"path", std::filesystem::absolute(path).string()},
                    {"nan", nan},
                    {"variable", variable},
-                   {"segy", {{"inline_byte", segy.inline_byte}, {"crossline_byte", segy.crossline_byte}}}};
+                   {"segy", volume::to_json(segy)}};
   if (no_data) d["no_data"] = *no_data;
   if (!hint.empty()) d["reopen_hint"] = hint;
   return d.dump();
@@ -52,10 +52,7 @@ std::shared_ptr<const volume::Volume> open_described_volume(const std::string& d
       open.nan_policy = volume::parse_nan_policy(d.at("nan").get<std::string>());
       open.variable = d.at("variable").get<std::string>();
       if (d.contains("no_data")) open.no_data = d.at("no_data").get<float>();
-      if (d.contains("segy")) {
-        open.segy.inline_byte = d["segy"].at("inline_byte").get<int>();
-        open.segy.crossline_byte = d["segy"].at("crossline_byte").get<int>();
-      }
+      if (d.contains("segy")) open.segy = volume::segy_options_from_json(d["segy"]);
       open.reopen_hint = d.value("reopen_hint", "");
       return volume::open_volume(d.at("path").get<std::string>(), open);
     }

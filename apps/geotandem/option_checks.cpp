@@ -70,6 +70,10 @@ const CLI::Validator& positive() {
   return check;
 }
 
+namespace {
+using HeaderTypeRef = volume::HeaderType*;
+} // namespace
+
 void add_cube_reading_options(CLI::App& cmd, std::string& variable, volume::SegyOptions& segy) {
   cmd.add_option("--variable", variable,
                  "the array to read from a multidimensional file (netCDF, Zarr, HDF5) that holds several");
@@ -79,6 +83,25 @@ void add_cube_reading_options(CLI::App& cmd, std::string& variable, volume::Segy
   cmd.add_option("--crossline-byte", segy.crossline_byte,
                  "SEG-Y: trace header byte (1-based) of the crossline numbers (often 21 or 13)")
       ->capture_default_str();
+  // The types fix the width: int16 is 2 bytes, the others 4; any byte whose field ends by 240.
+  const auto type_option = [&cmd](const std::string& name, HeaderTypeRef type, const std::string& help) {
+    cmd.add_option_function<std::string>(
+           name, [type](const std::string& text) { *type = volume::parse_header_type(text); }, help)
+        ->check(CLI::IsMember({"int16", "int32", "ieee", "float", "ibm"}))
+        ->default_str("int32")
+        ->type_name("int16|int32|ieee|ibm");
+  };
+  type_option("--inline-type", &segy.inline_type,
+              "SEG-Y: type of the inline field: int16, int32, ieee (IEEE float) or ibm (IBM float)");
+  type_option("--crossline-type", &segy.crossline_type, "SEG-Y: type of the crossline field (as --inline-type)");
+  cmd.add_option("--x-byte", segy.x_byte, "SEG-Y: trace header byte of the CDP X coordinates")->capture_default_str();
+  cmd.add_option("--y-byte", segy.y_byte, "SEG-Y: trace header byte of the CDP Y coordinates")->capture_default_str();
+  type_option("--x-type", &segy.x_type, "SEG-Y: type of the CDP X field (as --inline-type)");
+  type_option("--y-type", &segy.y_type, "SEG-Y: type of the CDP Y field (as --inline-type)");
+  cmd.add_option("--coordinate-scalar", segy.coordinate_scalar,
+                 "SEG-Y: the coordinate scalar of every trace instead of bytes 71-72 of each header (negative "
+                 "divides, 0 means 1)")
+      ->type_name("INT");
 }
 
 } // namespace geotandem::app

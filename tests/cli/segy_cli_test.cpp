@@ -6,6 +6,7 @@
 #include <nlohmann/json.hpp>
 
 #include <cmath>
+#include <fstream>
 #include <limits>
 #include <map>
 
@@ -71,9 +72,10 @@ TEST(SegyCli, ExtractTakesTheHeaderBytes) {
   auto r = run_geotandem("-q extract '" + cube + "' --iso 20000 --inline-byte 9 --crossline-byte 21 --out '" +
                          dir.file("b") + "'");
   EXPECT_EQ(r.exit_code, 0) << r.err;
-  auto bad = run_geotandem("-q extract '" + cube + "' --iso 20000 --inline-byte 221 --out '" + dir.file("c") + "'");
+  // Any byte whose field ends within the 240-byte header is a position; 238 (4 bytes) is not.
+  auto bad = run_geotandem("-q extract '" + cube + "' --iso 20000 --inline-byte 238 --out '" + dir.file("c") + "'");
   EXPECT_EQ(bad.exit_code, 2) << bad.err;
-  EXPECT_NE(bad.err.find("221"), std::string::npos) << bad.err;
+  EXPECT_NE(bad.err.find("238"), std::string::npos) << bad.err;
 }
 
 // Header bytes that read the same file as another cube (here the line numbers swapped on a square
@@ -165,6 +167,78 @@ TEST(SegyCli, AnIrregularSurveyIsExtractedWithItsMissingTracesOutside) {
     ASSERT_TRUE(b.count(key)) << "component " << key;
     EXPECT_NEAR(b.at(key), volume, 0.005 * std::abs(volume)) << "component " << key;
   }
+}
+
+// A shuffled file (issue 54): `info` says it is read through a trace index and where the fields
+// are; an extraction with two workers (who take the manager's index) gives the components of the
+// same samples written as a raw cube; a duplicated trace is a data error (exit 5) naming both
+// traces, never an internal one.
+TEST(SegyCli, AnUnsortedFileIsExtractedThroughItsIndex) {
+  ScratchDir dir;
+  volume::testing::SegySpec s = delivered();
+  s.ni = 16;
+  s.shuffle = true;
+  const std::string cube = dir.file("shuffled.sgy");
+  volume::testing::write_with_segyio(cube, s);
+  const std::string bytes = " --inline-byte 9 --crossline-byte 21 --coordinate-scalar -10";
+
+  auto info = run_geotandem("-q info --json --no-stats" + bytes + " '" + cube + "'");
+  ASSERT_EQ(info.exit_code, 0) << info.err;
+  const auto j = nlohmann::json::parse(info.out);
+  const auto bins = j["shape"]["inline"].get<int>() * j["shape"]["crossline"].get<int>();
+  EXPECT_EQ(bins, s.ni * s.nj);
+  EXPECT_EQ(j["details"]["sorting"].get<std::string>().rfind(
+                "unsorted: read through a trace index of " + std::to_string(bins) + " bins", 0),
+            0u)
+      << info.out;
+  EXPECT_EQ(j["details"]["inline_type"], "int32");
+  EXPECT_NE(j["details"]["coordinate_fields"].get<std::string>().find("scalar -10 given for every trace"),
+            std::string::npos)
+      << info.out;
+  EXPECT_NE(j["details"]["revision"].get<std::string>().find("(binary header bytes 3501-3502)"), std::string::npos);
+  auto text = run_geotandem("-q info --no-stats" + bytes + " '" + cube + "'");
+  EXPECT_NE(text.out.find("sorting:        unsorted"), std::string::npos) << text.out;
+
+  volume::OpenOptions same; // the geometry the SEG-Y run sees: its coordinates divided by 10
+  same.segy = {9, 21};
+  same.segy.coordinate_scalar = -10;
+  const auto opened = volume::open_volume(cube, same);
+  std::vector<float> samples;
+  for (int i = 0; i < s.ni; ++i)
+    for (int jj = 0; jj < s.nj; ++jj)
+      for (int k = 0; k < s.ns; ++k)
+        samples.push_back(volume::testing::expected_sample(s.format, i, jj, k));
+  const std::string raw = dir.file("oracle.raw");
+  ASSERT_EQ(opened->read(opened->geometry().bounds()), samples) << "read in this process through the index";
+  volume::write_volume(volume::MemoryVolume(opened->geometry(), samples), raw);
+  const std::string iso = " --iso 900.5 --block-size 8 --workers 2 --out '";
+  auto extracted = run_geotandem("-q extract '" + cube + "'" + bytes + iso + dir.file("segy") + "'");
+  ASSERT_EQ(extracted.exit_code, 0) << extracted.err;
+  auto oracle = run_geotandem("-q extract '" + raw + "'" + iso + dir.file("raw") + "'");
+  ASSERT_EQ(oracle.exit_code, 0) << oracle.err;
+  const auto a = volumes_in(dir.file("raw"));
+  const auto b = volumes_in(dir.file("segy"));
+  ASSERT_GT(a.size(), 0u);
+  ASSERT_EQ(a.size(), b.size());
+  for (const auto& [key, volume] : a) {
+    ASSERT_TRUE(b.count(key)) << "component " << key;
+    EXPECT_NEAR(b.at(key), volume, 0.005 * std::abs(volume)) << "component " << key;
+  }
+
+  // A duplicated trace: the shuffled file with trace 7's header copied onto trace 30's.
+  {
+    std::fstream f(cube, std::ios::in | std::ios::out | std::ios::binary);
+    const long trace_bytes = 240 + 2L * s.ns;
+    std::vector<char> header(240);
+    f.seekg(s.trace0() + 7 * trace_bytes);
+    f.read(header.data(), 240);
+    f.seekp(s.trace0() + 30 * trace_bytes);
+    f.write(header.data(), 240);
+  }
+  auto duplicated = run_geotandem("-q info --no-stats" + bytes + " '" + cube + "'");
+  EXPECT_EQ(duplicated.exit_code, 5) << duplicated.err;
+  EXPECT_NE(duplicated.err.find("traces 7 and 30 both hold inline"), std::string::npos) << duplicated.err;
+  EXPECT_NE(duplicated.err.find("shuffled.sgy"), std::string::npos) << duplicated.err;
 }
 
 } // namespace

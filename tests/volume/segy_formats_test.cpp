@@ -232,13 +232,17 @@ TEST(SegyHeaderBytes, UncommonPositionsReadOnlyWhenGiven) {
   expect_same_as_segyio(path, s, options);
 }
 
+// Any byte whose field ends within the 240-byte header is a position (221 included, issue 54);
+// others, and line number fields that overlap, are refused before the file is read.
 TEST(SegyHeaderBytes, PositionsThatAreNoFieldAreRefused) {
   ScratchDir dir;
   const std::string path = dir.file("standard.sgy");
   write_with_segyio(path, SegySpec{});
   for (auto [il, xl, expected] :
-       {std::tuple{221, 193, "inline byte position 221"}, std::tuple{189, 0, "crossline byte position 0"},
-        std::tuple{189, 241, "crossline byte position 241"}, std::tuple{189, 189, "both 189"}}) {
+       {std::tuple{238, 193, "the inline field at byte 238 (int32, 4 bytes) lies outside the 240-byte trace header"},
+        std::tuple{189, 0, "the crossline field at byte 0"}, std::tuple{189, 241, "the crossline field at byte 241"},
+        std::tuple{189, 189, "both 189"},
+        std::tuple{189, 191, "bytes 189-192) and the crossline field (bytes 191-194"}}) {
     OpenOptions options;
     options.segy = {il, xl};
     const std::string message = message_of<InvalidArgument>([&] { open_volume(path, options); });

@@ -2,6 +2,8 @@
 // with placeholders: what is refused and how, what is read, and the grid handed to other processes.
 
 #include <gtest/gtest.h>
+
+#include <cstring>
 #include <segyio/segy.h>
 
 #include <algorithm>
@@ -342,7 +344,8 @@ TEST(SegyIrregular, AnIrregularGridIsHandedOnAndUsedWhileTheFileIsUnchanged) {
     other_bytes.segy = {9, 21};
     EXPECT_THROW(open_volume(path, other_bytes), FormatError); // the hint is for 189/193: the file is read at 9/21
   }
-  // Holes everywhere (every third trace of 100 x 100): runs of one or two traces, no hint.
+  // Holes everywhere (every third trace of 100 x 100): runs of one or two traces; the hint carries
+  // the trace index itself (issue 54), which a worker then uses without the pass over the headers.
   SegySpec holes;
   holes.ni = holes.nj = 100;
   holes.ns = 8;
@@ -353,7 +356,26 @@ TEST(SegyIrregular, AnIrregularGridIsHandedOnAndUsedWhileTheFileIsUnchanged) {
   write_with_segyio(path, holes);
   const auto volume = open_volume(path, {.nan_policy = NanPolicy::fill});
   EXPECT_EQ(volume->geometry().shape, (Index3{100, 100, 8}));
-  EXPECT_EQ(volume->reopen_hint(), "");
+  const std::string index_hint = volume->reopen_hint();
+  EXPECT_NE(index_hint.find("\"index\":\"AAAAAP////8"), std::string::npos); // trace 0, then a hole
+  EXPECT_NE(index_hint.find("\"runs\":[]"), std::string::npos);
+  RecordingProgress worker_progress;
+  OpenOptions worker{.nan_policy = NanPolicy::fill};
+  worker.progress = &worker_progress;
+  worker.reopen_hint = index_hint;
+  const auto handed = open_volume(path, worker);
+  EXPECT_TRUE(worker_progress.begun.empty()) << "the pass over the headers was made again";
+  const std::vector<float> a = volume->read(volume->geometry().bounds()), b = handed->read(handed->geometry().bounds());
+  ASSERT_EQ(a.size(), b.size());
+  EXPECT_EQ(std::memcmp(a.data(), b.data(), a.size() * sizeof(float)), 0);
+  // A damaged index (a trace placed twice) is not used: the pass is made.
+  std::string damaged = index_hint;
+  damaged.replace(damaged.find("\"index\":\"") + 9, 8, "AQAAAAEA"); // bins 0 and 1 both trace 1
+  RecordingProgress again;
+  worker.progress = &again;
+  worker.reopen_hint = damaged;
+  open_volume(path, worker);
+  EXPECT_EQ(again.begun.size(), 1u);
 }
 
 } // namespace

@@ -257,14 +257,14 @@ TEST_F(Recipes, SegyHeaderBytesComeFromTheInputSection) {
   const std::string file_input = replaced("  synthetic: {kind: seismic, shape: [64, 48, 80], seed: 3}",
                                           "  file: f3.sgy\n  segy: {inline_byte: 9, crossline_byte: 21}");
   Recipe r = parse_recipe(file_input, "dir/recipe.yaml", registry);
-  EXPECT_EQ(r.input.segy_inline_byte, 9);
-  EXPECT_EQ(r.input.segy_crossline_byte, 21);
+  EXPECT_EQ(r.input.segy.inline_byte, 9);
+  EXPECT_EQ(r.input.segy.crossline_byte, 21);
   EXPECT_EQ(r.canonical["input"]["segy"]["crossline_byte"], 21);
   Recipe standard =
       parse_recipe(replaced("  synthetic: {kind: seismic, shape: [64, 48, 80], seed: 3}", "  file: a.sgy"),
                    "dir/recipe.yaml", registry, {"input.segy.inline_byte=5"});
-  EXPECT_EQ(standard.input.segy_inline_byte, 5);
-  EXPECT_EQ(standard.input.segy_crossline_byte, 193);
+  EXPECT_EQ(standard.input.segy.inline_byte, 5);
+  EXPECT_EQ(standard.input.segy.crossline_byte, 193);
 
   std::string typo = error_of(file_input, {"input.segy.inline_bite=9"});
   EXPECT_NE(typo.find("did you mean 'inline_byte'?"), std::string::npos) << typo;

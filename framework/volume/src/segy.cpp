@@ -21,6 +21,7 @@
 #include "segy_file.hpp"
 #include "segy_grid.hpp"
 #include "segy_grid_hint.hpp"
+#include "segy_header.hpp"
 #include "segy_layout.hpp"
 
 namespace geotandem::volume::detail {
@@ -56,10 +57,12 @@ public:
   // `coordinates`: how geographic trace coordinates were taken (TraceCoordinates::description);
   // empty for lengths.
   // `stamp`: the file's when it was opened, which the grid handed to other processes carries.
-  SegyVolume(std::string path, segy::Handle file, Layout layout, Grid grid, Geometry geometry, std::string coordinates,
-             segy::FileStamp stamp)
-      : path_(std::move(path)), file_(std::move(file)), layout_(layout), grid_(std::move(grid)),
-        geometry_(std::move(geometry)), coordinates_(std::move(coordinates)), stamp_(stamp) {}
+  // `where`: where the coordinates were read and how they were scaled (TraceCoordinates::where).
+  SegyVolume(std::string path, segy::Handle file, segy::HeaderFile headers, Layout layout, Grid grid, Geometry geometry,
+             std::string coordinates, std::string where, segy::FileStamp stamp)
+      : path_(std::move(path)), file_(std::move(file)), headers_(std::move(headers)), layout_(layout),
+        grid_(std::move(grid)), geometry_(std::move(geometry)), coordinates_(std::move(coordinates)),
+        where_(std::move(where)), stamp_(stamp) {}
 
   const Geometry& geometry() const override { return geometry_; }
   std::string format() const override { return "SEG-Y"; }
@@ -70,15 +73,36 @@ public:
     std::vector<FormatDetail> details{{"sample_format", std::string(segy::sample_format_name(layout_.format)) +
                                                             " (code " + std::to_string(layout_.format) + ")"},
                                       {"byte_order", segy::byte_order_name(layout_.little_endian)},
+                                      {"revision", revision_text()},
                                       {"inline_byte", std::to_string(grid_.bytes.inline_byte)},
                                       {"crossline_byte", std::to_string(grid_.bytes.crossline_byte)},
-                                      {"sorting", grid_.sorting()},
+                                      {"inline_type", to_string(grid_.bytes.inline_type)},
+                                      {"crossline_type", to_string(grid_.bytes.crossline_type)},
+                                      {"coordinate_fields", where_},
+                                      {"sorting", sorting_text()},
                                       {"traces", traces_text()}};
     if (!coordinates_.empty()) details.push_back({"coordinates", coordinates_});
     return details;
   }
 
 protected:
+  std::string revision_text() const {
+    std::string text = layout_.revision_text() + " (binary header bytes 3501-3502)";
+    if (layout_.extended_textual > 0)
+      text += "; " + std::to_string(layout_.extended_textual) + " extended textual headers (byte 3505)";
+    if (layout_.header_extensions > 0)
+      text += "; " + std::to_string(layout_.header_extensions) +
+              " trace header extensions of 240 bytes per trace (bytes 3507-3510)";
+    return text;
+  }
+  std::string sorting_text() const {
+    if (grid_.unsorted)
+      return "unsorted: read through a trace index of " + std::to_string(grid_.traces.size()) +
+             " bins built from every trace header (4 bytes per bin)";
+    std::string text = grid_.sorting();
+    if (grid_.irregular()) text += ", read through a trace index built from every trace header";
+    return text;
+  }
   std::string traces_text() const {
     if (grid_.missing_bins())
       return "an irregular survey, whose missing traces read as missing samples: " + segy::missing_text(grid_);
@@ -111,7 +135,7 @@ private:
       std::fill_n(out, box.size(2), std::numeric_limits<float>::quiet_NaN());
       return;
     }
-    const TraceHeader header = segy::read_header(file_.get(), layout_, trace, path_);
+    const TraceHeader header = headers_.read(trace);
     segy::check_position(header, grid_, i, j, trace, path_);
     // A dead trace (identification code 2) holds no signal: where its zeros start does not matter.
     if (const double start = trace_start(header);
@@ -129,7 +153,8 @@ private:
     const bool in_place = layout_.sample_size() == 4;
     if (!in_place) scratch_.resize(static_cast<std::size_t>(count) * static_cast<std::size_t>(layout_.sample_size()));
     void* raw = in_place ? static_cast<void*>(out) : static_cast<void*>(scratch_.data());
-    int status = segy_readsubtr(file_.get(), trace, start, stop, 1, raw, nullptr, layout_.trace0, layout_.trace_bytes);
+    int status = segy_readsubtr(file_.get(), trace, start, stop, 1, raw, nullptr, layout_.segyio_trace0(),
+                                layout_.segyio_trace_bytes());
     if (status != SEGY_OK)
       throw IoError("cannot read samples " + std::to_string(start) + " to " + std::to_string(stop) + " of trace " +
                         std::to_string(trace) + ": " + segy::status_text(status),
@@ -147,10 +172,12 @@ private:
 
   std::string path_;
   segy::Handle file_;
+  segy::HeaderFile headers_;
   Layout layout_;
   Grid grid_;
   Geometry geometry_;
   std::string coordinates_;
+  std::string where_;
   segy::FileStamp stamp_;
   mutable std::mutex mutex_;
   mutable std::vector<char> scratch_; // guarded by mutex_
@@ -210,6 +237,8 @@ std::unique_ptr<Volume> open_segy(const std::string& path, const OpenOptions& op
     throw IoError(std::string("cannot open the SEG-Y file: ") + std::strerror(errno), {path}, "check its permissions");
   // Detects the byte order and tells segyio the sample format (segy_set_format).
   Layout layout = segy::read_layout(file.get(), path);
+  check_segy_options(options.segy, path);
+  const segy::HeaderFile headers(path, layout);
   // Memory-map the file when the system allows: a box of short sub-traces then costs memory
   // copies instead of two seeks and reads per trace (64^3 blocks read ~5x faster). The hazard:
   // a file truncated by another process while mapped raises SIGBUS on access. When mapping fails
@@ -226,15 +255,16 @@ std::unique_ptr<Volume> open_segy(const std::string& path, const OpenOptions& op
     if (hinted && !read_missing && hinted->missing_bins()) hinted.reset();
   }
   Grid grid = hinted ? std::move(*hinted)
-                     : segy::find_grid(file.get(), layout, options.segy, read_missing, path, options.progress);
+                     : segy::find_grid(headers, layout, options.segy, read_missing, path, options.progress);
 
   const int ni = grid.ni, nj = grid.nj;
-  auto corner = [&](int i, int j) { return segy::read_header(file.get(), layout, grid.trace_of(i, j), path); };
+  auto corner = [&](int i, int j) { return headers.read(grid.trace_of(i, j)); };
   // The first live trace of the file (not a placeholder) gives the sample axis. A grid found from a
   // few headers has its affine fixed by its corners (find_grid checked their line numbers); one
   // found by reading every header (irregular, or padded with placeholders) had it fitted to every
   // live trace, as they were read.
-  const TraceHeader origin = grid.fitted ? segy::read_header(file.get(), layout, grid.first_live, path) : corner(0, 0);
+  const int origin_trace = grid.fitted ? grid.first_live : grid.trace_of(0, 0);
+  const TraceHeader origin = headers.read(origin_trace);
 
   if (layout.interval == 0)
     throw FormatError("no sample interval: binary header byte 3217 and trace header byte 117 are both 0", {path},
@@ -251,12 +281,13 @@ std::unique_ptr<Volume> open_segy(const std::string& path, const OpenOptions& op
   g.z0 = trace_start(origin);
   // Both the scan and this take the file's first live trace (the corner (0, 0) of a grid found from
   // its corners) as the reference of geographic coordinates.
-  const segy::TraceCoordinates coordinates(origin);
-  g.affine = grid.fitted ? usable_or_default(grid.fitted_affine)
-                         : fit_affine(coordinates.xy(origin), coordinates.xy(corner(ni - 1, 0)),
-                                      coordinates.xy(corner(0, nj - 1)), ni, nj);
-  return std::make_unique<SegyVolume>(path, std::move(file), layout, std::move(grid), g, coordinates.description(),
-                                      stamp);
+  const segy::TraceCoordinates coordinates(origin, options.segy, origin_trace, path);
+  const auto xy_at = [&](int i, int j) { return coordinates.xy(corner(i, j), grid.trace_of(i, j), path); };
+  g.affine = grid.fitted
+                 ? usable_or_default(grid.fitted_affine)
+                 : fit_affine(coordinates.xy(origin, origin_trace, path), xy_at(ni - 1, 0), xy_at(0, nj - 1), ni, nj);
+  return std::make_unique<SegyVolume>(path, std::move(file), headers, layout, std::move(grid), g,
+                                      coordinates.description(), coordinates.where(), stamp);
 }
 
 } // namespace geotandem::volume::detail

@@ -12,24 +12,32 @@
 
 namespace geotandem::volume::detail::segy {
 
-// How the CDP coordinates of a file's traces (bytes 181/185, scaled by byte 71) become x and y,
-// after the coordinate units of its first trace (byte 89). Lengths (1, and 0 for unspecified) are
-// taken as written. Longitude and latitude (2: seconds of arc, 3: decimal degrees, 4: degrees,
-// minutes and seconds written DDDMMSS) are taken as metres east and north of the first trace, by
-// the WGS84 ellipsoid's radii of curvature at its latitude: across a survey of tens of kilometres
-// the scale is off by a few parts in a million, so bin spacing and azimuths are right, but the
-// coordinates are local, not those of a map projection.
+// How the CDP coordinates of a file's traces (bytes 181/185 by default, or the fields SegyOptions
+// declares, scaled by byte 71 or by the scalar SegyOptions gives: positive multiplies, negative
+// divides, 0 means 1) become x and y, after the coordinate units of its first trace (byte 89). Lengths (1, and 0 for
+// unspecified) are taken as written. Longitude and latitude (2: seconds of arc, 3: decimal degrees, 4: degrees, minutes
+// and seconds written DDDMMSS) are taken as metres east and north of the first trace, by the WGS84 ellipsoid's radii of
+// curvature at its latitude: across a survey of tens of kilometres the scale is off by a few parts in a million, so bin
+// spacing and azimuths are right, but the coordinates are local, not those of a map projection.
 class TraceCoordinates {
 public:
-  explicit TraceCoordinates(const TraceHeader& first);
-  std::array<double, 2> xy(const TraceHeader& header) const;
+  // `trace` and `path` name the trace in errors: a coordinate that is not finite (a float field
+  // holding NaN) throws FormatError naming the file, the trace and the byte.
+  TraceCoordinates(const TraceHeader& first, const SegyOptions& options, int trace = 0, const std::string& path = {});
+  std::array<double, 2> xy(const TraceHeader& header, int trace, const std::string& path) const;
   bool geographic() const { return units_ >= 2 && units_ <= 4; }
   // For geographic units, what they are and how they were taken (a format detail); empty otherwise.
   std::string description() const;
+  // Where the coordinates were read and how they were scaled, for `geotandem info`: "CDP X at byte
+  // 181 (int32), CDP Y at byte 185 (int32); scalar from byte 71 (-100 in the first trace: divide by
+  // 100)".
+  std::string where() const;
 
 private:
   // The coordinates as written, scaled: longitude and latitude in degrees when geographic.
-  std::array<double, 2> scaled(const TraceHeader& header) const;
+  std::array<double, 2> scaled(const TraceHeader& header, int trace, const std::string& path) const;
+  SegyOptions options_;
+  int first_scalar_ = 0; // byte 71 of the first trace
   int units_ = 0;
   std::array<double, 2> origin_{}; // the first trace's longitude and latitude (degrees)
   double east_per_degree_ = 0.0, north_per_degree_ = 0.0;

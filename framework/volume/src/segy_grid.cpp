@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "geotandem/core/error.hpp"
+#include "geotandem/core/params.hpp"
 #include "segy_coordinates.hpp"
 
 namespace geotandem::volume::detail::segy {
@@ -16,7 +17,7 @@ namespace {
 
 // Where line numbers are found in practice, besides SEG-Y rev 1's 189/193: field record and CDP
 // ensemble (9/21), trace number in file and CDP (5/21), source and energy source point (17/13).
-constexpr std::array<SegyOptions, 4> kCommonBytes{{{189, 193}, {9, 21}, {5, 21}, {17, 13}}};
+constexpr std::array<std::array<int, 2>, 4> kCommonBytes{{{189, 193}, {9, 21}, {5, 21}, {17, 13}}};
 
 // Why a choice of positions does not give a regular grid; `scan`: reading every trace header may
 // still find a sorted survey with traces missing.
@@ -32,7 +33,10 @@ struct Probe {
 };
 
 std::string pair_text(const SegyOptions& b) {
-  return std::to_string(b.inline_byte) + "/" + std::to_string(b.crossline_byte);
+  std::string text = std::to_string(b.inline_byte) + "/" + std::to_string(b.crossline_byte);
+  if (b.inline_type != HeaderType::int32 || b.crossline_type != HeaderType::int32)
+    text += std::string(" as ") + to_string(b.inline_type) + "/" + to_string(b.crossline_type);
+  return text;
 }
 
 std::string how_to_pass(const SegyOptions& b) {
@@ -43,9 +47,9 @@ std::string how_to_pass(const SegyOptions& b) {
 }
 
 Problem misplaced(const TraceHeader& header, const Grid& g, std::int64_t i, std::int64_t j, int trace) {
-  const int il = field(header, g.bytes.inline_byte), xl = field(header, g.bytes.crossline_byte);
-  return {"trace " + std::to_string(trace) + " holds inline " + std::to_string(il) + ", crossline " +
-              std::to_string(xl) + " (bytes " + pair_text(g.bytes) + ") where a regular " + g.sorting() + " cube of " +
+  const double il = value(header, g.bytes.inline_field()), xl = value(header, g.bytes.crossline_field());
+  return {"trace " + std::to_string(trace) + " holds inline " + number_text(il) + ", crossline " + number_text(xl) +
+              " (bytes " + pair_text(g.bytes) + ") where a regular " + g.sorting() + " cube of " +
               std::to_string(g.ni) + " x " + std::to_string(g.nj) + " traces has inline " +
               std::to_string(g.inline_of(i)) + ", crossline " + std::to_string(g.crossline_of(j)),
           "the traces are not a regular grid: sort them by inline then crossline and pad missing traces before "
@@ -70,55 +74,77 @@ std::optional<Problem> regular_step(const std::vector<int>& numbers, const char*
   return std::nullopt;
 }
 
-// Reads the grid at `bytes` without throwing for what the positions imply; only I/O failures
-// of the corner headers throw.
-Probe probe(segy_file* file, const Layout& layout, const SegyOptions& bytes, const std::string& path) {
-  const int il = bytes.inline_byte, xl = bytes.crossline_byte;
-  const long t0 = layout.trace0;
-  const int tb = layout.trace_bytes;
+// Reads the grid at `bytes` from a few headers without throwing for what the positions imply
+// (the first line's traces, the first trace of each line, the corners); only I/O failures and line
+// numbers that are no integers throw. Sorting: the first two traces share the inline (inline-sorted)
+// or the crossline (crossline-sorted); the first line's length gives the other count.
+Probe probe(const HeaderFile& headers, const Layout& layout, const SegyOptions& bytes, const std::string& path) {
+  const HeaderField il = bytes.inline_field(), xl = bytes.crossline_field();
   Grid g;
   g.bytes = bytes;
-  const TraceHeader first = read_header(file, layout, 0, path);
-  const TraceHeader last = read_header(file, layout, layout.traces - 1, path);
-  if (field(first, il) == 0 && field(first, xl) == 0 && field(last, il) == 0 && field(last, xl) == 0)
+  const int n = layout.traces;
+  const TraceHeader first = headers.read(0);
+  const TraceHeader last = headers.read(n - 1);
+  if (value(first, il) == 0 && value(first, xl) == 0 && value(last, il) == 0 && value(last, xl) == 0)
     return {std::nullopt,
             {"no line numbers at bytes " + pair_text(bytes) + ": the first and the last trace hold 0 at both", "",
              placeholder(first, bytes) || placeholder(last, bytes)}};
-  int sorting = SEGY_UNKNOWN_SORTING;
-  int status = segy_sorting(file, il, xl, SEGY_TR_OFFSET, &sorting, t0, tb);
-  if (status != SEGY_OK || sorting == SEGY_UNKNOWN_SORTING)
-    return {std::nullopt,
-            {"the traces are sorted neither by inline (byte " + std::to_string(il) + ") nor by crossline (byte " +
-                 std::to_string(xl) + ")",
-             "geotandem reads post-stack 3D cubes; sort the traces by inline then crossline", true}};
-  g.inline_sorted = sorting == SEGY_INLINE_SORTING;
-
-  int offsets = 1;
-  status = segy_offsets(file, il, xl, layout.traces, &offsets, t0, tb);
-  if (status != SEGY_OK || offsets != 1)
+  auto bin = [&](int trace) {
+    const TraceHeader h = trace == 0 ? first : headers.read(trace);
+    return std::array<int, 2>{line_number(h, il, "inline", trace, path), line_number(h, xl, "crossline", trace, path)};
+  };
+  const std::array<int, 2> b0 = bin(0);
+  if (n == 1) {
+    g.ni = g.nj = 1;
+    g.il0 = b0[0];
+    g.xl0 = b0[1];
+    return {g, {}};
+  }
+  const std::array<int, 2> b1 = bin(1);
+  if (b1 == b0) {
+    const TraceHeader second = headers.read(1);
+    if (field(second, SEGY_TR_OFFSET) == field(first, SEGY_TR_OFFSET)) // a repeated trace: the scan names it
+      return {std::nullopt, {"traces 0 and 1 share one bin (bytes " + pair_text(bytes) + ")", "", true}};
+    int offsets = 2;
+    while (offsets < n && bin(offsets) == b0)
+      ++offsets;
     return {std::nullopt,
             {"pre-stack data: " + std::to_string(offsets) + " traces share each (inline, crossline) bin (bytes " +
                  pair_text(bytes) + "; offsets at byte 37)",
              "geotandem needs a post-stack cube: stack the gathers or extract one offset first"}};
-
-  int inlines = 0, crosslines = 0;
-  status = segy_lines_count(file, il, xl, sorting, offsets, &inlines, &crosslines, t0, tb);
-  if (status != SEGY_OK || inlines < 1 || crosslines < 1 ||
-      static_cast<long long>(inlines) * crosslines != layout.traces)
+  }
+  if (b1[0] != b0[0] && b1[1] != b0[1])
     return {std::nullopt,
-            {"irregular survey: " + std::to_string(layout.traces) + " traces, but the first lines give " +
-                 std::to_string(inlines) + " inlines x " + std::to_string(crosslines) + " crosslines (bytes " +
-                 pair_text(bytes) + "); traces are missing, lines differ in length, or the file was cut short",
+            {"the traces are sorted neither by inline (byte " + std::to_string(il.byte) + ") nor by crossline (byte " +
+                 std::to_string(xl.byte) + ")",
+             "geotandem reads post-stack 3D cubes; sort the traces by inline then crossline", true}};
+  g.inline_sorted = b1[0] == b0[0];
+  const int outer = g.inline_sorted ? 0 : 1, inner = 1 - outer;
+  // The first line: its traces share the outer number.
+  std::vector<int> inner_numbers{b0[inner], b1[inner]};
+  for (int t = 2; t < n; ++t) {
+    const std::array<int, 2> b = bin(t);
+    if (b[outer] != b0[outer]) break;
+    inner_numbers.push_back(b[inner]);
+  }
+  const int line = static_cast<int>(inner_numbers.size());
+  const int lines = n / line;
+  const int inlines = g.inline_sorted ? lines : line, crosslines = g.inline_sorted ? line : lines;
+  if (static_cast<long long>(lines) * line != n)
+    return {std::nullopt,
+            {"irregular survey: " + std::to_string(n) + " traces, but the first lines give " + std::to_string(inlines) +
+                 " inlines x " + std::to_string(crosslines) + " crosslines (bytes " + pair_text(bytes) +
+                 "); traces are missing, lines differ in length, or the file was cut short",
              "pad the cube to a full rectangle of traces, with dead traces where data is missing, before reading "
              "it",
              true}};
   g.ni = inlines;
   g.nj = crosslines;
-
-  std::vector<int> il_numbers(static_cast<std::size_t>(inlines)), xl_numbers(static_cast<std::size_t>(crosslines));
-  if (segy_inline_indices(file, il, sorting, inlines, crosslines, offsets, il_numbers.data(), t0, tb) != SEGY_OK ||
-      segy_crossline_indices(file, xl, sorting, inlines, crosslines, offsets, xl_numbers.data(), t0, tb) != SEGY_OK)
-    return {std::nullopt, {"cannot read the inline and crossline numbers at bytes " + pair_text(bytes), "", true}};
+  std::vector<int> outer_numbers(static_cast<std::size_t>(lines));
+  for (int k = 0; k < lines; ++k)
+    outer_numbers[static_cast<std::size_t>(k)] = k == 0 ? b0[outer] : bin(k * line)[outer];
+  const std::vector<int>& il_numbers = g.inline_sorted ? outer_numbers : inner_numbers;
+  const std::vector<int>& xl_numbers = g.inline_sorted ? inner_numbers : outer_numbers;
   g.il0 = il_numbers.front();
   g.xl0 = xl_numbers.front();
   if (auto p = regular_step(il_numbers, "inline", g.il_step)) return {std::nullopt, *p};
@@ -128,8 +154,8 @@ Probe probe(segy_file* file, const Layout& layout, const SegyOptions& bytes, con
   // than at the first read.
   for (auto [i, j] : {std::array<int, 2>{0, 0}, {g.ni - 1, 0}, {0, g.nj - 1}, {g.ni - 1, g.nj - 1}}) {
     const int trace = g.trace_of(i, j);
-    const TraceHeader header = read_header(file, layout, trace, path);
-    if (field(header, il) != g.inline_of(i) || field(header, xl) != g.crossline_of(j))
+    const TraceHeader header = headers.read(trace);
+    if (value(header, il) != g.inline_of(i) || value(header, xl) != g.crossline_of(j))
       return {std::nullopt, misplaced(header, g, i, j, trace)};
   }
   return {g, {}};
@@ -169,11 +195,13 @@ std::int64_t line_step(std::vector<int>& numbers) {
   return step == 0 ? 1 : step;
 }
 
-// Every trace header read: a survey whose sorted traces leave bins of its rectangle empty. The
-// rectangle is spanned by the smallest and largest line numbers at the common step; a rectangle
-// more than ten times the traces is not taken for a survey (wrong header bytes, most likely). The
-// same pass fits the affine to the traces' coordinates.
-Probe scan(segy_file* file, const Layout& layout, const SegyOptions& bytes, const std::string& path,
+// Every trace header read: a survey whose traces leave bins of its rectangle empty, or lie in no
+// line-after-line order (then read through the index this pass builds). The rectangle is spanned
+// by the smallest and largest line numbers at the common step; a rectangle more than ten times the
+// traces is not taken for a survey (wrong header bytes, most likely). The same pass fits the affine
+// to the traces' coordinates. Memory: 12 bytes per trace while the pass runs, then the grid's 4
+// bytes per bin; the samples are never held.
+Probe scan(const HeaderFile& headers, const Layout& layout, const SegyOptions& bytes, const std::string& path,
            Progress* progress) {
   // The live traces (placeholders have no line numbers) and their bins, in file order.
   std::vector<int> live;
@@ -181,28 +209,18 @@ Probe scan(segy_file* file, const Layout& layout, const SegyOptions& bytes, cons
   CoordinateFit coordinates;
   std::optional<TraceCoordinates> frame; // from the first live trace
   NullProgress silent;
-  Progress& report = progress ? *progress : silent;
-  report.begin("reading trace headers", static_cast<std::uint64_t>(layout.traces), "traces");
-  struct StopUnlessEnded {
-    Progress& report;
-    bool ended = false;
-    ~StopUnlessEnded() {
-      if (!ended) report.stop();
-    }
-  } guard{report};
-  for (int t = 0; t < layout.traces; ++t) {
-    if (t % 65536 == 0) report.update(static_cast<std::uint64_t>(t));
-    const TraceHeader header = read_header(file, layout, t, path);
-    if (placeholder(header, bytes)) continue;
-    if (!frame) frame.emplace(header);
-    const std::array<int, 2> bin{field(header, bytes.inline_byte), field(header, bytes.crossline_byte)};
-    live.push_back(t);
-    bins.push_back(bin);
-    coordinates.add(std::int64_t{bin[0]} - bins[0][0], std::int64_t{bin[1]} - bins[0][1], frame->xy(header));
-  }
-  report.update(static_cast<std::uint64_t>(layout.traces));
-  report.end();
-  guard.ended = true;
+  headers.scan(
+      [&](int t, const TraceHeader& header) {
+        if (placeholder(header, bytes)) return;
+        if (!frame) frame.emplace(header, bytes, t, path);
+        const std::array<int, 2> bin{line_number(header, bytes.inline_field(), "inline", t, path),
+                                     line_number(header, bytes.crossline_field(), "crossline", t, path)};
+        live.push_back(t);
+        bins.push_back(bin);
+        coordinates.add(std::int64_t{bin[0]} - bins[0][0], std::int64_t{bin[1]} - bins[0][1],
+                        frame->xy(header, t, path));
+      },
+      progress ? *progress : silent);
   if (live.empty())
     return {std::nullopt, {"reading every trace header: every trace is a placeholder (dead, line numbers 0)", ""}};
   Grid g;
@@ -212,15 +230,24 @@ Probe scan(segy_file* file, const Layout& layout, const SegyOptions& bytes, cons
   const auto il_of = [](const std::array<int, 2>& b) { return b[0]; };
   const auto xl_of = [](const std::array<int, 2>& b) { return b[1]; };
   g.inline_sorted = sorted_by(bins, il_of, xl_of);
-  if (!g.inline_sorted && !sorted_by(bins, xl_of, il_of))
-    return {std::nullopt,
-            {"reading every trace header: the traces are not sorted line after line (or several share a bin)", ""}};
-  std::vector<int> il_numbers(bins.size()), xl_numbers(bins.size());
-  std::transform(bins.begin(), bins.end(), il_numbers.begin(), il_of);
-  std::transform(bins.begin(), bins.end(), xl_numbers.begin(), xl_of);
-  const std::int64_t il_step = line_step(il_numbers), xl_step = line_step(xl_numbers);
-  const std::int64_t ni = (std::int64_t{il_numbers.back()} - il_numbers.front()) / il_step + 1;
-  const std::int64_t nj = (std::int64_t{xl_numbers.back()} - xl_numbers.front()) / xl_step + 1;
+  g.unsorted = !g.inline_sorted && !sorted_by(bins, xl_of, il_of);
+  if (g.unsorted) g.inline_sorted = true;
+  std::int64_t il_step = 0, xl_step = 0;
+  std::int64_t il_first = 0, il_last = 0, xl_first = 0, xl_last = 0;
+  {
+    std::vector<int> numbers(bins.size());
+    std::transform(bins.begin(), bins.end(), numbers.begin(), il_of);
+    il_step = line_step(numbers);
+    il_first = numbers.front();
+    il_last = numbers.back();
+    numbers.assign(bins.size(), 0);
+    std::transform(bins.begin(), bins.end(), numbers.begin(), xl_of);
+    xl_step = line_step(numbers);
+    xl_first = numbers.front();
+    xl_last = numbers.back();
+  }
+  const std::int64_t ni = (il_last - il_first) / il_step + 1;
+  const std::int64_t nj = (xl_last - xl_first) / xl_step + 1;
   // Within int range: every line number of the rectangle lies between two numbers of the file.
   if (ni * nj > 10 * static_cast<std::int64_t>(layout.traces) || ni * nj > std::numeric_limits<std::int32_t>::max())
     return {std::nullopt,
@@ -228,8 +255,8 @@ Probe scan(segy_file* file, const Layout& layout, const SegyOptions& bytes, cons
                  std::to_string(ni) + " inlines x " + std::to_string(nj) + " crosslines for " +
                  std::to_string(layout.traces) + " traces, too few to be a survey",
              ""}};
-  g.il0 = il_numbers.front();
-  g.xl0 = xl_numbers.front();
+  g.il0 = static_cast<int>(il_first);
+  g.xl0 = static_cast<int>(xl_first);
   g.il_step = static_cast<int>(il_step); // at most the span of two ints that passed the test above
   g.xl_step = static_cast<int>(xl_step);
   g.ni = static_cast<int>(ni);
@@ -242,7 +269,7 @@ Probe scan(segy_file* file, const Layout& layout, const SegyOptions& bytes, cons
   };
   // Placeholders padding the survey to its full rectangle: every live trace sits at the place in
   // the file its bin has, so each placeholder's place is its bin too.
-  bool padded = ni * nj == layout.traces;
+  bool padded = !g.unsorted && ni * nj == layout.traces;
   for (std::size_t n = 0; padded && n < live.size(); ++n)
     padded = bin_of(bins[n]) == live[n];
   if (padded) return {g, {}};
@@ -251,7 +278,15 @@ Probe scan(segy_file* file, const Layout& layout, const SegyOptions& bytes, cons
   for (std::size_t n = 0; n < live.size(); ++n) {
     const auto [il, xl] = bins[n];
     const std::int64_t i = (std::int64_t{il} - g.il0) / g.il_step, j = (std::int64_t{xl} - g.xl0) / g.xl_step;
-    g.traces[static_cast<std::size_t>(i * nj + j)] = live[n]; // sorted: no bin twice
+    std::int32_t& place = g.traces[static_cast<std::size_t>(i * nj + j)];
+    if (place >= 0)
+      throw DataError("traces " + std::to_string(place) + " and " + std::to_string(live[n]) + " both hold inline " +
+                          std::to_string(il) + ", crossline " + std::to_string(xl) + " (trace header bytes " +
+                          pair_text(bytes) + ")",
+                      {path},
+                      "a post-stack cube has one trace per bin: remove the duplicated trace, or check the byte "
+                      "positions of the line numbers");
+    place = live[n];
   }
   return {g, {}};
 }
@@ -299,60 +334,45 @@ std::string missing_text(const Grid& grid) {
   return text;
 }
 
-int field(const TraceHeader& header, int position) {
-  std::int32_t value = 0;
-  segy_get_field(header.data(), position, &value);
-  return value;
-}
-
-TraceHeader read_header(segy_file* file, const Layout& layout, int trace, const std::string& path) {
-  TraceHeader header{};
-  if (int status = segy_traceheader(file, trace, header.data(), layout.trace0, layout.trace_bytes); status != SEGY_OK)
-    throw IoError("cannot read the header of trace " + std::to_string(trace) + ": " + status_text(status), {path});
-  return header;
+int line_number(const TraceHeader& header, const HeaderField& f, const char* what, int trace, const std::string& path) {
+  const double v = value(header, f);
+  if (v == std::nearbyint(v) && v >= std::numeric_limits<int>::min() && v <= std::numeric_limits<int>::max())
+    return static_cast<int>(v);
+  throw FormatError("trace " + std::to_string(trace) + " holds " + number_text(v) + " as its " + what +
+                        " number (trace header byte " + std::to_string(f.byte) + ", " + to_string(f.type) +
+                        "): not a whole number",
+                    {path},
+                    std::string("check the byte and type of the ") + what + " numbers (--" + what + "-byte, --" + what +
+                        "-type; segy: {" + what + "_byte, " + what + "_type} in a recipe)");
 }
 
 bool placeholder(const TraceHeader& header, const SegyOptions& bytes) {
-  return field(header, SEGY_TR_TRACE_ID) == 2 && field(header, bytes.inline_byte) == 0 &&
-         field(header, bytes.crossline_byte) == 0;
+  return field(header, SEGY_TR_TRACE_ID) == 2 && value(header, bytes.inline_field()) == 0 &&
+         value(header, bytes.crossline_field()) == 0;
 }
 
 void check_position(const TraceHeader& header, const Grid& grid, std::int64_t i, std::int64_t j, int trace,
                     const std::string& path) {
-  if (field(header, grid.bytes.inline_byte) == grid.inline_of(i) &&
-      field(header, grid.bytes.crossline_byte) == grid.crossline_of(j))
+  if (value(header, grid.bytes.inline_field()) == grid.inline_of(i) &&
+      value(header, grid.bytes.crossline_field()) == grid.crossline_of(j))
     return;
   if (!grid.irregular() && placeholder(header, grid.bytes)) return; // its place in the file is its bin
   Problem p = misplaced(header, grid, i, j, trace);
   throw FormatError(p.message, {path}, p.hint);
 }
 
-void check_header_bytes(const SegyOptions& bytes, const std::string& path) {
-  TraceHeader blank{};
-  std::int32_t value = 0;
-  for (auto [position, what] : {std::pair{bytes.inline_byte, "inline"}, {bytes.crossline_byte, "crossline"}})
-    if (segy_get_field(blank.data(), position, &value) != SEGY_OK)
-      throw InvalidArgument(std::string("the ") + what + " byte position " + std::to_string(position) +
-                                " is not the first byte of a trace header field",
-                            {path},
-                            "line numbers are 4-byte integers at 1-based positions such as 189/193 (SEG-Y rev 1), "
-                            "9/21, 5/21 or 17/13");
-  if (bytes.inline_byte == bytes.crossline_byte)
-    throw InvalidArgument("the inline and crossline byte positions are both " + std::to_string(bytes.inline_byte),
-                          {path}, "give two different positions, for example 189 and 193");
-}
-
-Grid find_grid(segy_file* file, const Layout& layout, const SegyOptions& bytes, bool read_missing,
+Grid find_grid(const HeaderFile& headers, const Layout& layout, const SegyOptions& bytes, bool read_missing,
                const std::string& path, Progress* progress) {
-  check_header_bytes(bytes, path);
-  Probe asked = probe(file, layout, bytes, path);
+  check_segy_options(bytes, path);
+  Probe asked = probe(headers, layout, bytes, path);
   if (asked.grid) return *asked.grid;
 
   // Try the other common positions: the first that describes a regular grid is the advice.
   std::vector<std::string> tried;
-  for (const SegyOptions& other : kCommonBytes) {
+  for (const auto& [inline_at, crossline_at] : kCommonBytes) {
+    const SegyOptions other = bytes.with_lines(inline_at, crossline_at);
     if (other == bytes) continue;
-    Probe p = probe(file, layout, other, path);
+    Probe p = probe(headers, layout, other, path);
     // A single line is what a sequence number beside a constant gives: no advice for a cube.
     if (p.grid && p.grid->ni > 1 && p.grid->nj > 1)
       throw FormatError(asked.problem.message + "; the line numbers at bytes " + pair_text(other) +
@@ -372,7 +392,7 @@ Grid find_grid(segy_file* file, const Layout& layout, const SegyOptions& bytes, 
   // with some missing, read when missing samples are (the NaN fill policy) and refused otherwise,
   // or one padded with placeholders, read.
   if (!asked.problem.scan) throw FormatError(asked.problem.message, {path}, hint);
-  Probe scanned = scan(file, layout, bytes, path, progress);
+  Probe scanned = scan(headers, layout, bytes, path, progress);
   if (!scanned.grid) throw FormatError(asked.problem.message + "; " + scanned.problem.message, {path}, hint);
   // Read: a survey padded with placeholders, or one whose every bin has a trace (placeholders
   // elsewhere in the file), or with missing samples read.

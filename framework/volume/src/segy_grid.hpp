@@ -12,15 +12,17 @@
 
 #include "geotandem/volume/geometry.hpp"
 #include "geotandem/volume/io.hpp"
+#include "segy_header.hpp"
 #include "segy_layout.hpp"
 
 namespace geotandem::volume::detail::segy {
 
-using TraceHeader = std::array<char, SEGY_TRACE_HEADER_SIZE>;
-
 struct Grid {
-  SegyOptions bytes; // where the line numbers were read
+  SegyOptions bytes; // where the line numbers (and coordinates) were read
   bool inline_sorted = true;
+  // The traces are in no line-after-line order (or some lines are out of order): they are read
+  // through Grid::traces, the index built by the pass over every trace header.
+  bool unsorted = false;
   int ni = 0, nj = 0;
   // Line numbers: inline of index i is il0 + i * il_step (likewise crosslines).
   int il0 = 0, il_step = 1, xl0 = 0, xl_step = 1;
@@ -51,19 +53,19 @@ struct Grid {
   }
   int inline_of(std::int64_t i) const { return static_cast<int>(il0 + i * il_step); }
   int crossline_of(std::int64_t j) const { return static_cast<int>(xl0 + j * xl_step); }
-  const char* sorting() const { return inline_sorted ? "inline-sorted" : "crossline-sorted"; }
+  const char* sorting() const { return unsorted ? "unsorted" : inline_sorted ? "inline-sorted" : "crossline-sorted"; }
 };
 
-// The 4-byte integer (or 2-byte, for such fields) at 1-based byte `position` of a trace header.
-int field(const TraceHeader& header, int position);
+// The inline (or crossline) number of a trace at its declared field: a whole number within the
+// range of int. Throws FormatError naming the file, the trace and the byte otherwise (a float field
+// holding 12.5, NaN or 1e12).
+int line_number(const TraceHeader& header, const HeaderField& field, const char* what, int trace,
+                const std::string& path);
 
 // A placeholder: a trace flagged dead (identification code 2, bytes 29-30) whose line numbers at
 // `bytes` are both 0, as some programs pad a survey to a full rectangle. It has no place of its
 // own: in a full grid its place in the file is its bin, and its samples are read as written.
 bool placeholder(const TraceHeader& header, const SegyOptions& bytes);
-
-// Throws IoError naming the trace when its header cannot be read.
-TraceHeader read_header(segy_file* file, const Layout& layout, int trace, const std::string& path);
 
 // The header of trace (i, j) must carry the line numbers of (i, j); anything else means the file
 // is not the regular sorted grid its first traces announced, and samples would land in the wrong
@@ -71,18 +73,17 @@ TraceHeader read_header(segy_file* file, const Layout& layout, int trace, const 
 void check_position(const TraceHeader& header, const Grid& grid, std::int64_t i, std::int64_t j, int trace,
                     const std::string& path);
 
-// Throws InvalidArgument unless both positions start a trace header field segyio can read.
-void check_header_bytes(const SegyOptions& bytes, const std::string& path);
-
 // Finds the grid at the positions in `bytes`. A full sorted grid is found from its first lines and
 // corners. Otherwise, when no other common positions (9/21, 5/21, 17/13, 189/193) describe a full
 // grid, every trace header is read: sorted traces with some missing give an irregular grid
 // (Grid::traces), returned when `read_missing` (missing samples are read, not refused) and refused
 // otherwise, naming what is missing; placeholders that pad the survey to its full rectangle give a
-// full grid (fitted). Pre-stack, unsorted and unreadable files are refused with a
-// FormatError that names the positions that would work, and how to pass them.
+// full grid (fitted); traces in no line-after-line order give an unsorted grid read through its
+// index (Grid::traces, 4 bytes per bin; the pass keeps 12 bytes per trace while it runs). Two traces
+// in one bin are refused with a DataError naming both trace numbers. Pre-stack and unreadable files
+// are refused with a FormatError that names the positions that would work, and how to pass them.
 // `progress` (may be null) follows the pass over every trace header, when one is needed.
-Grid find_grid(segy_file* file, const Layout& layout, const SegyOptions& bytes, bool read_missing,
+Grid find_grid(const HeaderFile& headers, const Layout& layout, const SegyOptions& bytes, bool read_missing,
                const std::string& path, Progress* progress = nullptr);
 
 // What an irregular grid lacks, for messages: "62 of 63 traces (7 inlines x 9 crosslines); the

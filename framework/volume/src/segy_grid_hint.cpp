@@ -14,6 +14,72 @@
 #include "geotandem/core/error.hpp"
 
 namespace geotandem::volume::detail::segy {
+namespace {
+
+constexpr char kAlphabet[] = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+
+// The trace index (Grid::traces) as base64 of little-endian 32-bit integers.
+std::string encode_index(const std::vector<std::int32_t>& traces) {
+  std::string bytes(traces.size() * 4, '\0');
+  for (std::size_t n = 0; n < traces.size(); ++n) {
+    const auto v = static_cast<std::uint32_t>(traces[n]);
+    for (int b = 0; b < 4; ++b)
+      bytes[4 * n + static_cast<std::size_t>(b)] = static_cast<char>((v >> (8 * b)) & 0xFF);
+  }
+  std::string out;
+  out.reserve((bytes.size() + 2) / 3 * 4);
+  for (std::size_t n = 0; n < bytes.size(); n += 3) {
+    std::uint32_t chunk = static_cast<unsigned char>(bytes[n]) << 16;
+    if (n + 1 < bytes.size()) chunk |= static_cast<unsigned char>(bytes[n + 1]) << 8;
+    if (n + 2 < bytes.size()) chunk |= static_cast<unsigned char>(bytes[n + 2]);
+    out += kAlphabet[(chunk >> 18) & 63];
+    out += kAlphabet[(chunk >> 12) & 63];
+    out += n + 1 < bytes.size() ? kAlphabet[(chunk >> 6) & 63] : '=';
+    out += n + 2 < bytes.size() ? kAlphabet[chunk & 63] : '=';
+  }
+  return out;
+}
+
+// Nothing when the text is not the base64 of `count` integers.
+std::optional<std::vector<std::int32_t>> decode_index(const std::string& text, std::size_t count) {
+  if (text.size() != (count * 4 + 2) / 3 * 4) return std::nullopt;
+  std::array<int, 256> digit{};
+  digit.fill(-1);
+  for (int n = 0; n < 64; ++n)
+    digit[static_cast<unsigned char>(kAlphabet[n])] = n;
+  std::vector<unsigned char> bytes;
+  bytes.reserve(count * 4 + 2);
+  for (std::size_t n = 0; n < text.size(); n += 4) {
+    std::uint32_t chunk = 0;
+    int pad = 0;
+    for (std::size_t k = 0; k < 4; ++k) {
+      const char c = text[n + k];
+      if (c == '=') {
+        ++pad;
+        chunk <<= 6;
+        continue;
+      }
+      const int d = digit[static_cast<unsigned char>(c)];
+      if (d < 0 || pad > 0) return std::nullopt;
+      chunk = chunk << 6 | static_cast<std::uint32_t>(d);
+    }
+    bytes.push_back(static_cast<unsigned char>(chunk >> 16));
+    if (pad < 2) bytes.push_back(static_cast<unsigned char>(chunk >> 8));
+    if (pad < 1) bytes.push_back(static_cast<unsigned char>(chunk));
+  }
+  if (bytes.size() != count * 4) return std::nullopt;
+  std::vector<std::int32_t> traces(count);
+  for (std::size_t n = 0; n < count; ++n)
+    traces[n] =
+        static_cast<std::int32_t>(std::uint32_t{bytes[4 * n]} | std::uint32_t{bytes[4 * n + 1]} << 8 |
+                                  std::uint32_t{bytes[4 * n + 2]} << 16 | std::uint32_t{bytes[4 * n + 3]} << 24);
+  return traces;
+}
+
+// An index sent whole weighs 5.3 bytes per bin: beyond this many bins, workers read the headers.
+constexpr std::size_t kMaxIndexBins = std::size_t{16} << 20;
+
+} // namespace
 
 FileStamp file_stamp(const std::string& path) {
   struct stat st {};
@@ -47,15 +113,22 @@ std::string grid_hint(const Grid& g, const FileStamp& stamp) {
     runs.push_back({t, bin_of[t], n, n > 1 ? step : 1});
     t += n;
   }
-  // Holes everywhere make runs of a trace or two: the hint would weigh about as much as the headers
-  // it spares each worker, so there is none.
-  if (runs.size() > std::max<std::size_t>(1024, bin_of.size() / 16)) return {};
+  // Holes everywhere, or traces in no order, make runs of a trace or two: the index itself is sent
+  // (base64 of 4 bytes per bin), unless the survey is huge: each worker then reads the headers.
+  std::string index;
+  if (runs.size() > std::max<std::size_t>(1024, bin_of.size() / 16)) {
+    if (g.traces.size() > kMaxIndexBins) return {};
+    runs = nlohmann::json::array();
+    index = encode_index(g.traces);
+  }
   const SurveyAffine& a = g.fitted_affine;
   return nlohmann::json{{"segy_grid",
                          {{"size", stamp.size},
                           {"modified_ns", stamp.modified_ns},
-                          {"bytes", {g.bytes.inline_byte, g.bytes.crossline_byte}},
+                          {"options", to_json(g.bytes)},
                           {"inline_sorted", g.inline_sorted},
+                          {"unsorted", g.unsorted},
+                          {"index", index},
                           {"lines", {g.ni, g.nj, g.il0, g.il_step, g.xl0, g.xl_step}},
                           {"first_live", g.first_live},
                           {"placeholders_left_out", g.placeholders_left_out},
@@ -69,12 +142,12 @@ std::optional<Grid> grid_from_hint(const std::string& hint, const FileStamp& sta
   try {
     const nlohmann::json h = nlohmann::json::parse(hint).at("segy_grid");
     if (h.at("size").get<std::uintmax_t>() != stamp.size ||
-        h.at("modified_ns").get<std::int64_t>() != stamp.modified_ns ||
-        h.at("bytes") != nlohmann::json{bytes.inline_byte, bytes.crossline_byte})
+        h.at("modified_ns").get<std::int64_t>() != stamp.modified_ns || h.at("options") != to_json(bytes))
       return std::nullopt;
     Grid g;
     g.bytes = bytes;
     g.inline_sorted = h.at("inline_sorted").get<bool>();
+    g.unsorted = h.at("unsorted").get<bool>();
     const auto lines = h.at("lines").get<std::array<int, 6>>();
     g.ni = lines[0];
     g.nj = lines[1];
@@ -92,6 +165,25 @@ std::optional<Grid> grid_from_hint(const std::string& hint, const FileStamp& sta
         bins > std::numeric_limits<std::int32_t>::max())
       return std::nullopt;
     const nlohmann::json& runs = h.at("runs");
+    if (const std::string& index = h.at("index").get_ref<const std::string&>(); !index.empty()) {
+      auto traces_of = decode_index(index, static_cast<std::size_t>(bins));
+      if (!traces_of) return std::nullopt;
+      // Each of the file's traces at most once, the placeholders left out and no other.
+      std::vector<bool> seen(static_cast<std::size_t>(traces), false);
+      std::int64_t placed = 0;
+      for (const std::int32_t t : *traces_of) {
+        if (t < -1 || t >= traces) return std::nullopt;
+        if (t < 0) continue;
+        if (seen[static_cast<std::size_t>(t)]) return std::nullopt;
+        seen[static_cast<std::size_t>(t)] = true;
+        ++placed;
+      }
+      if (placed != traces - g.placeholders_left_out || g.first_live < 0 || g.first_live >= traces ||
+          !seen[static_cast<std::size_t>(g.first_live)])
+        return std::nullopt;
+      g.traces = std::move(*traces_of);
+      return g;
+    }
     if (runs.empty()) { // a full grid padded with placeholders: the traces follow from the sorting
       if (bins != traces || g.placeholders_left_out != 0 || g.first_live < 0 || g.first_live >= traces)
         return std::nullopt;

@@ -88,6 +88,12 @@ bool detect_little_endian(const BinaryHeader& raw, const std::string& path) {
                     {path}, std::string("the binary header is damaged, or the file is not SEG-Y; ") + readable_codes);
 }
 
+std::int32_t field32(const BinaryHeader& raw, int byte, bool little_endian) {
+  const auto hi = static_cast<std::uint32_t>(field16(raw, little_endian ? byte + 2 : byte, little_endian));
+  const auto lo = static_cast<std::uint32_t>(field16(raw, little_endian ? byte : byte + 2, little_endian));
+  return static_cast<std::int32_t>(hi << 16 | lo);
+}
+
 int field(const TraceHeader& header, int position) {
   std::int32_t value = 0;
   segy_get_field(header.data(), position, &value);
@@ -102,6 +108,10 @@ int Layout::sample_size() const {
 
 int Layout::segyio_format() const {
   return format | static_cast<int>(little_endian ? SEGY_LSB : SEGY_MSB);
+}
+
+std::string Layout::revision_text() const {
+  return std::to_string(revision_major) + "." + std::to_string(revision_minor);
 }
 
 const char* sample_format_name(int format) {
@@ -129,8 +139,15 @@ Layout read_layout(segy_file* file, const std::string& path) {
   if (int status = segy_binheader(file, bin.data()); status != SEGY_OK)
     throw FormatError(
         "cannot read the 400-byte binary header after the 3200-byte textual header: " + status_text(status), {path});
+  const BinaryHeader raw = bin; // as the file holds it: segyio swaps a little-endian header field by field
   Layout layout;
   layout.little_endian = detect_little_endian(bin, path);
+  // Rev 2 gives the revision as two bytes (major, minor); rev 1 wrote it as the 16-bit 0x0100, which a
+  // little-endian writer stores as 00 01.
+  layout.revision_major = static_cast<unsigned char>(raw[300]);
+  layout.revision_minor = static_cast<unsigned char>(raw[301]);
+  if (layout.little_endian && layout.revision_major == 0 && layout.revision_minor != 0)
+    std::swap(layout.revision_major, layout.revision_minor);
   if (layout.little_endian) {
     // From here on segyio swaps every header field and sample it hands back to big-endian.
     segy_set_format(file, static_cast<int>(SEGY_IEEE_FLOAT_4_BYTE) | static_cast<int>(SEGY_LSB));
@@ -151,6 +168,15 @@ Layout read_layout(segy_file* file, const std::string& path) {
                           std::to_string(extended) + ") is not supported",
                       {path}, "rewrite the file with a fixed number of extended headers");
   layout.trace0 = segy_trace0(bin.data());
+  layout.extended_textual = extended;
+  if (layout.revision_major >= 2) {
+    const std::int32_t extensions = field32(raw, 3507, layout.little_endian);
+    if (extensions < 0 || extensions > 1000)
+      throw FormatError("the number of trace header extensions (binary header bytes 3507-3510) is " +
+                            std::to_string(extensions),
+                        {path}, "SEG-Y rev 2 allows 0 or more 240-byte extensions per trace; the header is damaged");
+    layout.header_extensions = extensions;
+  }
 
   // Samples per trace and the interval are unsigned 16-bit in SEG-Y rev 1; segyio 1.8 reads them
   // signed, hence the masks. A zero in the binary header falls back to the first trace header.
@@ -180,13 +206,14 @@ Layout read_layout(segy_file* file, const std::string& path) {
 
   std::error_code ec;
   const auto size = static_cast<long long>(std::filesystem::file_size(path, ec));
-  const long long per_trace = layout.trace_bytes + SEGY_TRACE_HEADER_SIZE;
+  const long long per_trace = layout.stride();
   if (size < layout.trace0 + per_trace)
     throw FormatError("the file has " + std::to_string(size) + " bytes, less than its headers (" +
                           std::to_string(layout.trace0) + " bytes) and one trace (" + std::to_string(per_trace) +
                           " bytes)",
                       {path}, "the file is truncated or not SEG-Y");
-  int status = segy_traces(file, &layout.traces, layout.trace0, layout.trace_bytes);
+  // The headers' extensions count in each trace's stride (segyio knows none).
+  int status = segy_traces(file, &layout.traces, layout.trace0, layout.segyio_trace_bytes());
   if (status == SEGY_TRACE_SIZE_MISMATCH || (size - layout.trace0) % per_trace != 0) {
     long long whole = (size - layout.trace0) / per_trace;
     throw FormatError(

@@ -16,6 +16,20 @@ struct Layout {
   int traces = 0;
   int samples = 0;  // per trace
   int interval = 0; // binary header byte 3217: microseconds (or millimetres in our depth files)
+  // SEG-Y revision, binary header bytes 3501 (major) and 3502 (minor): 0.0 for files before rev 1.
+  int revision_major = 0, revision_minor = 0;
+  int extended_textual = 0; // 3200-byte extended textual headers (byte 3505)
+  // Rev 2: 240-byte trace header extensions after each standard trace header (bytes 3507-3510).
+  int header_extensions = 0;
+
+  // Bytes from one trace's header to the next's.
+  long long stride() const { return SEGY_TRACE_HEADER_SIZE * (1ll + header_extensions) + trace_bytes; }
+  long long header_offset(int trace) const { return trace0 + stride() * trace; }
+  // What segyio is told, so that its sample reads skip the header extensions: the samples of
+  // trace t start at segyio_trace0() + t * (segyio_trace_bytes() + 240) + 240.
+  long segyio_trace0() const { return trace0 + static_cast<long>(SEGY_TRACE_HEADER_SIZE) * header_extensions; }
+  int segyio_trace_bytes() const { return trace_bytes + SEGY_TRACE_HEADER_SIZE * header_extensions; }
+  std::string revision_text() const;
 
   int sample_size() const; // bytes per sample: 4, 2 or 1
   // The format code with segyio's byte-order flag, for segy_set_format.

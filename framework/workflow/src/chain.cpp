@@ -43,9 +43,7 @@ std::shared_ptr<const volume::Volume> open_input(const nlohmann::json& in, bool 
   if (missing_as_nan) options.fill_value = std::numeric_limits<float>::quiet_NaN();
   if (in.contains("no_data")) options.no_data = static_cast<float>(in.at("no_data").get<double>());
   options.variable = in.value("variable", "");
-  if (in.contains("segy"))
-    options.segy = {in["segy"].value("inline_byte", options.segy.inline_byte),
-                    in["segy"].value("crossline_byte", options.segy.crossline_byte)};
+  if (in.contains("segy")) options.segy = volume::segy_options_from_json(in["segy"]);
   // Not part of the chain's identity: the runner adds it to the workers' copy only.
   options.reopen_hint = in.value("reopen_hint", "");
   options.progress = progress;

@@ -46,8 +46,21 @@ void parse_input(MapReader& m, InputSpec& in) {
     const RecipeSection& segy = recipe_section("input.segy");
     MapReader s(m.source(), m.node("segy"), segy.path);
     const ParamValues b = detail::read_section(s, segy);
-    in.segy_inline_byte = static_cast<int>(b.at("inline_byte").integer);
-    in.segy_crossline_byte = static_cast<int>(b.at("crossline_byte").integer);
+    volume::SegyOptions& o = in.segy;
+    o.inline_byte = static_cast<int>(b.at("inline_byte").integer);
+    o.crossline_byte = static_cast<int>(b.at("crossline_byte").integer);
+    o.x_byte = static_cast<int>(b.at("x_byte").integer);
+    o.y_byte = static_cast<int>(b.at("y_byte").integer);
+    o.inline_type = volume::parse_header_type(b.at("inline_type").text);
+    o.crossline_type = volume::parse_header_type(b.at("crossline_type").text);
+    o.x_type = volume::parse_header_type(b.at("x_type").text);
+    o.y_type = volume::parse_header_type(b.at("y_type").text);
+    if (b.count("coordinate_scalar")) o.coordinate_scalar = static_cast<int>(b.at("coordinate_scalar").integer);
+    try {
+      volume::check_segy_options(o);
+    } catch (const Error& e) {
+      throw error_at(m.source(), m.node("segy"), e.message(), e.hint());
+    }
     s.finish(segy.key_names());
   }
   if (has_file) {
@@ -340,8 +353,7 @@ nlohmann::json to_json(const Recipe& r) {
   in["nan"] = r.input.nan;
   if (r.input.no_data) in["no_data"] = *r.input.no_data;
   if (!r.input.variable.empty()) in["variable"] = r.input.variable;
-  if (r.input.segy_inline_byte != 189 || r.input.segy_crossline_byte != 193)
-    in["segy"] = {{"inline_byte", r.input.segy_inline_byte}, {"crossline_byte", r.input.segy_crossline_byte}};
+  if (!(r.input.segy == volume::SegyOptions{})) in["segy"] = volume::to_json(r.input.segy);
   j["input"] = in;
   j["steps"] = json::array();
   for (const auto& s : r.steps) {

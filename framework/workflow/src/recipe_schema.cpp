@@ -64,15 +64,36 @@ std::vector<RecipeSection> make_sections() {
   s.push_back(input);
 
   RecipeSection segy_section{"input.segy", {}, {}, {}};
+  const std::vector<std::string> header_types{"int16", "int32", "ieee", "float", "ibm"};
+  const auto type_key = [&](const std::string& name, volume::HeaderType value, const std::string& what) {
+    return param_spec(name, ParamType::choice, std::string(volume::to_string(value)),
+                      "SEG-Y only: the type (and so the width: int16 2 bytes, the others 4) of the " + what +
+                          " field; `float` is `ieee`",
+                      {}, {}, header_types);
+  };
   segy_section.keys = {
       param_spec("inline_byte", ParamType::integer, std::to_string(segy.inline_byte),
-                 "SEG-Y only: the trace header byte (1-based) holding the inline number; 9, 5 and 17 are common "
-                 "(docs/formats-segy-raw.md). `geotandem info` names the positions that work when these do not",
-                 1, 240),
+                 "SEG-Y only: the trace header byte (1-based) holding the inline number; 9, 5, 17 and 221 are common "
+                 "(docs/formats-segy-raw.md). The field must end by byte 240. `geotandem info` names the positions "
+                 "that work when these do not",
+                 1, 239),
       param_spec("crossline_byte", ParamType::integer, std::to_string(segy.crossline_byte),
-                 "SEG-Y only: the trace header byte (1-based) holding the crossline number; 21 and 13 are common", 1,
-                 240),
+                 "SEG-Y only: the trace header byte (1-based) holding the crossline number; 21, 13 and 225 are common",
+                 1, 239),
+      type_key("inline_type", segy.inline_type, "inline number"),
+      type_key("crossline_type", segy.crossline_type, "crossline number"),
+      param_spec("x_byte", ParamType::integer, std::to_string(segy.x_byte),
+                 "SEG-Y only: the trace header byte (1-based) of the CDP X coordinate", 1, 239),
+      param_spec("y_byte", ParamType::integer, std::to_string(segy.y_byte),
+                 "SEG-Y only: the trace header byte (1-based) of the CDP Y coordinate", 1, 239),
+      type_key("x_type", segy.x_type, "CDP X"),
+      type_key("y_type", segy.y_type, "CDP Y"),
+      param_spec("coordinate_scalar", ParamType::integer, std::nullopt,
+                 "SEG-Y only: the coordinate scalar of every trace instead of the header's (bytes 71-72): negative "
+                 "divides, positive multiplies, 0 means 1",
+                 -32768, 32767),
   };
+  segy_section.absent = {{"coordinate_scalar", "bytes 71-72 of each trace"}};
   s.push_back(segy_section);
 
   RecipeSection synthetic{"input.synthetic", {}, {}, {}};

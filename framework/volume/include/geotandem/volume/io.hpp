@@ -18,6 +18,7 @@
 
 #include "geotandem/core/cancel.hpp"
 #include "geotandem/core/progress.hpp"
+#include "geotandem/volume/segy_options.hpp"
 #include "geotandem/volume/volume.hpp"
 
 class GDALDataset; // GDAL's dataset handle (gdal_priv.h)
@@ -31,14 +32,6 @@ enum class NanPolicy {
 };
 NanPolicy parse_nan_policy(const std::string& text);
 
-// Where SEG-Y trace headers keep the line numbers: 1-based byte positions of 4-byte integers.
-// The defaults are SEG-Y rev 1's; many files use 9/21, 5/21 or 17/13 instead.
-struct SegyOptions {
-  int inline_byte = 189;
-  int crossline_byte = 193;
-  bool operator==(const SegyOptions&) const = default;
-};
-
 struct OpenOptions {
   NanPolicy nan_policy = NanPolicy::error;
   float fill_value = std::numeric_limits<float>::lowest();
@@ -48,6 +41,7 @@ struct OpenOptions {
   std::optional<float> no_data;
   // For multidimensional files with several 3D arrays: the array's name (empty: the only 3D one).
   std::string variable;
+  // SEG-Y: where the trace headers keep line numbers and coordinates (segy_options.hpp).
   SegyOptions segy;
   // Where long work while opening reports how far it got: the pass over every trace header of an
   // irregular SEG-Y survey (a few seconds per ten million traces, more on a network file system).

@@ -11,6 +11,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "geotandem/volume/segy_options.hpp"
 #include "geotandem/workflow/plugin.hpp"
 #include "geotandem/workflow/registry.hpp"
 
@@ -29,9 +30,9 @@ struct InputSpec {
   // input.no_data: samples equal to it are missing, as NaN samples are (SEG-Y and raw cubes cannot
   // declare their null; -999.25 is common).
   std::optional<double> no_data;
-  // SEG-Y trace header bytes (1-based) of the line numbers: input.segy.{inline,crossline}_byte.
-  int segy_inline_byte = 189;
-  int segy_crossline_byte = 193;
+  // SEG-Y trace header fields: input.segy.{inline,crossline,x,y}_{byte,type} and
+  // input.segy.coordinate_scalar.
+  volume::SegyOptions segy;
   bool synthetic = false;
   std::string synthetic_kind = "seismic"; // analytic | seismic
   std::int64_t shape[3] = {160, 160, 128};

@@ -186,7 +186,7 @@ int bench_main(int argc, char** argv) {
     runtime::ManagerOptions options;
     options.settings.volume = R"({"kind":"none"})";
     options.settings.store = dir.string();
-    options.settings.block_size = leaf;
+    options.settings.extraction.block_size = leaf;
     options.settings.run = store.begin_run("{}");
     options.workers = static_cast<std::size_t>(w);
     NullProgress progress;

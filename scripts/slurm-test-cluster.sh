@@ -48,12 +48,14 @@ alive() {
 
 pid_of() { [ -s "$dir/run/$1.pid" ] && cat "$dir/run/$1.pid" || true; }
 
-# The processes whose parent is $1 (field 2 after the command name in /proc/PID/stat).
+# The processes whose parent is $1 (field 2 after the command name in /proc/PID/stat). Shell
+# builtins only: a machine may have thousands of processes.
 children_of() {
-  local stat rest
+  local stat line fields
   for stat in /proc/[0-9]*/stat; do
-    rest="$(sed 's/^.*) //' "$stat" 2>/dev/null)" || continue
-    [ "$(echo "$rest" | cut -d' ' -f2)" = "$1" ] || continue
+    read -r line 2>/dev/null <"$stat" || continue
+    read -r -a fields <<<"${line##*) }"
+    [ "${fields[1]}" = "$1" ] || continue
     stat="${stat#/proc/}"
     echo "${stat%/stat}"
   done
@@ -71,9 +73,10 @@ kill_tree() {
 # a test's `sleep 600` job reported done after 3 s). So the steps of this cluster (their working
 # directory is in $dir) go too, with the jobs they run.
 kill_steps() {
-  local proc
+  local proc comm
   for proc in /proc/[0-9]*; do
-    [ "$(cat "$proc/comm" 2>/dev/null)" = slurmstepd ] || continue
+    read -r comm 2>/dev/null <"$proc/comm" || continue
+    [ "$comm" = slurmstepd ] || continue
     case "$(readlink "$proc/cwd" 2>/dev/null)" in
     "$dir" | "$dir"/*) kill_tree "${proc#/proc/}" ;;
     esac

@@ -170,7 +170,7 @@ TEST(SegyCli, AnIrregularSurveyIsExtractedWithItsMissingTracesOutside) {
 }
 
 // A shuffled file (issue 54): `info` says it is read through a trace index and where the fields
-// are; an extraction with two workers (who take the manager's index) gives the components of the
+// are; an extraction with a worker process (which takes the manager's index) gives the components of the
 // same samples written as a raw cube; a duplicated trace is a data error (exit 5) naming both
 // traces, never an internal one.
 TEST(SegyCli, AnUnsortedFileIsExtractedThroughItsIndex) {
@@ -211,7 +211,12 @@ TEST(SegyCli, AnUnsortedFileIsExtractedThroughItsIndex) {
   const std::string raw = dir.file("oracle.raw");
   ASSERT_EQ(opened->read(opened->geometry().bounds()), samples) << "read in this process through the index";
   volume::write_volume(volume::MemoryVolume(opened->geometry(), samples), raw);
-  const std::string iso = " --iso 900.5 --block-size 8 --workers 2 --out '";
+  // One worker process: it takes the manager's index as two would, and with one worker the merge
+  // order is fixed, so the two runs compare to rounding. With two, the merge order varies from run
+  // to run and so do the simplified surfaces within E0: on this noisy int16 field (a tangle of
+  // thin pockets) the volumes of one key were seen to differ by up to 16 % between two runs of the
+  // same raw cube.
+  const std::string iso = " --iso 900.5 --block-size 8 --workers 1 --out '";
   auto extracted = run_geotandem("-q extract '" + cube + "'" + bytes + iso + dir.file("segy") + "'");
   ASSERT_EQ(extracted.exit_code, 0) << extracted.err;
   auto oracle = run_geotandem("-q extract '" + raw + "'" + iso + dir.file("raw") + "'");

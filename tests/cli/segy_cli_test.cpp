@@ -23,6 +23,28 @@ using testing::run_geotandem;
 using testing::ScratchDir;
 using testing::volumes_in;
 
+// Extracts `segy` and `raw` (each a quoted path's inside, then its options) with one worker process
+// and expects the same keys with the same volumes. One worker takes the manager's hint (the trace
+// index) as two would, and its merge order is fixed, so the runs compare to rounding. With two
+// workers the merge order varies from run to run and so do the simplified surfaces within E0: on
+// this noisy int16 field (a tangle of thin pockets) one key's volume was seen to differ by up to
+// 16 % between two runs of the same raw cube.
+void expect_the_components_of(const ScratchDir& dir, const std::string& segy, const std::string& raw) {
+  const std::string iso = " --iso 900.5 --block-size 8 --workers 1 --out '";
+  auto extracted = run_geotandem("-q extract '" + segy + iso + dir.file("segy") + "'");
+  ASSERT_EQ(extracted.exit_code, 0) << extracted.err;
+  auto oracle = run_geotandem("-q extract '" + raw + iso + dir.file("raw") + "'");
+  ASSERT_EQ(oracle.exit_code, 0) << oracle.err;
+  const auto a = volumes_in(dir.file("raw"));
+  const auto b = volumes_in(dir.file("segy"));
+  ASSERT_GT(a.size(), 0u);
+  ASSERT_EQ(a.size(), b.size());
+  for (const auto& [key, volume] : a) {
+    ASSERT_TRUE(b.count(key)) << "component " << key;
+    EXPECT_NEAR(b.at(key), volume, 0.005 * std::abs(volume)) << "component " << key;
+  }
+}
+
 volume::testing::SegySpec delivered() {
   volume::testing::SegySpec s;
   s.format = SEGY_SIGNED_SHORT_2_BYTE;
@@ -154,19 +176,7 @@ TEST(SegyCli, AnIrregularSurveyIsExtractedWithItsMissingTracesOutside) {
   const std::string raw = dir.file("oracle.raw");
   volume::write_volume(volume::MemoryVolume(g, samples), raw);
 
-  const std::string iso = " --iso 900.5 --nan fill --block-size 8 --workers 2 --out '";
-  auto extracted = run_geotandem("-q extract '" + cube + "'" + bytes + iso + dir.file("segy") + "'");
-  ASSERT_EQ(extracted.exit_code, 0) << extracted.err;
-  auto oracle = run_geotandem("-q extract '" + raw + "'" + iso + dir.file("raw") + "'");
-  ASSERT_EQ(oracle.exit_code, 0) << oracle.err;
-  const auto a = volumes_in(dir.file("raw"));
-  const auto b = volumes_in(dir.file("segy"));
-  ASSERT_GT(a.size(), 0u);
-  ASSERT_EQ(a.size(), b.size());
-  for (const auto& [key, volume] : a) {
-    ASSERT_TRUE(b.count(key)) << "component " << key;
-    EXPECT_NEAR(b.at(key), volume, 0.005 * std::abs(volume)) << "component " << key;
-  }
+  expect_the_components_of(dir, cube + "'" + bytes + " --nan fill", raw + "' --nan fill");
 }
 
 // A shuffled file (issue 54): `info` says it is read through a trace index and where the fields
@@ -211,24 +221,7 @@ TEST(SegyCli, AnUnsortedFileIsExtractedThroughItsIndex) {
   const std::string raw = dir.file("oracle.raw");
   ASSERT_EQ(opened->read(opened->geometry().bounds()), samples) << "read in this process through the index";
   volume::write_volume(volume::MemoryVolume(opened->geometry(), samples), raw);
-  // One worker process: it takes the manager's index as two would, and with one worker the merge
-  // order is fixed, so the two runs compare to rounding. With two, the merge order varies from run
-  // to run and so do the simplified surfaces within E0: on this noisy int16 field (a tangle of
-  // thin pockets) the volumes of one key were seen to differ by up to 16 % between two runs of the
-  // same raw cube.
-  const std::string iso = " --iso 900.5 --block-size 8 --workers 1 --out '";
-  auto extracted = run_geotandem("-q extract '" + cube + "'" + bytes + iso + dir.file("segy") + "'");
-  ASSERT_EQ(extracted.exit_code, 0) << extracted.err;
-  auto oracle = run_geotandem("-q extract '" + raw + "'" + iso + dir.file("raw") + "'");
-  ASSERT_EQ(oracle.exit_code, 0) << oracle.err;
-  const auto a = volumes_in(dir.file("raw"));
-  const auto b = volumes_in(dir.file("segy"));
-  ASSERT_GT(a.size(), 0u);
-  ASSERT_EQ(a.size(), b.size());
-  for (const auto& [key, volume] : a) {
-    ASSERT_TRUE(b.count(key)) << "component " << key;
-    EXPECT_NEAR(b.at(key), volume, 0.005 * std::abs(volume)) << "component " << key;
-  }
+  expect_the_components_of(dir, cube + "'" + bytes, raw + "'");
 
   // A duplicated trace: the shuffled file with trace 7's header copied onto trace 30's.
   {

@@ -249,7 +249,9 @@ Probe scan(const HeaderFile& headers, const Layout& layout, const SegyOptions& b
   const std::int64_t ni = (il_last - il_first) / il_step + 1;
   const std::int64_t nj = (xl_last - xl_first) / xl_step + 1;
   // Within int range: every line number of the rectangle lies between two numbers of the file.
-  if (ni * nj > 10 * static_cast<std::int64_t>(layout.traces) || ni * nj > std::numeric_limits<std::int32_t>::max())
+  // Each count is tested before their product, which overflows for spans near 2^32 (fuzz_segy_header).
+  const std::int64_t most = std::numeric_limits<std::int32_t>::max();
+  if (ni > most || nj > most || ni * nj > 10 * static_cast<std::int64_t>(layout.traces) || ni * nj > most)
     return {std::nullopt,
             {"reading every trace header: the line numbers at bytes " + pair_text(bytes) + " span " +
                  std::to_string(ni) + " inlines x " + std::to_string(nj) + " crosslines for " +

@@ -5,6 +5,7 @@
 #include <iomanip>
 #include <iostream>
 #include <iterator>
+#include <map>
 
 #include "command.hpp"
 #include "geotandem/builtin/register.hpp"
@@ -17,24 +18,29 @@
 namespace geotandem::app {
 namespace {
 
-void print_params(const std::vector<workflow::ParamSpec>& specs) {
+// `absent`: what a key without a default means when it is left out (a recipe section's optional
+// keys); any other key without a default is required.
+void print_params(const std::vector<workflow::ParamSpec>& specs,
+                  const std::map<std::string, std::string>& absent = {}) {
   for (const auto& p : specs) {
-    std::cout << "    " << std::left << std::setw(24) << p.name << std::setw(9) << workflow::to_string(p.type);
-    std::cout << (p.default_value ? "default " + *p.default_value : std::string("required"));
-    if (p.min_value && p.max_value)
-      std::cout << ", " << (p.min_open ? "above " : "") << *p.min_value << " to " << (p.max_open ? "below " : "")
-                << *p.max_value;
-    else if (p.min_value)
-      std::cout << ", " << (p.min_open ? "above " : "at least ") << *p.min_value;
-    else if (p.max_value)
-      std::cout << ", " << (p.max_open ? "below " : "at most ") << *p.max_value;
-    if (p.odd) std::cout << ", odd";
-    if (!p.choices.empty()) {
-      std::cout << ", one of";
-      for (const auto& c : p.choices)
-        std::cout << ' ' << c;
-    }
-    std::cout << "\n      " << p.help << (p.unit.empty() ? "" : " (" + p.unit + ")") << "\n";
+    const auto left_out = absent.find(p.name);
+    std::cout << "    " << std::left << std::setw(24) << p.name << std::setw(9) << workflow::to_string(p.type)
+              << (p.default_value            ? "default " + *p.default_value
+                  : left_out != absent.end() ? "without it: " + left_out->second
+                                             : std::string("required"))
+              << "; " << p.valid_values() << "\n      " << p.help << (p.unit.empty() ? "" : " (" + p.unit + ")")
+              << "\n";
+  }
+}
+
+// The recipe's sections (input, input.segy, ..., execution.resources): their keys by name.
+void list_sections() {
+  std::cout << "recipe sections:\n";
+  for (const auto& section : workflow::recipe_sections()) {
+    std::cout << "  " << std::left << std::setw(22) << section.path << "keys:";
+    for (const auto& key : section.keys)
+      std::cout << ' ' << key.name;
+    std::cout << "\n";
   }
 }
 
@@ -44,8 +50,11 @@ void add_plugins_command(CLI::App& app, Context& context, Runner& run) {
   auto name = std::make_shared<std::string>();
   auto* cmd = app.add_subcommand("plugins", "List every step a recipe can use (attributes, the extraction, component "
                                             "steps, exports, the report; built-in or loaded) with its kind and "
-                                            "parameters, or describe one.");
-  cmd->add_option("name", *name, "a step to describe");
+                                            "parameters, and the recipe's sections with their keys; or describe "
+                                            "one.");
+  cmd->add_option("name", *name,
+                  "a step, or a recipe section (input, input.segy, execution.resources, ...), to "
+                  "describe");
   auto schema_doc = std::make_shared<std::string>();
   cmd->add_option("--schema-doc", *schema_doc,
                   "print FILE (docs/recipe-schema.md) with its generated tables made anew from the declarations of "
@@ -66,6 +75,12 @@ void add_plugins_command(CLI::App& app, Context& context, Runner& run) {
       }
       auto registry = make_plugin_registry(context.log);
       if (!name->empty()) {
+        for (const auto& section : workflow::recipe_sections())
+          if (section.path == *name) {
+            std::cout << "recipe section " << section.path << "\n  keys:\n";
+            print_params(section.keys, section.absent);
+            return 0;
+          }
         const auto& p = registry.get(*name);
         std::cout << p.name() << " (" << workflow::to_string(p.kind()) << ", " << p.origin() << ", version "
                   << p.version() << ")\n  " << p.summary() << "\n  parameters:\n";
@@ -88,7 +103,8 @@ void add_plugins_command(CLI::App& app, Context& context, Runner& run) {
           std::cout << (p->params().empty() ? " none\n" : "\n");
         }
       }
-      std::cout << "'geotandem plugins NAME' describes one step's parameters\n";
+      list_sections();
+      std::cout << "'geotandem plugins NAME' describes one step's parameters or one recipe section's keys\n";
       std::cout << "plugin search path: " << workflow::PluginRegistry::default_search_path() << "\n";
       return 0;
     };

@@ -20,6 +20,7 @@
 #include "geotandem/tandem/extraction_options.hpp"
 #include "geotandem/workflow/builtin_steps.hpp"
 #include "geotandem/workflow/recipe.hpp"
+#include "geotandem/workflow/recipe_schema.hpp"
 #include "scratch.hpp"
 #include "store_volumes.hpp"
 #include "test_paths.hpp"
@@ -187,6 +188,38 @@ TEST(ExtractionOptionsEverywhere, BlockSizeZeroIsOneBlockWithAndWithoutWorkers) 
     ASSERT_TRUE(b.count(key)) << "component " << key << " missing from the workers' run";
     EXPECT_NEAR(b.at(key), volume, 1e-9 + 1e-6 * std::abs(volume)) << "component " << key;
   }
+}
+
+// `geotandem plugins` lists the recipe's sections beside the steps, each with every declared key,
+// and `geotandem plugins SECTION` describes one section's keys from the same declaration.
+TEST(RecipeSectionsListed, EverySectionAndKeyIsListedAndDescribed) {
+  auto all = run_geotandem("plugins");
+  ASSERT_EQ(all.exit_code, 0) << all.err;
+  const auto heading = all.out.find("recipe sections:");
+  ASSERT_NE(heading, std::string::npos) << all.out;
+  for (const auto& section : workflow::recipe_sections()) {
+    const auto line_at = all.out.find("\n  " + section.path + " ", heading);
+    ASSERT_NE(line_at, std::string::npos) << section.path << " in\n" << all.out;
+    const std::string line = all.out.substr(line_at + 1, all.out.find('\n', line_at + 1) - line_at - 1);
+    for (const auto& key : section.keys)
+      EXPECT_NE(line.find(" " + key.name), std::string::npos) << key.name << " in " << line;
+
+    auto one = run_geotandem("plugins " + section.path);
+    ASSERT_EQ(one.exit_code, 0) << one.err;
+    for (const auto& key : section.keys) {
+      EXPECT_NE(one.out.find("    " + key.name + " "), std::string::npos) << key.name << " in\n" << one.out;
+      EXPECT_NE(one.out.find(key.help.substr(0, 40)), std::string::npos) << key.help << " in\n" << one.out;
+    }
+  }
+  // The forms and lists say what they take.
+  auto resources = run_geotandem("plugins execution.resources");
+  EXPECT_NE(resources.out.find("a duration hh:mm:ss, hh:mm or minutes"), std::string::npos) << resources.out;
+  EXPECT_NE(resources.out.find("a size such as 2048M or 4G"), std::string::npos) << resources.out;
+  auto synthetic = run_geotandem("plugins input.synthetic");
+  EXPECT_NE(synthetic.out.find("a list of 3 entries, each an integer in [40, 100000]"), std::string::npos)
+      << synthetic.out;
+  auto unknown = run_geotandem("plugins execution.resource");
+  EXPECT_EQ(unknown.exit_code, 2) << unknown.out;
 }
 
 } // namespace

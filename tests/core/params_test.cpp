@@ -109,5 +109,47 @@ TEST(Params, RangesAndValidValuesRead) {
   EXPECT_EQ(number_text(-std::numeric_limits<double>::infinity()), "-inf");
 }
 
+TEST(Params, SizesAndDurationsAreReadIntoTheirUnits) {
+  ParamSpec memory{.name = "memory", .type = ParamType::text, .min_value = 1};
+  memory.form = ParamSpec::Form::size_mib;
+  EXPECT_EQ(parse_param(memory, "2048M").integer, 2048);
+  EXPECT_EQ(parse_param(memory, "4G").integer, 4096);
+  EXPECT_EQ(parse_param(memory, "1.5G").integer, 1536);
+  EXPECT_EQ(parse_param(memory, "512").integer, 512);
+  EXPECT_EQ(parse_param(memory, "2T").integer, 2 * 1024 * 1024);
+  EXPECT_EQ(check_param(memory, ParamValue("3G")).integer, 3072); // a typed caller's text, the same way
+  for (const char* bad : {"lots", "G", "4Q", "-5M", "", "nanG", "1e300G"})
+    EXPECT_NE(message_of([&] { parse_param(memory, bad); }).find("not a size such as 2048M or 4G"), std::string::npos)
+        << bad;
+  EXPECT_NE(message_of([&] { parse_param(memory, "0"); }).find("is 0, out of range"), std::string::npos);
+
+  ParamSpec walltime{.name = "walltime", .type = ParamType::text, .min_value = 1};
+  walltime.form = ParamSpec::Form::duration_s;
+  EXPECT_EQ(parse_param(walltime, "01:30:00").integer, 5400);
+  EXPECT_EQ(parse_param(walltime, "1:30").integer, 5400); // hh:mm
+  EXPECT_EQ(parse_param(walltime, "90").integer, 5400);   // minutes
+  EXPECT_EQ(parse_param(walltime, "0:00:07").integer, 7);
+  for (const char* bad : {"1:75", "1:30:60", "1:2:3:4", "1h", "", ":30", "-5", "1.5"})
+    EXPECT_NE(message_of([&] { parse_param(walltime, bad); }).find("not a duration"), std::string::npos) << bad;
+  EXPECT_NE(message_of([&] { parse_param(walltime, "0"); }).find("out of range"), std::string::npos);
+}
+
+TEST(Params, AListsEntriesAreDeclaredLikeAParameter) {
+  ParamSpec shape{.name = "shape", .type = ParamType::text, .min_value = 40, .max_value = 100000};
+  shape.list = true;
+  shape.item_type = ParamType::integer;
+  shape.list_length = 3;
+  const ParamSpec entry = shape.entry();
+  EXPECT_EQ(entry.type, ParamType::integer);
+  EXPECT_FALSE(entry.list);
+  EXPECT_EQ(parse_param(entry, "64").integer, 64);
+  EXPECT_NE(message_of([&] { parse_param(entry, "8"); }).find("out of range: it must be an integer in [40, 100000]"),
+            std::string::npos);
+  EXPECT_EQ(shape.valid_values(), "a list of 3 entries, each an integer in [40, 100000]");
+  ParamSpec words{.name = "extra_args", .type = ParamType::text};
+  words.list = true;
+  EXPECT_EQ(words.valid_values(), "a list of words");
+}
+
 } // namespace
 } // namespace geotandem

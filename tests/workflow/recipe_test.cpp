@@ -150,9 +150,16 @@ TEST_F(Recipes, WrongTypesAndRanges) {
   std::string l = error_of(replaced("shape: [64, 48, 80]", "shape: [64, 48]"));
   EXPECT_NE(l.find("recipe.yaml:3:"), std::string::npos) << l;
   std::string m = error_of(replaced("memory: 4G", "memory: lots"));
-  EXPECT_NE(m.find("memory 'lots'"), std::string::npos) << m;
+  EXPECT_NE(m.find("execution.resources: parameter 'memory' is 'lots', not a size such as 2048M or 4G"),
+            std::string::npos)
+      << m;
   std::string z = error_of(replaced("memory: 4G", "memory: 0"));
-  EXPECT_NE(z.find("memory '0' is not a size like 2048M or 4G"), std::string::npos) << z;
+  EXPECT_NE(z.find("parameter 'memory' is 0, out of range: it must be a size"), std::string::npos) << z;
+  std::string t = error_of(replaced("\"01:30:00\"", "\"1:75\""));
+  EXPECT_NE(t.find("parameter 'walltime' is '1:75', not a duration hh:mm:ss, hh:mm or minutes"), std::string::npos)
+      << t;
+  std::string a = error_of(replaced("queue: normal", "queue: normal, extra_args: [--exclusive, [x]]"));
+  EXPECT_NE(a.find("entry 1 of 'extra_args'"), std::string::npos) << a;
 }
 
 TEST_F(Recipes, RelayMemoryIsASizeAndMayBeZero) {
@@ -162,9 +169,14 @@ TEST_F(Recipes, RelayMemoryIsASizeAndMayBeZero) {
             2048);
   EXPECT_EQ(parse_recipe(good, "dir/recipe.yaml", registry, {"execution.relay_memory=0"}).execution.relay_memory_mb, 0);
   std::string e = error_of(replaced("  workers: 4", "  workers: 4\n  relay_memory: -5M"));
-  EXPECT_NE(e.find("recipe.yaml:22:17: memory '-5M' is not a size like 2048M or 4G (or 0)"), std::string::npos) << e;
+  EXPECT_NE(e.find("recipe.yaml:22:17: execution: parameter 'relay_memory' is '-5M', not a size such as 2048M"),
+            std::string::npos)
+      << e;
   std::string g = error_of(replaced("  workers: 4", "  workers: 4\n  relay_memory: G"));
-  EXPECT_NE(g.find("memory 'G'"), std::string::npos) << g;
+  EXPECT_NE(g.find("parameter 'relay_memory' is 'G'"), std::string::npos) << g;
+  EXPECT_EQ(parse_recipe(replaced("  workers: 4", "  workers: 4\n  relay_memory: 1.5G"), "dir/recipe.yaml", registry)
+                .execution.relay_memory_mb,
+            1536);
 }
 
 TEST_F(Recipes, MissingParameterNamesItsHelp) {
@@ -226,7 +238,11 @@ TEST_F(Recipes, AnErrorInAnOverriddenValueNamesTheSetNotALineOfTheFile) {
   // The value of a --set is parsed on its own: its positions are within the value. They used to be
   // reported as lines and columns of the recipe ("dir/recipe.yaml:1:5").
   std::string shape = error_of(good, {"execution.workers=3", "input.synthetic.shape=[64, 2, 80]"});
-  EXPECT_EQ(shape.rfind("--set input.synthetic.shape=[64, 2, 80]: shape entry '2'", 0), 0u) << shape;
+  EXPECT_EQ(shape.rfind("--set input.synthetic.shape=[64, 2, 80]: input.synthetic: parameter 'shape[1]' is 2, out of "
+                        "range: it must be an integer in [40, 100000]",
+                        0),
+            0u)
+      << shape;
   std::string range = error_of(good, {"steps.extract.isotropy=7"});
   EXPECT_EQ(range.rfind("--set steps.extract.isotropy=7: ", 0), 0u) << range;
   std::string key = error_of(good, {"execution={workers: 2, wokers: 3}"});

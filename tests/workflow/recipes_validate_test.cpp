@@ -81,7 +81,7 @@ TEST(WorkflowRecipes, SlurmRecipeKeepsItsExecutionSection) {
   auto bad =
       run_geotandem("validate '" + test_paths::workflows() + "/slurm.yaml' --set execution.resources.memory=lots");
   EXPECT_NE(bad.exit_code, 0);
-  EXPECT_NE(bad.err.find("memory 'lots'"), std::string::npos) << bad.err;
+  EXPECT_NE(bad.err.find("parameter 'memory' is 'lots', not a size"), std::string::npos) << bad.err;
 }
 
 TEST(WorkflowRecipes, CustomAttributeRecipeNeedsItsPlugin) {

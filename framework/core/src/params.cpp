@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstdlib>
 #include <limits>
+#include <optional>
 
 #include "geotandem/core/error.hpp"
 #include "geotandem/core/suggest.hpp"
@@ -88,7 +89,65 @@ void check_choice(const ParamSpec& spec, const std::string& word, std::string_vi
                         {}, suggestion_hint(word, spec.choices));
 }
 
+// A size in MiB ("2048M", "4G", "512", "1.5G") or a duration in seconds ("1:30:00", "90:00" as
+// hh:mm, "90" minutes); nullopt when `text` is neither.
+std::optional<std::int64_t> read_form(ParamSpec::Form form, const std::string& text) {
+  if (form == ParamSpec::Form::size_mib) {
+    char* end = nullptr;
+    errno = 0;
+    const double v = std::strtod(text.c_str(), &end);
+    if (end == text.c_str() || errno || !std::isfinite(v) || v < 0) return std::nullopt;
+    const std::string unit = end;
+    const double scale = unit.empty() || unit == "M" || unit == "MB" || unit == "MiB" ? 1.0
+                         : unit == "G" || unit == "GB" || unit == "GiB"               ? 1024.0
+                         : unit == "T" || unit == "TB" || unit == "TiB"               ? 1024.0 * 1024.0
+                                                                                      : -1.0;
+    if (scale < 0 || v * scale > 1e15) return std::nullopt;
+    return static_cast<std::int64_t>(v * scale);
+  }
+  // [[hh:]mm:]ss: every part digits, minutes and seconds below 60 after the first part
+  std::vector<std::int64_t> parts;
+  std::size_t at = 0;
+  while (true) {
+    std::size_t end = text.find(':', at);
+    const std::string part = text.substr(at, end == std::string::npos ? std::string::npos : end - at);
+    if (part.empty() || part.size() > 9 || part.find_first_not_of("0123456789") != std::string::npos)
+      return std::nullopt;
+    parts.push_back(std::stoll(part));
+    if (end == std::string::npos) break;
+    at = end + 1;
+  }
+  if (parts.size() > 3) return std::nullopt;
+  for (std::size_t i = 1; i < parts.size(); ++i)
+    if (parts[i] >= 60) return std::nullopt;
+  if (parts.size() == 1) return parts[0] * 60;                   // minutes
+  if (parts.size() == 2) return parts[0] * 3600 + parts[1] * 60; // hh:mm
+  return parts[0] * 3600 + parts[1] * 60 + parts[2];             // hh:mm:ss
+}
+
+// A text value in a form: its integer set, or the error.
+void check_form(const ParamSpec& spec, ParamValue& v, std::string_view owner) {
+  if (spec.form == ParamSpec::Form::plain) return;
+  const std::optional<std::int64_t> n = read_form(spec.form, v.text);
+  if (!n) wrong_type(spec, v.text, owner);
+  v.integer = *n;
+  v.real = static_cast<double>(*n);
+  if (!spec.in_range(v.real))
+    throw InvalidArgument(
+        named(spec, owner) + " is " + v.text + ", out of range: it must be " + spec.valid_values(), {},
+        "use a value " + range_words(spec) + (spec.form == ParamSpec::Form::size_mib ? " MiB" : " s"));
+}
+
 } // namespace
+
+ParamSpec ParamSpec::entry() const {
+  ParamSpec e = *this;
+  e.type = item_type;
+  e.list = false;
+  e.list_length = 0;
+  e.name = name; // messages name the list; the caller adds the position
+  return e;
+}
 
 const char* to_string(ParamType type) {
   switch (type) {
@@ -125,8 +184,14 @@ bool ParamSpec::in_range(double value) const {
 std::string ParamSpec::range_text() const {
   const bool closed_lo = min_value && !min_open && std::isfinite(*min_value);
   const bool closed_hi = max_value && !max_open && std::isfinite(*max_value);
-  return std::string(closed_lo ? "[" : "(") + (min_value ? number_text(*min_value) : "-inf") + ", " +
-         (max_value ? number_text(*max_value) : "inf") + (closed_hi ? "]" : ")");
+  // An integer's bounds in digits ("100000", not "1e+05").
+  const auto bound = [&](double v) {
+    const bool whole = (type == ParamType::integer || form != Form::plain || item_type == ParamType::integer) &&
+                       std::abs(v) < 9e15 && std::floor(v) == v;
+    return whole ? std::to_string(static_cast<std::int64_t>(v)) : number_text(v);
+  };
+  return std::string(closed_lo ? "[" : "(") + (min_value ? bound(*min_value) : "-inf") + ", " +
+         (max_value ? bound(*max_value) : "inf") + (closed_hi ? "]" : ")");
 }
 
 std::string ParamSpec::valid_values() const {
@@ -136,10 +201,23 @@ std::string ParamSpec::valid_values() const {
     return std::string(odd ? "an odd integer" : "an integer") + (bounded ? " in " + range_text() : "");
   case ParamType::real: return bounded ? "a real in " + range_text() : "a real";
   case ParamType::boolean: return "true or false";
-  case ParamType::text: return "text";
+  case ParamType::text: break;
   case ParamType::choice: return "one of " + list_of(choices);
   }
-  return "?";
+  if (list) {
+    ParamSpec e = entry();
+    const std::string count = list_length ? std::to_string(list_length) + " " : std::string();
+    if (table_items) return "a list of " + count + "tables";
+    if (e.type == ParamType::text && e.form == Form::plain) return "a list of " + count + "words";
+    return "a list of " + count + "entries, each " + e.valid_values();
+  }
+  switch (form) {
+  // The lower bound (1 MiB, 1 s) is the out-of-range message's hint ("use a value at least 1").
+  case Form::size_mib: return "a size such as 2048M or 4G (MiB unless G or T follows)";
+  case Form::duration_s: return "a duration hh:mm:ss, hh:mm or minutes";
+  case Form::plain: break;
+  }
+  return "text";
 }
 
 ParamValue ParamValue::integer_value(std::int64_t value) {
@@ -210,7 +288,7 @@ ParamValue parse_param(const ParamSpec& spec, const std::string& text, std::stri
     else
       wrong_type(spec, text, owner);
     break;
-  case ParamType::text: break;
+  case ParamType::text: check_form(spec, v, owner); break;
   case ParamType::choice: check_choice(spec, text, owner); break;
   }
   return v;
@@ -237,6 +315,7 @@ ParamValue check_param(const ParamSpec& spec, const ParamValue& value, std::stri
     if (value.type != ParamType::text && value.type != ParamType::choice) wrong_type(spec, value.text, owner);
     if (spec.type == ParamType::choice) check_choice(spec, v.text, owner);
     v.type = spec.type;
+    if (spec.type == ParamType::text) check_form(spec, v, owner);
     break;
   }
   return v;

@@ -72,25 +72,14 @@ void parse_input(MapReader& m, InputSpec& in) {
     const ParamValues p = detail::read_section(s, synthetic);
     in.synthetic_kind = p.at("kind").text;
     if (s.has("shape")) {
-      YAML::Node shape = s.node("shape");
-      if (!shape.IsSequence() || shape.size() != 3)
-        throw error_at(m.source(), shape, "shape must be a list of three sizes [inline, crossline, sample]");
-      for (int a = 0; a < 3; ++a) {
-        std::string t = detail::scalar_of(m.source(), shape[a], "a shape entry");
-        char* end = nullptr;
-        long long v = std::strtoll(t.c_str(), &end, 10);
-        if (t.empty() || *end != '\0' || v < synth::min_edge || v > 100000)
-          throw error_at(m.source(), shape[a],
-                         "shape entry '" + t + "' must be an integer from " + std::to_string(synth::min_edge) +
-                             " to 100000",
-                         "the planted bodies of a synthetic cube need room");
-        in.shape[a] = v;
-      }
+      const std::vector<ParamValue> shape = detail::read_list(s, find_param(synthetic.keys, "shape"), synthetic.path);
+      for (int a = 0; a < 3; ++a)
+        in.shape[a] = shape[static_cast<std::size_t>(a)].integer;
       // A shape this machine cannot hold is refused here, with the numbers, not at run time.
       try {
         volume::check_shape_fits({in.shape[0], in.shape[1], in.shape[2]}, "input.synthetic.shape");
       } catch (const InvalidArgument& e) {
-        throw error_at(m.source(), shape, e.message(), e.hint());
+        throw error_at(m.source(), s.node("shape"), e.message(), e.hint());
       }
     }
     in.seed = static_cast<std::uint64_t>(p.at("seed").integer);

@@ -1,40 +1,12 @@
 // The recipe's `execution` section (recipe_execution.hpp).
 #include "recipe_execution.hpp"
 
-#include <cstdio>
-#include <cstdlib>
 #include <string>
 
 #include "geotandem/core/error.hpp"
 #include "geotandem/runtime/bind_address.hpp"
 
 namespace geotandem::workflow::detail {
-namespace {
-
-std::int64_t parse_walltime(const RecipeSource& source, const YAML::Node& node, const std::string& text) {
-  // [[hh:]mm:]ss or a plain number of minutes
-  int h = 0, mi = 0, s = 0;
-  char extra = 0;
-  if (std::sscanf(text.c_str(), "%d:%d:%d%c", &h, &mi, &s, &extra) == 3) return h * 3600 + mi * 60 + s;
-  if (std::sscanf(text.c_str(), "%d:%d%c", &h, &mi, &extra) == 2) return h * 3600 + mi * 60;
-  if (std::sscanf(text.c_str(), "%d%c", &mi, &extra) == 1 && mi > 0) return mi * 60;
-  throw error_at(source, node, "walltime '" + text + "' is not hh:mm:ss, hh:mm or minutes");
-}
-
-// A size in MiB: "2048M", "4G", a plain number of MiB; 0 only when `zero_allowed`.
-std::int64_t parse_memory(const RecipeSource& source, const YAML::Node& node, const std::string& text,
-                          bool zero_allowed = false) {
-  char* end = nullptr;
-  double v = std::strtod(text.c_str(), &end);
-  std::string unit = end ? end : "";
-  double mb = unit == "" || unit == "M" || unit == "MB" ? v : unit == "G" || unit == "GB" ? v * 1024 : -1;
-  if (!(v > 0 || (zero_allowed && v == 0)) || mb < 0 || end == text.c_str())
-    throw error_at(source, node,
-                   "memory '" + text + "' is not a size like 2048M or 4G" + (zero_allowed ? " (or 0)" : ""));
-  return static_cast<std::int64_t>(mb);
-}
-
-} // namespace
 
 void parse_execution(MapReader& m, ExecutionSpec& ex) {
   const RecipeSection& section = recipe_section("execution");
@@ -47,16 +19,15 @@ void parse_execution(MapReader& m, ExecutionSpec& ex) {
     MapReader r(m.source(), m.node("resources"), declared.path);
     const ParamValues rv = read_section(r, declared);
     ex.resources.cpus_per_worker = static_cast<int>(rv.at("cpus_per_worker").integer);
-    if (rv.count("memory")) ex.resources.memory_mb = parse_memory(m.source(), r.node("memory"), rv.at("memory").text);
-    if (rv.count("walltime"))
-      ex.resources.walltime_s = parse_walltime(m.source(), r.node("walltime"), rv.at("walltime").text);
+    if (rv.count("memory")) ex.resources.memory_mb = rv.at("memory").integer;
+    if (rv.count("walltime")) ex.resources.walltime_s = rv.at("walltime").integer;
     if (rv.count("queue")) ex.resources.queue = rv.at("queue").text;
     if (rv.count("account")) ex.resources.account = rv.at("account").text;
-    ex.resources.extra_args = r.text_list("extra_args");
+    for (const ParamValue& word : read_list(r, find_param(declared.keys, "extra_args"), declared.path))
+      ex.resources.extra_args.push_back(word.text);
     r.finish(declared.key_names());
   }
-  if (v.count("relay_memory"))
-    ex.relay_memory_mb = parse_memory(m.source(), m.node("relay_memory"), v.at("relay_memory").text, true);
+  if (v.count("relay_memory")) ex.relay_memory_mb = v.at("relay_memory").integer;
   if (v.count("bind")) ex.bind = v.at("bind").text;
   try {
     (void)runtime::manager_bind_endpoint(ex.bind); // an unknown interface is an error at validation

@@ -16,9 +16,21 @@
 namespace geotandem::workflow {
 namespace {
 
-ParamSpec list_key(std::string name, std::optional<std::string> default_value, std::string help) {
-  ParamSpec s = param_spec(std::move(name), ParamType::text, std::move(default_value), std::move(help));
+// A list key of `length` entries (0: any number), each of type `item` within [lo, hi].
+ParamSpec list_key(std::string name, std::optional<std::string> default_value, std::string help,
+                   ParamType item = ParamType::text, std::size_t length = 0, std::optional<double> lo = {},
+                   std::optional<double> hi = {}) {
+  ParamSpec s = param_spec(std::move(name), ParamType::text, std::move(default_value), std::move(help), lo, hi);
   s.list = true;
+  s.item_type = item;
+  s.list_length = length;
+  return s;
+}
+
+// A text key in a form of its own (a size in MiB, a duration in seconds) of at least `lo`.
+ParamSpec form_key(std::string name, ParamSpec::Form form, double lo, std::string help) {
+  ParamSpec s = param_spec(std::move(name), ParamType::text, std::nullopt, std::move(help), lo);
+  s.form = form;
   return s;
 }
 
@@ -103,8 +115,8 @@ std::vector<RecipeSection> make_sections() {
       list_key("shape",
                "[" + std::to_string(in.shape[0]) + ", " + std::to_string(in.shape[1]) + ", " +
                    std::to_string(in.shape[2]) + "]",
-               "[NI, NJ, NK]: inline, crossline, sample counts; each " + std::to_string(synth::min_edge) +
-                   " to 100000 (the planted bodies need room)"),
+               "[NI, NJ, NK]: inline, crossline, sample counts (the planted bodies need room)", ParamType::integer, 3,
+               synth::min_edge, 100000),
       param_spec("seed", ParamType::integer, std::to_string(in.seed), "same seed, same cube, bit for bit", 0,
                  static_cast<double>(std::int64_t{1} << 40)),
       param_spec("snr", ParamType::real, number_text(in.snr), "signal-to-noise ratio of the seismic kind", 1e-3, 1e6),
@@ -135,6 +147,7 @@ std::vector<RecipeSection> make_sections() {
                "store: `validate` refuses it at its line). An export whose selection holds no component writes no "
                "file, removes the one an earlier run wrote in the output directory, and warns"),
   };
+  output.keys.back().table_items = true;
   output.absent = {{"directory", "`<recipe name>-out`"}, {"attribute", "none"}, {"exports", "none"}};
   s.push_back(output);
 
@@ -146,11 +159,10 @@ std::vector<RecipeSection> make_sections() {
       param_spec("scheduler", ParamType::choice, ex.scheduler, "where workers run (`--scheduler`): " + backends, {}, {},
                  schedulers::scheduler_names()),
       param_spec("workers", ParamType::integer, std::nullopt, "worker count", 1, 4096),
-      param_spec(
-          "relay_memory", ParamType::text, std::nullopt,
-          "a size (`256M`, `1G`, `0`): partial surfaces the manager holds in memory while they wait for their merge; "
-          "past it they wait on disk beside the store (docs/runtime.md). Only with workers: an extraction in one "
-          "process warns that it ignores it"),
+      form_key("relay_memory", ParamSpec::Form::size_mib, 0,
+               "partial surfaces the manager holds in memory while they wait for their merge; "
+               "past it they wait on disk beside the store (docs/runtime.md). Only with workers: an extraction in one "
+               "process warns that it ignores it"),
       param_spec("bind", ParamType::text, std::nullopt,
                  "an interface, IPv4 address[:port] or `loopback`: where the manager listens (`--bind`); anything but "
                  "loopback turns CurveZMQ on; a wildcard (0.0.0.0) or an unknown interface is refused at validation"),
@@ -165,8 +177,8 @@ std::vector<RecipeSection> make_sections() {
   resources.keys = {
       param_spec("cpus_per_worker", ParamType::integer, std::to_string(res.cpus_per_worker),
                  "cores asked for each worker", 1, 1024),
-      param_spec("memory", ParamType::text, std::nullopt, "a size (`2048M`, `4G`): memory asked for each worker"),
-      param_spec("walltime", ParamType::text, std::nullopt, "`hh:mm:ss`, `hh:mm` or minutes: each worker's time limit"),
+      form_key("memory", ParamSpec::Form::size_mib, 1, "memory asked for each worker"),
+      form_key("walltime", ParamSpec::Form::duration_s, 1, "each worker's time limit"),
       param_spec("queue", ParamType::text, std::nullopt, "Slurm partition or LSF queue"),
       param_spec("account", ParamType::text, std::nullopt, "the account jobs are charged to"),
       list_key("extra_args", std::nullopt, "a list of words passed to sbatch / bsub verbatim"),
@@ -191,7 +203,20 @@ std::string type_text(const ParamSpec& p) {
     for (const auto& c : p.choices)
       t += (t.empty() ? "" : " \\| ") + code(c);
     return t;
-  case ParamType::text: return p.list ? "list" : "text";
+  case ParamType::text:
+    if (p.list) {
+      const ParamSpec e = p.entry();
+      const std::string count = p.list_length ? std::to_string(p.list_length) + " " : std::string();
+      if (p.table_items) return "list of " + count + "tables";
+      if (e.type == ParamType::text) return "list of " + count + "words";
+      return "list of " + (p.list_length ? std::to_string(p.list_length) + ", each " : std::string("")) + type_text(e);
+    }
+    switch (p.form) {
+    case ParamSpec::Form::size_mib: return "size (`2048M`, `4G`; MiB without a unit)";
+    case ParamSpec::Form::duration_s: return "duration (`hh:mm:ss`, `hh:mm`, minutes)";
+    case ParamSpec::Form::plain: break;
+    }
+    return "text";
   case ParamType::boolean: return "boolean";
   case ParamType::integer: t = p.odd ? "odd integer" : "integer"; break;
   case ParamType::real: t = "real"; break;

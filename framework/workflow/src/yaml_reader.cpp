@@ -339,4 +339,31 @@ ParamValues read_section(MapReader& m, const RecipeSection& section) {
   return values;
 }
 
+std::vector<ParamValue> read_list(MapReader& m, const ParamSpec& spec, const std::string& section) {
+  std::vector<ParamValue> values;
+  if (!m.has(spec.name)) return values;
+  const YAML::Node list = m.node(spec.name);
+  const std::string count = spec.list_length ? std::to_string(spec.list_length) + " " : std::string();
+  if (!(list.IsSequence() || (list.IsScalar() && spec.list_length <= 1)) ||
+      (spec.list_length && list.size() != spec.list_length))
+    throw error_at(m.source(), list, section + ": '" + spec.name + "' must be " + spec.valid_values(), spec.help);
+  const auto entry = [&](const YAML::Node& node, std::size_t i) {
+    ParamSpec e = spec.entry();
+    e.name = spec.name + "[" + std::to_string(i) + "]";
+    const std::string text = scalar_of(m.source(), node, "entry " + std::to_string(i) + " of '" + spec.name + "'");
+    try {
+      values.push_back(parse_param(e, text, section));
+    } catch (const Error& err) {
+      throw error_at(m.source(), node, err.message(), err.hint());
+    }
+  };
+  if (list.IsScalar()) {
+    entry(list, 0);
+    return values;
+  }
+  for (std::size_t i = 0; i < list.size(); ++i)
+    entry(list[i], i);
+  return values;
+}
+
 } // namespace geotandem::workflow::detail

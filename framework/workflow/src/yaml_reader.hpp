@@ -109,5 +109,10 @@ private:
 // Does not call finish(): the caller reads the nested sections first, then
 // m.finish(section.key_names()).
 ParamValues read_section(MapReader& m, const RecipeSection& section);
+// The entries of the list key `spec` (declared with `list`), each checked against spec.entry() and
+// their count against spec.list_length; an error at the entry's line and column ("parameter
+// 'shape[1]' is 8, out of range"). Empty when the key is absent; a scalar is a one-entry list when
+// the length is free.
+std::vector<ParamValue> read_list(MapReader& m, const ParamSpec& spec, const std::string& section);
 
 } // namespace geotandem::workflow::detail

@@ -38,6 +38,16 @@ struct ParamSpec {
   // chain description carries it to workers that run elsewhere.
   bool list = false;
   bool recipe_path = false;
+  // A list's entries: their type (the spec's range, odd and choices apply to each entry) and, when
+  // not 0, how many there must be. A list of 3 integers in [16, 100000]: a cube's shape.
+  ParamType item_type = ParamType::text;
+  std::size_t list_length = 0;
+  bool table_items = false; // entries are tables the caller reads (each export's parameters)
+  // A text parameter written in a unit of its own, read into ParamValue::integer: a size in MiB
+  // ("2048M", "4G", a plain number of MiB) or a duration in seconds ("hh:mm:ss", "hh:mm", minutes).
+  // The spec's range applies to that integer.
+  enum class Form { plain, size_mib, duration_s };
+  Form form = Form::plain;
   // A real used as a 32-bit float (an isovalue compared with float samples, a divisor of them): a
   // value beyond the float range (|value| > 3.4028235e38) is refused by name instead of becoming
   // infinity, and one that is not 0 but would round to 0 (|value| < 1.4e-45) instead of becoming 0.
@@ -45,6 +55,8 @@ struct ParamSpec {
 
   // Whether `value` lies in the declared interval (NaN never does).
   bool in_range(double value) const;
+  // The declaration of one entry of this list: the same name, range and choices, of type item_type.
+  ParamSpec entry() const;
   // The interval with its open and closed ends: "[1, 1001]", "(0, 20]", "(0, inf)".
   std::string range_text() const;
   // What the parameter accepts, for messages: "an odd integer in [1, 1001]", "a real in (0, 20]",

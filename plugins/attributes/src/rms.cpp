@@ -12,13 +12,7 @@ const OptionsTable<RmsOptions>& RmsOptions::table() {
       "rms",
       "root mean square amplitude in a sliding window along the trace",
       1,
-      {option(ParamSpec{.name = "window",
-                        .type = ParamType::integer,
-                        .help = "length of the centred window along the trace, about one dominant period",
-                        .min_value = 1,
-                        .max_value = 1001,
-                        .odd = true,
-                        .unit = "samples"},
+      {option(odd_window("window", "length of the centred window along the trace, about one dominant period", 1, 1001),
               &RmsOptions::window)}};
   return table;
 }

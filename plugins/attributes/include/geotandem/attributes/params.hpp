@@ -8,6 +8,7 @@
 
 #include <string>
 #include <string_view>
+#include <utility>
 #include <vector>
 
 #include "geotandem/core/param_fields.hpp"
@@ -59,6 +60,27 @@ template <class Options> struct OptionsTable {
   int inputs = 1;
   std::vector<OptionField<Options>> fields;
 };
+
+// The shapes of parameter most attributes share: a centred window of an odd number of samples or
+// traces in [lo, hi], and a Gaussian width in (0, 20] samples.
+inline ParamSpec odd_window(std::string name, std::string help, double lo, double hi, std::string unit = "samples") {
+  return ParamSpec{.name = std::move(name),
+                   .type = ParamType::integer,
+                   .help = std::move(help),
+                   .min_value = lo,
+                   .max_value = hi,
+                   .odd = true,
+                   .unit = std::move(unit)};
+}
+inline ParamSpec gaussian_width(std::string name, std::string help) {
+  return ParamSpec{.name = std::move(name),
+                   .type = ParamType::real,
+                   .help = std::move(help),
+                   .min_value = 0,
+                   .max_value = 20,
+                   .min_open = true,
+                   .unit = "samples"};
+}
 
 // An int, double or bool member; an enum member whose values 0, 1, ... are its words.
 template <class Options, class T> OptionField<Options> option(ParamSpec spec, T Options::*member) {

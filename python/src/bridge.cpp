@@ -170,7 +170,7 @@ void run_cancellable(const std::function<void()>& work, const CancelToken& cance
       } catch (py::error_already_set& e) {
         // The first exception (KeyboardInterrupt, from the signal handler or raised inside the
         // sink) is kept; later ones while the work winds down are dropped.
-        if (!interruption) interruption.emplace(std::move(e));
+        if (!interruption) interruption.emplace(e); // a copy: `e` is this catch's own
         cancel.cancel();
       }
     }

@@ -60,12 +60,9 @@ void Aggregate::add(const Aggregate& other) {
   for (const auto& [node, leaves] : other.maximal_) {
     if (covers(node)) continue;
     if (inside(node)) { // overlapping: leaf by leaf (the schedule never gets here)
-      const Aggregate part = [&] {
-        Aggregate a(*tree_);
-        a.add_node(node, leaves);
-        a.count_ = leaves;
-        return a;
-      }();
+      Aggregate part(*tree_);
+      part.add_node(node, leaves);
+      part.count_ = leaves;
       for (NodeId leaf : part.leaves())
         add(leaf);
       continue;

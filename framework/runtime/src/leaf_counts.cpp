@@ -20,8 +20,8 @@ void LeafCounts::count_every_leaf() {
     for (std::size_t k = 0; k < c.size(); ++k)
       c[k] = low[k] + high[k];
     // Across the cut's axis only one child touches each face.
-    c[static_cast<std::size_t>(2 * n.split_axis)] = low[static_cast<std::size_t>(2 * n.split_axis)];
-    c[static_cast<std::size_t>(2 * n.split_axis + 1)] = high[static_cast<std::size_t>(2 * n.split_axis + 1)];
+    c[2 * static_cast<std::size_t>(n.split_axis)] = low[2 * static_cast<std::size_t>(n.split_axis)];
+    c[2 * static_cast<std::size_t>(n.split_axis) + 1] = high[2 * static_cast<std::size_t>(n.split_axis) + 1];
   }
 }
 
@@ -32,8 +32,8 @@ void LeafCounts::change(NodeId leaf, int delta) {
     auto& c = counts_[index(x)];
     c[kTotal] = static_cast<std::uint32_t>(static_cast<std::int64_t>(c[kTotal]) + delta);
     for (int axis = 0; axis < 3; ++axis) {
-      auto& low = c[static_cast<std::size_t>(2 * axis)];
-      auto& high = c[static_cast<std::size_t>(2 * axis + 1)];
+      auto& low = c[2 * static_cast<std::size_t>(axis)];
+      auto& high = c[2 * static_cast<std::size_t>(axis) + 1];
       if (cells.lo[axis] == box.lo[axis]) low = static_cast<std::uint32_t>(static_cast<std::int64_t>(low) + delta);
       if (cells.hi[axis] == box.hi[axis]) high = static_cast<std::uint32_t>(static_cast<std::int64_t>(high) + delta);
     }

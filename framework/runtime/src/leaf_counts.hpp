@@ -24,7 +24,7 @@ public:
   // Leaves counted under `node` whose box touches its face on `axis` at the low (side 0) or high
   // (side 1) end.
   std::uint32_t on_face(tandem::NodeId node, int axis, int side) const {
-    return counts_[index(node)][static_cast<std::size_t>(2 * axis + side)];
+    return counts_[index(node)][2 * static_cast<std::size_t>(axis) + static_cast<std::size_t>(side)];
   }
   // The first counted leaf of `node`'s subtree in tree order (kNoNode when none); with axis >= 0,
   // the first one touching `node`'s face (axis, side).

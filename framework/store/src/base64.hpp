@@ -14,7 +14,7 @@ namespace geotandem::store::detail {
 class Base64Writer {
 public:
   // Bytes buffered before they are encoded and written: 48 KiB (64 KiB of text).
-  static constexpr std::size_t chunk_bytes = 48 * 1024;
+  static constexpr std::size_t chunk_bytes = std::size_t{48} * 1024;
   static_assert(chunk_bytes % 3 == 0, "a chunk must end on a 3-byte group, or padding would split the text");
 
   explicit Base64Writer(std::ostream& out);

@@ -124,7 +124,7 @@ void points_array(std::ostream& out, SurfaceSource& source, std::uint64_t points
 // Three indices per triangle, into the points of every component before it and its own.
 template <class Index> void connectivity_array(std::ostream& out, SurfaceSource& source, std::uint64_t polys) {
   BinaryArray<Index> array(out, "        ", "connectivity", 3 * polys);
-  std::array<Index, 3 * 1024> chunk;
+  std::array<Index, std::size_t{3} * 1024> chunk;
   std::uint64_t base = 0;
   for (std::size_t i = 0; i < source.size(); ++i) {
     const auto& surface = source.surface(i);

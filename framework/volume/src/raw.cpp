@@ -88,8 +88,8 @@ protected:
   }
 
 private:
-  static constexpr std::uint64_t kMaxGap = 64 * 1024;        // bytes skipped between two runs
-  static constexpr std::uint64_t kMaxSpan = 8 * 1024 * 1024; // bytes of one scratch read
+  static constexpr std::uint64_t kMaxGap = std::uint64_t{64} * 1024;        // bytes skipped between two runs
+  static constexpr std::uint64_t kMaxSpan = std::uint64_t{8} * 1024 * 1024; // bytes of one scratch read
 
   struct Run {
     std::uint64_t offset;

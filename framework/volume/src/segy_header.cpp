@@ -133,17 +133,19 @@ void HeaderFile::scan(const std::function<void(int, const TraceHeader&)>& visit,
   for (int first = 0; first < layout_.traces; first += per_chunk) {
     const int count = std::min(per_chunk, layout_.traces - first);
     // The last trace's samples are not needed: stop at its header's end.
-    const std::size_t size = static_cast<std::size_t>((count - 1) * stride + SEGY_TRACE_HEADER_SIZE);
+    const std::size_t size =
+        static_cast<std::size_t>(count - 1) * static_cast<std::size_t>(stride) + SEGY_TRACE_HEADER_SIZE;
     chunk.resize(size);
     if (!read_at(fd_->fd, chunk.data(), size, layout_.header_offset(first)))
       throw IoError("cannot read the headers of traces " + std::to_string(first) + " to " +
                         std::to_string(first + count - 1),
                     {path_});
     for (int n = 0; n < count; ++n) {
-      std::memcpy(h.bytes.data(), chunk.data() + n * stride, h.bytes.size());
+      std::memcpy(h.bytes.data(), chunk.data() + static_cast<std::size_t>(n) * static_cast<std::size_t>(stride),
+                  h.bytes.size());
       visit(first + n, h);
     }
-    progress.update(static_cast<std::uint64_t>(first + count));
+    progress.update(static_cast<std::uint64_t>(first) + static_cast<std::uint64_t>(count));
   }
   progress.end();
   guard.ended = true;

@@ -8,7 +8,6 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
-#include <cstring>
 #include <limits>
 #include <string>
 #include <vector>
@@ -116,7 +115,7 @@ void WorkingSurface::Engine::find_parked_faces() {
 void WorkingSurface::Engine::absorb_state(detail::SurfaceState&& t) {
   const Region region = merge_region_state(t);
   // Only for a message: a worker's region can hold thousands of blocks.
-  const auto where_ = [&] { return where(region_, t.region); };
+  const auto where_text = [&] { return where(region_, t.region); };
   const std::size_t nb = t.points.size(), nt = t.triangles.size();
 
   // Lattice id -> live original vertex of this surface. A lattice edge both sides share lies in
@@ -149,7 +148,7 @@ void WorkingSurface::Engine::absorb_state(detail::SurfaceState&& t) {
   for (std::size_t i = 0; i < nb; ++i) {
     const detail::StateVertex& r = t.vertices[i];
     if (r.component < 0 || static_cast<std::size_t>(r.component) >= t.component_keys.size())
-      throw DataError(where_() + ": vertex " + std::to_string(i) + " of the other side has no component");
+      throw DataError(where_text() + ": vertex " + std::to_string(i) + " of the other side has no component");
     const std::int32_t j = r.lattice_id == detail::kNoLatticeId ? -1 : ids.find(r.lattice_id);
     if (j < 0) {
       vertex[i] = VH(static_cast<int>(next++));
@@ -157,12 +156,12 @@ void WorkingSurface::Engine::absorb_state(detail::SurfaceState&& t) {
     }
     vertex[i] = VH(j);
     const detail::Vec3 p = position(vertex[i]);
-    if (std::memcmp(p.data(), t.points[i].data(), sizeof(detail::Vec3)) != 0)
+    if (p != t.points[i]) // computed the same way on both sides: equal to the last bit
       throw DataError(
-          where_() + ": lattice edge " + std::to_string(r.lattice_id) + " has different positions on the two sides",
+          where_text() + ": lattice edge " + std::to_string(r.lattice_id) + " has different positions on the two sides",
           {.block = detail::record_blocks(t.region)}, "both blocks must come from the same volume and isovalue");
     if (!mesh_->is_boundary(vertex[i]) || mesh_->is_isolated(vertex[i]))
-      throw DataError(where_() + ": lattice edge " + std::to_string(r.lattice_id) +
+      throw DataError(where_text() + ": lattice edge " + std::to_string(r.lattice_id) +
                           " is not on this side's boundary, where the other side would weld to it",
                       {.block = detail::record_blocks(t.region)},
                       "the two surfaces must be the partial surfaces of adjacent blocks of one extraction");
@@ -174,7 +173,7 @@ void WorkingSurface::Engine::absorb_state(detail::SurfaceState&& t) {
       if (static_cast<std::size_t>(a.idx()) >= first_new || static_cast<std::size_t>(b.idx()) >= first_new) continue;
       const HH h = detail::find_halfedge(*mesh_, a, b);
       if (h.is_valid() && !mesh_->is_boundary(h))
-        throw DataError(where_() + ": triangle " + std::to_string(k) +
+        throw DataError(where_text() + ": triangle " + std::to_string(k) +
                             " of the other side uses a seam edge in the direction of this side's triangle",
                         {.block = detail::record_blocks(t.region)},
                         "the two surfaces must be the partial surfaces of adjacent blocks of one extraction");
@@ -183,7 +182,7 @@ void WorkingSurface::Engine::absorb_state(detail::SurfaceState&& t) {
   // Handles are ints: the merged mesh must be numbered by them.
   constexpr std::size_t kMaxHandle = static_cast<std::size_t>(std::numeric_limits<int>::max()) / 2;
   if (next > kMaxHandle || edges_before + 3 * nt > kMaxHandle || faces_before + nt > kMaxHandle)
-    throw DataError(where_() + ": the merged surface would hold more elements than a working surface can number",
+    throw DataError(where_text() + ": the merged surface would hold more elements than a working surface can number",
                     {.block = detail::record_blocks(t.region)}, "use smaller blocks");
 
   // The other side's components join the table; those the seam touches are united below.
@@ -226,7 +225,7 @@ void WorkingSurface::Engine::absorb_state(detail::SurfaceState&& t) {
     const auto& tri = t.triangles[k];
     const FH f = detail::insert_triangle(*mesh_, vertex[tri[0]], vertex[tri[1]], vertex[tri[2]]);
     if (!f.is_valid())
-      throw DataError(where_() + ": triangle " + std::to_string(k) +
+      throw DataError(where_text() + ": triangle " + std::to_string(k) +
                           " of the other side would make the surface non-manifold",
                       {.block = detail::record_blocks(t.region)},
                       "the two surfaces must be the partial surfaces of adjacent blocks of one extraction");

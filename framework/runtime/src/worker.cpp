@@ -17,6 +17,7 @@
 #include "geotandem/runtime/manager.hpp"
 #include "geotandem/runtime/surface_chunks.hpp"
 #include "geotandem/store/shard.hpp"
+#include "geotandem/tandem/blocks.hpp"
 #include "geotandem/tandem/marching_cubes.hpp"
 #include "geotandem/tandem/serialize.hpp"
 #include "walltime.hpp"
@@ -205,13 +206,23 @@ private:
     getrusage(RUSAGE_SELF, &u);
     d.box[0] = u.ru_maxrss;
     // 1: this worker's surface holds nothing after the task; every component of its leaves is in
-    // the COMMIT above, so the manager may record the leaves as finished (resume).
-    d.box[1] = !surface_ || surface_->component_count() == 0 ? 1 : 0;
+    // the COMMIT above, so the manager records the leaves as finished (resume) and, after an
+    // EXTRACT or a MERGE, schedules nothing more for them (issue 55): the worker drops the empty
+    // surface and its region, and nothing is sent or merged for it. Its counters go with the DONE,
+    // so that the run's totals keep them.
+    const bool empty = !surface_ || surface_->component_count() == 0;
+    d.box[1] = empty ? 1 : 0;
     d.box[2] = static_cast<std::int64_t>(totals_.input_triangles);
     d.box[3] = static_cast<std::int64_t>(totals_.collapses);
     // 4: the triangles this worker's surface holds after the task (the run's triangles held).
     d.box[4] = surface_ ? static_cast<std::int64_t>(surface_->triangle_count()) : 0;
-    if (final) d.text = counters_to_json(totals_); // every counter of the whole surface
+    if (final) {
+      d.text = counters_to_json(totals_); // every counter of the whole surface
+    } else if (empty && surface_) {
+      const tandem::SimplifyCounters dropped = surface_->counters();
+      if (dropped.input_triangles > 0 || dropped.evaluations > 0) d.text = counters_to_json(dropped);
+      surface_.reset();
+    }
     link_.send(d);
   }
 
@@ -220,8 +231,12 @@ private:
     const auto start = Clock::now();
     const volume::Box cells{{m.box[0], m.box[1], m.box[2]}, {m.box[3], m.box[4], m.box[5]}};
     std::unique_ptr<tandem::WorkingSurface> piece;
-    tandem::extract_block(*volume_, cells, options_tandem_, &*sink_, &piece,
-                          settings_.extraction.mode == tandem::ExtractMode::brute);
+    const bool brute = settings_.extraction.mode == tandem::ExtractMode::brute;
+    const std::int64_t leaf = tandem::leaf_size(settings_.extraction, volume_->geometry().shape);
+    if (cells.size(0) > leaf || cells.size(1) > leaf || cells.size(2) > leaf) // a batch: a subtree's leaves
+      piece = tandem::extract_subtree(*volume_, cells, leaf, options_tandem_, &*sink_, brute);
+    else
+      tandem::extract_block(*volume_, cells, options_tandem_, &*sink_, &piece, brute);
     absorb(std::move(piece));
     report(m, start);
   }

@@ -87,14 +87,17 @@ void Manager::Impl::depart(const std::string& token) {
 }
 
 void Manager::Impl::task_done(Peer& p, const Message& m) {
-  const double s = static_cast<double>(m.number) / 1000.0;
+  // The task's wall time as the worker measured it (box[5], microseconds); number is its CPU time.
+  const double s = static_cast<double>(m.box[5]) / 1e6;
   {
     std::uint64_t leaves = 1;
     if (p.task->kind == TaskKind::extract) leaves = schedule.leaves_under(p.task->leaf);
     if (p.task->kind == TaskKind::merge) leaves = schedule.transfer_leaves(p.task->transfer);
     if (p.task->kind == TaskKind::finished) leaves = schedule.leaves_held(p.id);
     // box[5]: microseconds (0 from a worker that does not send them: the milliseconds then).
-    log_task(p, leaves, m.box[5] > 0 ? static_cast<double>(m.box[5]) / 1000.0 : static_cast<double>(m.number));
+    const bool piece_task = p.task->kind == TaskKind::extract || p.task->kind == TaskKind::merge;
+    log_task(p, leaves, static_cast<double>(m.box[5]) / 1000.0, piece_task ? static_cast<unsigned>(m.box[1] & 3) : 0u,
+             static_cast<double>(m.number) / 1000.0);
   }
   report.worker_peak_rss_kb = std::max(report.worker_peak_rss_kb, m.box[0]);
   switch (p.task->kind) {
@@ -102,7 +105,7 @@ void Manager::Impl::task_done(Peer& p, const Message& m) {
     const std::size_t n = schedule.leaves_under(p.task->leaf);
     report.extract += n, report.seconds_extract += s;
     extracted_leaves += n;
-    extracted_seconds += m.box[5] > 0 ? static_cast<double>(m.box[5]) / 1e6 : s;
+    extracted_seconds += s;
     for (std::size_t i = 0; i < n; ++i)
       advance();
     break;
@@ -127,7 +130,7 @@ void Manager::Impl::task_done(Peer& p, const Message& m) {
   }
   // An EXTRACT or a MERGE that left the worker's surface empty: it dropped it (worker.cpp), with
   // the counters of that surface in the text.
-  const bool emptied = m.box[1] == 1 && (p.task->kind == TaskKind::extract || p.task->kind == TaskKind::merge);
+  const bool emptied = (m.box[1] & 1) == 1 && (p.task->kind == TaskKind::extract || p.task->kind == TaskKind::merge);
   if (emptied && !m.text.empty()) {
     try {
       report.counters += counters_from_json(m.text);
@@ -144,7 +147,7 @@ void Manager::Impl::task_done(Peer& p, const Message& m) {
   if (log.enabled(LogLevel::debug)) log.debug("triangles held by the workers: " + std::to_string(held_triangles));
   // An empty surface: its leaves' components are all committed (the COMMIT came first). The leaves
   // recorded before are not looked at again: the cost stays with the leaves new to its surface.
-  if (m.box[1] == 1) {
+  if ((m.box[1] & 1) == 1) {
     std::vector<tandem::NodeId> leaves = schedule.take_unrecorded(p.id);
     if (log.enabled(LogLevel::debug))
       log.debug("worker " + p.token + ": surface empty after " + task_text(p) + "; " + std::to_string(leaves.size()) +

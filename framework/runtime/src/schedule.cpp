@@ -1,6 +1,7 @@
 // The manager's decisions, algorithm 6 of the seed (schedule.hpp).
 #include "geotandem/runtime/schedule.hpp"
 
+#include <algorithm>
 #include <stdexcept>
 #include <string>
 #include <utility>
@@ -22,6 +23,17 @@ const char* to_string(TaskKind kind) {
   case TaskKind::finished: return "FINISHED";
   }
   return "?";
+}
+
+std::size_t extract_batch(double leaf_seconds, std::size_t unprocessed, std::size_t workers, std::size_t cap) {
+  if (cap <= 1 || !(leaf_seconds > 0)) return 1;
+  const double by_time = kBatchSeconds / std::max(leaf_seconds, 1e-7);
+  const std::size_t by_balance = unprocessed / (4 * std::max<std::size_t>(workers, 1));
+  const double most = std::min({by_time, static_cast<double>(by_balance), static_cast<double>(cap)});
+  std::size_t n = 1;
+  while (static_cast<double>(2 * n) <= most)
+    n *= 2;
+  return n;
 }
 
 Schedule::Schedule(const tandem::BlockTree& tree)

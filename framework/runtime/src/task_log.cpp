@@ -10,16 +10,18 @@ namespace geotandem::runtime {
 
 namespace detail {
 
-TaskLogWriter::TaskLogWriter(const std::filesystem::path& path, const volume::Box& cube, std::int64_t leaf_size)
+TaskLogWriter::TaskLogWriter(const std::filesystem::path& path, const volume::Box& cube, std::int64_t leaf_size,
+                             std::size_t batch, std::size_t cores)
     : file_(std::fopen(path.c_str(), "ae")) {
   if (!file_) return;
   // A buffer of 1 MiB: a line costs the manager a formatted print, no system call.
   std::setvbuf(file_, nullptr, _IOFBF, std::size_t{1} << 20);
-  std::fprintf(file_, "# cube %lld %lld %lld %lld %lld %lld leaf_size %lld\n", static_cast<long long>(cube.lo[0]),
-               static_cast<long long>(cube.lo[1]), static_cast<long long>(cube.lo[2]),
-               static_cast<long long>(cube.hi[0]), static_cast<long long>(cube.hi[1]),
-               static_cast<long long>(cube.hi[2]), static_cast<long long>(leaf_size));
-  std::fprintf(file_, "worker\tkind\tleaf\tleaves\tstart\tend\tworker_ms\tbytes\trows\n");
+  std::fprintf(file_, "# cube %lld %lld %lld %lld %lld %lld leaf_size %lld batch %zu cores %zu\n",
+               static_cast<long long>(cube.lo[0]), static_cast<long long>(cube.lo[1]),
+               static_cast<long long>(cube.lo[2]), static_cast<long long>(cube.hi[0]),
+               static_cast<long long>(cube.hi[1]), static_cast<long long>(cube.hi[2]),
+               static_cast<long long>(leaf_size), batch, cores);
+  std::fprintf(file_, "worker\tkind\tleaf\tleaves\tstart\tend\tworker_ms\tbytes\trows\tempty\tcpu_ms\n");
 }
 
 TaskLogWriter::~TaskLogWriter() {
@@ -28,9 +30,9 @@ TaskLogWriter::~TaskLogWriter() {
 
 void TaskLogWriter::add(const TaskRecord& t) {
   if (!file_) return;
-  std::fprintf(file_, "%s\t%s\t%lld\t%llu\t%.6f\t%.6f\t%.3f\t%llu\t%llu\n", t.worker.c_str(), t.kind.c_str(),
+  std::fprintf(file_, "%s\t%s\t%lld\t%llu\t%.6f\t%.6f\t%.3f\t%llu\t%llu\t%u\t%.3f\n", t.worker.c_str(), t.kind.c_str(),
                static_cast<long long>(t.leaf), static_cast<unsigned long long>(t.leaves), t.start, t.end, t.worker_ms,
-               static_cast<unsigned long long>(t.bytes), static_cast<unsigned long long>(t.rows));
+               static_cast<unsigned long long>(t.bytes), static_cast<unsigned long long>(t.rows), t.empty, t.cpu_ms);
 }
 
 void TaskLogWriter::close(const TaskLogRun& r) {
@@ -66,6 +68,12 @@ std::vector<TaskLogRun> read_task_log(const std::filesystem::path& path) {
       f >> hash >> word >> run.cube.lo[0] >> run.cube.lo[1] >> run.cube.lo[2] >> run.cube.hi[0] >> run.cube.hi[1] >>
           run.cube.hi[2] >> leaf_word >> run.leaf_size;
       if (f.fail() || leaf_word != "leaf_size") throw bad("a cube line that does not read");
+      std::string key;
+      std::size_t value = 0;
+      while (f >> key >> value) {
+        if (key == "batch") run.batch = value;
+        if (key == "cores") run.cores = value;
+      }
       runs.push_back(std::move(run));
       continue;
     }
@@ -87,11 +95,17 @@ std::vector<TaskLogRun> read_task_log(const std::filesystem::path& path) {
       }
       continue;
     }
-    if (line[0] == '#' || line.rfind("worker\t", 0) == 0) continue;
+    if (line.rfind("worker\t", 0) == 0) {
+      if (!runs.empty()) runs.back().empties = line.find("\tempty") != std::string::npos;
+      continue;
+    }
+    if (line[0] == '#') continue;
     if (runs.empty()) throw bad("a task before a cube line");
     TaskRecord t;
     f >> t.worker >> t.kind >> t.leaf >> t.leaves >> t.start >> t.end >> t.worker_ms >> t.bytes >> t.rows;
     if (f.fail()) throw bad("a task line that does not read");
+    if (runs.back().empties && !(f >> t.empty >> t.cpu_ms))
+      throw bad("a task line without its empty and cpu_ms columns");
     runs.back().tasks.push_back(std::move(t));
   }
   return runs;

@@ -7,6 +7,7 @@
 
 #include <csignal>
 #include <cstdlib>
+#include <ctime>
 #include <functional>
 #include <optional>
 #include <thread>
@@ -29,6 +30,13 @@ namespace geotandem::runtime {
 namespace {
 
 using Clock = std::chrono::steady_clock;
+
+// This process's CPU time (user + system, every thread), in microseconds.
+std::uint64_t cpu_microseconds() {
+  timespec t{};
+  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);
+  return static_cast<std::uint64_t>(t.tv_sec) * 1000000u + static_cast<std::uint64_t>(t.tv_nsec) / 1000u;
+}
 
 // Finished components to the worker's shard; their index entries wait for the next COMMIT, which
 // goes at the end of the task or, during a long one, every 200 ms (or 256 components): a manager
@@ -112,6 +120,7 @@ private:
   bool handle(const Message& m) {
     {
       task_lease_ = m.lease;
+      task_cpu_start_ = cpu_microseconds();
       switch (m.kind) {
       case MessageKind::setup: setup(m); break;
       case MessageKind::extract: extract(m); break;
@@ -199,7 +208,7 @@ private:
     d.kind = MessageKind::done;
     d.lease = task.lease;
     const auto spent = Clock::now() - start;
-    d.number = static_cast<std::uint64_t>(std::chrono::duration<double, std::milli>(spent).count());
+    d.number = cpu_microseconds() - task_cpu_start_;
     // 5: the same in microseconds, for the task log (a leaf of an empty region takes well under 1 ms).
     d.box[5] = std::chrono::duration_cast<std::chrono::microseconds>(spent).count();
     rusage u{};
@@ -211,7 +220,9 @@ private:
     // surface and its region, and nothing is sent or merged for it. Its counters go with the DONE,
     // so that the run's totals keep them.
     const bool empty = !surface_ || surface_->component_count() == 0;
-    d.box[1] = empty ? 1 : 0;
+    // 2 (added to 1): the leaves this EXTRACT gave left nothing open by themselves (the task log's
+    // record of which leaves are empty, for the scale model).
+    d.box[1] = (empty ? 1 : 0) + (piece_empty_ ? 2 : 0);
     d.box[2] = static_cast<std::int64_t>(totals_.input_triangles);
     d.box[3] = static_cast<std::int64_t>(totals_.collapses);
     // 4: the triangles this worker's surface holds after the task (the run's triangles held).
@@ -230,6 +241,7 @@ private:
     need_setup(m);
     const auto start = Clock::now();
     const volume::Box cells{{m.box[0], m.box[1], m.box[2]}, {m.box[3], m.box[4], m.box[5]}};
+    piece_empty_ = false;
     std::unique_ptr<tandem::WorkingSurface> piece;
     const bool brute = settings_.extraction.mode == tandem::ExtractMode::brute;
     const std::int64_t leaf = tandem::leaf_size(settings_.extraction, volume_->geometry().shape);
@@ -237,8 +249,10 @@ private:
       piece = tandem::extract_subtree(*volume_, cells, leaf, options_tandem_, &*sink_, brute);
     else
       tandem::extract_block(*volume_, cells, options_tandem_, &*sink_, &piece, brute);
+    piece_empty_ = !piece || piece->component_count() == 0;
     absorb(std::move(piece));
     report(m, start);
+    piece_empty_ = false;
   }
 
   void absorb(std::unique_ptr<tandem::WorkingSurface> piece) {
@@ -363,9 +377,11 @@ private:
   std::optional<store::ShardWriter> writer_;
   std::optional<ShardSink> sink_;
   std::unique_ptr<tandem::WorkingSurface> surface_;
-  Lease task_lease_;                // of the task in progress (mid-task COMMITs carry it)
-  bool retiring_ = false;           // near its walltime: RETIRE sent
-  tandem::SimplifyCounters totals_; // of the whole surface, once finished
+  Lease task_lease_;                 // of the task in progress (mid-task COMMITs carry it)
+  bool retiring_ = false;            // near its walltime: RETIRE sent
+  bool piece_empty_ = false;         // the EXTRACT in progress gave an empty piece
+  std::uint64_t task_cpu_start_ = 0; // this process's CPU microseconds when the task began
+  tandem::SimplifyCounters totals_;  // of the whole surface, once finished
 };
 
 } // namespace

@@ -2,6 +2,7 @@
 #include "task_log.hpp"
 
 #include <fstream>
+#include <optional>
 #include <sstream>
 
 #include "geotandem/core/error.hpp"
@@ -16,6 +17,15 @@ TaskLogWriter::TaskLogWriter(const std::filesystem::path& path, const volume::Bo
   if (!file_) return;
   // A buffer of 1 MiB: a line costs the manager a formatted print, no system call.
   std::setvbuf(file_, nullptr, _IOFBF, std::size_t{1} << 20);
+  // A manager killed mid-run leaves its last line cut: this run's lines start on a line of their own.
+  {
+    std::ifstream before(path, std::ios::binary | std::ios::ate);
+    if (before && before.tellg() > 0) {
+      before.seekg(-1, std::ios::end);
+      char last = '\n';
+      if (before.get(last) && last != '\n') std::fputc('\n', file_);
+    }
+  }
   std::fprintf(file_, "# cube %lld %lld %lld %lld %lld %lld leaf_size %lld batch %zu cores %zu\n",
                static_cast<long long>(cube.lo[0]), static_cast<long long>(cube.lo[1]),
                static_cast<long long>(cube.lo[2]), static_cast<long long>(cube.hi[0]),
@@ -58,9 +68,16 @@ std::vector<TaskLogRun> read_task_log(const std::filesystem::path& path) {
     return DataError(path.string() + ":" + std::to_string(number) + ": " + why, {path.string()},
                      "a task log is written by the manager (task_log.hpp); do not edit it");
   };
+  // A line that does not read is the cut last line of a killed manager when a run's cube line or the
+  // end of the file follows it (the next run starts on a line of its own); anywhere else, an error.
+  std::optional<DataError> cut;
   while (std::getline(in, line)) {
     ++number;
     if (line.empty()) continue;
+    if (cut) {
+      if (line.rfind("# cube ", 0) != 0) throw *cut;
+      cut.reset();
+    }
     std::istringstream f(line);
     if (line.rfind("# cube ", 0) == 0) {
       TaskLogRun run;
@@ -103,9 +120,10 @@ std::vector<TaskLogRun> read_task_log(const std::filesystem::path& path) {
     if (runs.empty()) throw bad("a task before a cube line");
     TaskRecord t;
     f >> t.worker >> t.kind >> t.leaf >> t.leaves >> t.start >> t.end >> t.worker_ms >> t.bytes >> t.rows;
-    if (f.fail()) throw bad("a task line that does not read");
-    if (runs.back().empties && !(f >> t.empty >> t.cpu_ms))
-      throw bad("a task line without its empty and cpu_ms columns");
+    if (f.fail() || (runs.back().empties && !(f >> t.empty >> t.cpu_ms))) {
+      cut = bad("a task line that does not read");
+      continue;
+    }
     runs.back().tasks.push_back(std::move(t));
   }
   return runs;

@@ -45,6 +45,13 @@ std::int64_t cells_of(const volume::Box& b) {
 constexpr double kWait = 0.020;                         // the manager's WAIT (manager_support.cpp)
 constexpr double kChunk = static_cast<double>(1 << 20); // bytes per surface chunk (protocol.hpp)
 
+double mean(const std::vector<double>& v) {
+  double sum = 0;
+  for (double x : v)
+    sum += x;
+  return v.empty() ? 0.0 : std::max(0.0, sum / static_cast<double>(v.size()));
+}
+
 double median(std::vector<double> v) {
   if (v.empty()) return 0;
   std::nth_element(v.begin(), v.begin() + static_cast<long>(v.size() / 2), v.end());
@@ -107,9 +114,11 @@ ScaleModelCalibration calibrate(const TaskLogRun& run) {
   }
   if (extracts == 0) throw InvalidArgument("the task log's run has no EXTRACT: nothing to model");
   c.extract_mean = extract_sum / static_cast<double>(extracts);
-  c.overhead_extract = median(over["EXTRACT"]);
-  c.overhead_merge = median(over["MERGE"]);
-  c.overhead_finish = median(over["FINISHED"]);
+  // The mean, not the median: the replay must add up to what the log records, and the overheads are
+  // skewed (a task whose result waits behind a SEND's chunks at the manager).
+  c.overhead_extract = mean(over["EXTRACT"]);
+  c.overhead_merge = mean(over["MERGE"]);
+  c.overhead_finish = mean(over["FINISHED"]);
   c.gap = median(gaps);
   std::tie(c.merge_fixed, c.merge_per_byte) = fit_line(merges);
   std::tie(c.send_fixed, c.send_per_byte) = fit_line(sends);

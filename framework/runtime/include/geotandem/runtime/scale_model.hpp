@@ -20,8 +20,9 @@
 //   workers, the manager and the recorded run's other load share them (cpu_share below);
 // - small leaves go in batches as the manager hands them out (extract_batch), and a surface whose
 //   leaves all left nothing open by themselves is dropped, not sent (when the recorded run did so);
-// - a task costs, beyond its own time, the recorded median overhead of its kind (messages there
-//   and back, the shard's sync), and a worker asks again after the recorded median gap.
+// - a task costs, beyond its own time, the recorded mean overhead of its kind (messages there
+//   and back, the shard's sync), and a worker asks again after the recorded median gap (the mean
+//   would count the WAITs the replay makes itself).
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -48,7 +49,7 @@ struct ScaleModelCalibration {
   double manager_per_message = 0;              // CPU seconds
   double index_per_row = 0, rows_per_leaf = 0; // the index writer's seconds per leaf; 1
   double startup = 0;                          // seconds before a worker's first task
-  // What a task costs beyond the worker's own time, as the manager saw it (median of its end -
+  // What a task costs beyond the worker's own time, as the manager saw it (mean of its end -
   // start - the worker's time: messages there and back, the shard's sync before the COMMIT), by
   // kind, and the median gap between a worker's result and its next task (its ASK on the way).
   double overhead_extract = 0, overhead_merge = 0, overhead_finish = 0, gap = 0;

@@ -160,12 +160,18 @@ struct Manager::Impl {
 
   // Small leaves in batches (issue 55; extract_batch() in schedule.hpp). GEOTANDEM_EXTRACT_BATCH
   // caps the leaves per EXTRACT (1: one leaf per EXTRACT, the seed's algorithm).
-  double extracted_seconds = 0; // the workers' time for the leaves extracted so far
+  double extracted_seconds = 0;  // the workers' time for the leaves extracted so far
+  double cpu_at_first_task = -1; // the manager's CPU time at its first decision
   std::uint64_t extracted_leaves = 0;
   std::size_t batch_cap = detail::extract_batch_cap();
   std::size_t batch_leaves() const {
     const double per_leaf = extracted_leaves ? extracted_seconds / static_cast<double>(extracted_leaves) : 0.0;
-    return extract_batch(per_leaf, schedule.unprocessed(), peers.size(), batch_cap);
+    // The manager's CPU per task since its first decision, once a few tasks tell.
+    const std::uint64_t tasks = report.extract_tasks + report.merge + report.send;
+    const double per_task =
+        tasks >= 16 && cpu_at_first_task >= 0 ? (cpu_seconds() - cpu_at_first_task) / static_cast<double>(tasks) : 0.0;
+    return extract_batch(per_leaf, schedule.unprocessed(), peers.size(), batch_cap,
+                         batch_seconds(per_task, peers.size()));
   }
 
   // The bar counts blocks extracted and the final pass; a re-done block does not move it twice.

@@ -25,6 +25,7 @@ void Manager::Impl::retire(Peer& p, const std::string& why) {
 
 void Manager::Impl::decide(Peer& p) {
   schedule.expect_joins(workers_to_come());
+  if (cpu_at_first_task < 0) cpu_at_first_task = cpu_seconds();
   schedule.set_batch(batch_leaves());
   const Decision d = schedule.next(p.id);
   if (d.kind == TaskKind::send && schedule.retiring(p.id)) {
@@ -104,6 +105,7 @@ void Manager::Impl::task_done(Peer& p, const Message& m) {
   case TaskKind::extract: {
     const std::size_t n = schedule.leaves_under(p.task->leaf);
     report.extract += n, report.seconds_extract += s;
+    ++report.extract_tasks;
     extracted_leaves += n;
     extracted_seconds += s;
     for (std::size_t i = 0; i < n; ++i)

@@ -243,8 +243,11 @@ ScalePrediction predict(const ScaleModelCalibration& c, const tandem::BlockTree&
     events.pop();
     if (it.e == Event::ask) {
       const double t = manager(it.t, 2); // ASK and the answer
+      const std::uint64_t tasks = out.extract + out.send + out.merge;
+      const double per_task = tasks >= 16 ? manager_busy / static_cast<double>(tasks) : 0.0;
       schedule.set_batch(extract_batch(leaves_done ? leaf_seconds / static_cast<double>(leaves_done) : 0.0,
-                                       schedule.unprocessed(), schedule.live_workers(), c.batch));
+                                       schedule.unprocessed(), schedule.live_workers(), c.batch,
+                                       batch_seconds(per_task, schedule.live_workers())));
       const Decision d = schedule.next(it.w);
       double busy = 0;
       switch (d.kind) {

@@ -25,9 +25,16 @@ const char* to_string(TaskKind kind) {
   return "?";
 }
 
-std::size_t extract_batch(double leaf_seconds, std::size_t unprocessed, std::size_t workers, std::size_t cap) {
+double batch_seconds(double manager_cpu_per_task, std::size_t workers) {
+  // `workers` tasks of T seconds cost the manager workers * c every T: at most kManagerShare of it.
+  const double needed = static_cast<double>(std::max<std::size_t>(workers, 1)) * manager_cpu_per_task / kManagerShare;
+  return std::clamp(needed, kBatchSeconds, 1.0);
+}
+
+std::size_t extract_batch(double leaf_seconds, std::size_t unprocessed, std::size_t workers, std::size_t cap,
+                          double target) {
   if (cap <= 1 || !(leaf_seconds > 0)) return 1;
-  const double by_time = kBatchSeconds / std::max(leaf_seconds, 1e-7);
+  const double by_time = target / std::max(leaf_seconds, 1e-7);
   const std::size_t by_balance = unprocessed / (4 * std::max<std::size_t>(workers, 1));
   const double most = std::min({by_time, static_cast<double>(by_balance), static_cast<double>(cap)});
   std::size_t n = 1;

@@ -66,13 +66,16 @@ class LeafCounts;
 }
 
 // How many leaves an EXTRACT carries (Schedule::set_batch), the manager's policy and the scale
-// model's: a task worth about kBatchSeconds of a worker's time at `leaf_seconds` a leaf (the mean so
-// far; 0: none measured yet, one leaf), at most a quarter of the unprocessed leaves per worker (the
-// end of the extraction stays balanced) and at most `cap`; a power of two (a whole subtree in a
-// regular tree). With ~150 us of manager CPU per task, tasks of 25 ms keep the manager near 1 % of
-// the wall time per worker.
+// model's: a task worth about `target` seconds of a worker's time at `leaf_seconds` a leaf (the mean
+// so far; 0: none measured yet, one leaf), at most a quarter of the unprocessed leaves per worker
+// (the end of the extraction stays balanced) and at most `cap`; a power of two (a whole subtree in a
+// regular tree). batch_seconds() gives the target: kBatchSeconds, or more when the manager's CPU
+// per task so far would make it more than kManagerShare of the wall time with `workers` busy.
 inline constexpr double kBatchSeconds = 0.025;
-std::size_t extract_batch(double leaf_seconds, std::size_t unprocessed, std::size_t workers, std::size_t cap);
+inline constexpr double kManagerShare = 0.04;
+double batch_seconds(double manager_cpu_per_task, std::size_t workers);
+std::size_t extract_batch(double leaf_seconds, std::size_t unprocessed, std::size_t workers, std::size_t cap,
+                          double target = kBatchSeconds);
 
 class Schedule {
 public:

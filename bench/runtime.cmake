@@ -24,7 +24,7 @@ geotandem_target_defaults(bench_manager_cost)
 
 # bench_scale_model: a run's task log replayed through the real Schedule with 1 to 1024 simulated
 # workers (issue 55, part 4). Run it as
-#   build/release/bin/bench_scale_model OUT/store/task-log.tsv [1,2,...,1024] [cube X,Y,Z] [leaf]
+#   build/release/bin/bench_scale_model OUT/store/task-log.tsv [1,2,...,1024] [cube X,Y,Z] [leaf] [run] [cores]
 add_executable(bench_scale_model ${CMAKE_CURRENT_SOURCE_DIR}/scale_model.cpp)
 target_link_libraries(bench_scale_model PRIVATE geotandem::runtime)
 geotandem_target_defaults(bench_scale_model)

@@ -6,6 +6,8 @@
 // saturates first.
 //   bench_scale_model TASK_LOG [workers=1,2,4,...,1024] [cube=X,Y,Z (cells; default the recorded)]
 //                     [leaf=L (default the recorded)] [run=K (default the last that ended)]
+//                     [cores=C (default the recorded host's, its other load included; 0: a core per
+//                     worker and no other load, as on a cluster)]
 // For the lead's three-node run: bench_scale_model OUT/store/task-log.tsv 8
 #include <cmath>
 #include <cstdio>
@@ -17,7 +19,7 @@ using namespace geotandem;
 
 int bench_main(int argc, char** argv) {
   const bench::Args args(argc, argv,
-                         "bench_scale_model TASK_LOG [workers=1,2,4,...,1024] [cube=X,Y,Z] [leaf=L] [run=K]");
+                         "bench_scale_model TASK_LOG [workers=1,2,4,...,1024] [cube=X,Y,Z] [leaf=L] [run=K] [cores=C]");
   if (args.size() < 1) args.fail(1, "is missing: the task log of a run (STORE/task-log.tsv)");
   const std::vector<runtime::TaskLogRun> runs = runtime::read_task_log(args.text(1, ""));
   const std::vector<std::int64_t> counts = args.integers(2, "1,2,4,8,16,32,56,64,128,256,512,1024", 1);
@@ -39,6 +41,7 @@ int bench_main(int argc, char** argv) {
   }
   const std::int64_t leaf = args.has(4) ? args.integer(4, 0, 1) : run.leaf_size;
   const tandem::BlockTree tree(cube, leaf);
+  const std::size_t cores = args.has(6) ? static_cast<std::size_t>(args.integer(6, 0, 0)) : c.cores;
   std::printf("recorded run %zu: cube %s, leaves of %lld, %zu tasks, %llu worker(s), %.2f s wall, manager CPU "
               "%.2f s\n",
               pick, run.cube.to_string().c_str(), static_cast<long long>(run.leaf_size), run.tasks.size(),
@@ -50,13 +53,18 @@ int bench_main(int argc, char** argv) {
               1e3 * c.send_fixed, 1e3 * c.send_per_byte * 1048576.0, c.finish_seconds,
               static_cast<unsigned long long>(c.finish_leaves), 1e6 * c.manager_per_message, 1e6 * c.index_per_row,
               c.startup, 1e3 * c.overhead_extract, 1e3 * c.gap);
+  std::printf("processors: recorded on %zu cores, a worker's share of a core %.2f, the manager's %.2f, other load "
+              "%.2f runnable; replayed on %s; batches of up to %zu leaves; empty surfaces %s\n",
+              c.cores, c.cpu_share, c.manager_share, c.background,
+              cores ? (std::to_string(cores) + " cores with that load").c_str() : "a core per worker, no other load",
+              c.batch, c.drops ? "dropped" : "sent (an older log)");
   std::printf("predicted for cube %s, leaves of %lld (%zu leaves):\n", cube.to_string().c_str(),
               static_cast<long long>(leaf), tree.leaves().size());
   std::printf("%8s %11s %10s %9s %9s %9s %9s %8s %8s  %s\n", "workers", "wall_s", "efficiency", "manager", "index",
               "tail_s", "msg_wait", "sends", "merges", "saturates first");
-  const double one = runtime::predict(c, tree, 1).wall;
+  const double one = runtime::predict(c, tree, 1, cores).wall;
   for (const std::int64_t n : counts) {
-    runtime::ScalePrediction p = runtime::predict(c, tree, static_cast<std::size_t>(n));
+    runtime::ScalePrediction p = runtime::predict(c, tree, static_cast<std::size_t>(n), cores);
     p.efficiency = one / (static_cast<double>(n) * p.wall);
     std::printf("%8lld %11.2f %9.0f%% %8.1f%% %8.1f%% %9.2f %7.2fms %8llu %8llu  %s\n", static_cast<long long>(n),
                 p.wall, 100 * p.efficiency, 100 * p.manager_busy, 100 * p.index_busy, p.tail, 1e3 * p.manager_wait,

@@ -259,7 +259,7 @@ Decision Schedule::next_retiring(WorkerId id, Worker& w) {
     }
     // Nobody to take it, and it holds the whole surface: it finishes the run itself rather than
     // have everything re-done.
-    if (transfers_.empty() && w.held.size() == tree_.leaves().size() - skipped_)
+    if (transfers_.empty() && w.held.size() == tree_.leaves().size() - skipped_ - dropped_)
       return assign(w, {.kind = TaskKind::finished, .final = true});
     if (awaited_ > 0) return assign(w, {.kind = TaskKind::wait}); // a successor is on its way
   }
@@ -301,20 +301,20 @@ Decision Schedule::next(WorkerId id) {
     return assign(w, {.kind = TaskKind::extract, .leaf = leaf});
   }
 
-  if (skipped_ > 0 && !w.held.empty() && unprocessed() == 0)
+  if (skipped_ + dropped_ > 0 && !w.held.empty() && unprocessed() == 0)
     if (const std::optional<WorkerId> v = any_holder(id)) return send_to(id, w, *v);
 
-  if (skipped_ == tree_.leaves().size()) { // a resumed run with nothing left to do
+  if (skipped_ + dropped_ == tree_.leaves().size()) { // a resumed run with nothing left to do
     complete_ = true;
     return assign(w, {.kind = TaskKind::finished});
   }
   // 4. The whole surface in one worker, nothing on its way: it finishes the run.
-  if (transfers_.empty() && !w.held.empty() && w.held.size() == tree_.leaves().size() - skipped_)
+  if (transfers_.empty() && !w.held.empty() && w.held.size() == tree_.leaves().size() - skipped_ - dropped_)
     return assign(w, {.kind = TaskKind::finished, .final = true});
   return assign(w, {.kind = TaskKind::wait});
 }
 
-void Schedule::done(WorkerId id) {
+void Schedule::done(WorkerId id, bool emptied) {
   Worker& w = worker(id);
   if (!w.task) throw std::logic_error("schedule: worker " + std::to_string(id) + " reported a task it was not given");
   const Decision d = *w.task;
@@ -326,6 +326,13 @@ void Schedule::done(WorkerId id) {
   } else if (d.kind == TaskKind::finished) {
     w.held.clear();
     complete_ = true;
+    return;
+  }
+  // Added for issue 55's empty surfaces, in this schedule's own terms: the leaves held are finished
+  // (counted with the skipped ones in every test above) and held by nobody.
+  if (emptied) {
+    dropped_ += w.held.size();
+    w.held.clear();
   }
 }
 

@@ -70,7 +70,7 @@ public:
   Decision next(WorkerId worker);
   // The worker finished its task: EXTRACT (its leaf is now in its surface), MERGE, the final
   // FINISHED. For SEND use arrived().
-  void done(WorkerId worker);
+  void done(WorkerId worker, bool emptied = false);
   // The surface of the sender's SEND reached the manager; the sender is idle again. Returns false
   // when the transfer's target died meanwhile (the bytes are dropped: its leaves are re-done).
   bool arrived(WorkerId sender, TransferId transfer);
@@ -134,6 +134,7 @@ private:
   bool started_ = false;
   bool complete_ = false;
   std::size_t skipped_ = 0;
+  std::size_t dropped_ = 0; // leaves finished with an empty surface (done(..., true))
   std::size_t awaited_ = 0;
   ScheduleCounts counts_;
 };

@@ -8,6 +8,7 @@
 #include <cstdio>
 #include <set>
 
+#include "geotandem/runtime/aggregate.hpp"
 #include "geotandem/runtime/task_log.hpp"
 #include "geotandem/tandem/block_tree.hpp"
 #include "process_fixtures.hpp"
@@ -41,17 +42,31 @@ TEST(WorkerCounts, OneToSixtyFourWorkersGiveTheSameComponentKeys) {
         EXPECT_TRUE(got.at(key).manifold) << "component " << key;
       }
     }
-    // The task log: every leaf extracted, and every worker seen.
+    // The task log: every leaf extracted once (an EXTRACT of a batch names its subtree's node, issue
+    // 55), and every worker seen.
     const auto runs = runtime::read_task_log(out + "/task-log.tsv");
     ASSERT_EQ(runs.size(), 1u);
     std::set<std::int64_t> leaves;
+    std::uint64_t extracted = 0;
     std::set<std::string> seen;
     for (const runtime::TaskRecord& t : runs[0].tasks) {
-      if (t.kind == "EXTRACT") leaves.insert(t.leaf);
+      if (t.kind == "EXTRACT") {
+        ASSERT_GE(t.leaf, 0);
+        const tandem::NodeId node = static_cast<tandem::NodeId>(t.leaf);
+        std::uint64_t under = 0;
+        for (tandem::NodeId n = node, end = runtime::subtree_end(tree, node); n < end; ++n)
+          if (tree.node(n).is_leaf()) {
+            leaves.insert(n);
+            ++under;
+          }
+        EXPECT_EQ(t.leaves, under) << "EXTRACT of node " << t.leaf;
+        extracted += under;
+      }
       seen.insert(t.worker);
       EXPECT_LE(t.start, t.end);
     }
     EXPECT_EQ(leaves.size(), tree.leaves().size());
+    EXPECT_EQ(extracted, tree.leaves().size()) << "a leaf extracted twice";
     EXPECT_EQ(runs[0].workers, static_cast<std::uint64_t>(workers));
     EXPECT_GT(runs[0].manager_cpu_seconds, 0.0);
     std::printf("%d workers: %zu tasks by %zu workers, %.2f s, manager CPU %.2f s, %llu messages\n", workers,

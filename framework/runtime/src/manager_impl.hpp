@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <map>
 #include <set>
+#include <thread>
 
 #include "commit_queue.hpp"
 #include "component_committer.hpp"
@@ -66,7 +67,8 @@ struct Manager::Impl {
   tandem::BlockTree tree;
   Schedule schedule{tree};
   detail::FinishedBlocks finished{store.directory(), tree};
-  detail::TaskLogWriter task_log{store.directory() / kTaskLogName, tree.cube(), tree.leaf_size()};
+  detail::TaskLogWriter task_log{store.directory() / kTaskLogName, tree.cube(), tree.leaf_size(),
+                                 detail::extract_batch_cap(), std::thread::hardware_concurrency()};
   std::uint64_t messages_in = 0, messages_out = 0, rows_in = 0;
   detail::CommitQueue commits{committer}; // after what its thread uses
   detail::SurfaceRelay relay{options.max_surface, static_cast<std::size_t>(options.settings.chunk_bytes),
@@ -105,7 +107,7 @@ struct Manager::Impl {
     return socket.send(token, encode(m));
   }
   // The task log's line for the peer's task that just ended (before the schedule forgets it).
-  void log_task(const Peer& p, std::uint64_t leaves, double worker_ms) {
+  void log_task(const Peer& p, std::uint64_t leaves, double worker_ms, unsigned empty = 0, double cpu_ms = -1.0) {
     const double end = since(start);
     const double begun = std::chrono::duration<double>(p.task_start - start).count();
     task_log.add({.worker = p.token,
@@ -116,7 +118,9 @@ struct Manager::Impl {
                   .end = end,
                   .worker_ms = worker_ms < 0 ? 1000.0 * (end - begun) : worker_ms,
                   .bytes = p.task_bytes,
-                  .rows = p.task_rows});
+                  .rows = p.task_rows,
+                  .empty = empty,
+                  .cpu_ms = cpu_ms});
   }
 
   void drop(const std::string& why) {
@@ -153,6 +157,22 @@ struct Manager::Impl {
   void decide(Peer& p);
   void pump(Peer& p, std::uint64_t credits);
   void depart(const std::string& token);
+
+  // Small leaves in batches (issue 55; extract_batch() in schedule.hpp). GEOTANDEM_EXTRACT_BATCH
+  // caps the leaves per EXTRACT (1: one leaf per EXTRACT, the seed's algorithm).
+  double extracted_seconds = 0;  // the workers' time for the leaves extracted so far
+  double cpu_at_first_task = -1; // the manager's CPU time at its first decision
+  std::uint64_t extracted_leaves = 0;
+  std::size_t batch_cap = detail::extract_batch_cap();
+  std::size_t batch_leaves() const {
+    const double per_leaf = extracted_leaves ? extracted_seconds / static_cast<double>(extracted_leaves) : 0.0;
+    // The manager's CPU per task since its first decision, once a few tasks tell.
+    const std::uint64_t tasks = report.extract_tasks + report.merge + report.send;
+    const double per_task =
+        tasks >= 16 && cpu_at_first_task >= 0 ? (cpu_seconds() - cpu_at_first_task) / static_cast<double>(tasks) : 0.0;
+    return extract_batch(per_leaf, schedule.unprocessed(), peers.size(), batch_cap,
+                         batch_seconds(per_task, peers.size()));
+  }
 
   // The bar counts blocks extracted and the final pass; a re-done block does not move it twice.
   void advance() {

@@ -3,6 +3,7 @@
 
 #include <sys/resource.h>
 
+#include <cstdlib>
 #include <random>
 
 namespace geotandem::runtime::detail {
@@ -58,6 +59,16 @@ Message task_message(const Decision& d, const tandem::BlockTree& tree) {
     break;
   }
   return m;
+}
+
+std::size_t extract_batch_cap() {
+  const char* text = std::getenv("GEOTANDEM_EXTRACT_BATCH");
+  if (text && *text) {
+    char* end = nullptr;
+    const long long n = std::strtoll(text, &end, 10);
+    if (end && *end == '\0' && n > 0) return static_cast<std::size_t>(n);
+  }
+  return 4096;
 }
 
 } // namespace geotandem::runtime::detail

@@ -24,4 +24,8 @@ std::string random_hex(std::size_t n);
 // FINISHED (1: the final pass).
 Message task_message(const Decision& d, const tandem::BlockTree& tree);
 
+// The most leaves one EXTRACT may carry: GEOTANDEM_EXTRACT_BATCH when it is a positive integer,
+// else 4096.
+std::size_t extract_batch_cap();
+
 } // namespace geotandem::runtime::detail

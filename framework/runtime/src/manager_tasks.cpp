@@ -25,6 +25,8 @@ void Manager::Impl::retire(Peer& p, const std::string& why) {
 
 void Manager::Impl::decide(Peer& p) {
   schedule.expect_joins(workers_to_come());
+  if (cpu_at_first_task < 0) cpu_at_first_task = cpu_seconds();
+  schedule.set_batch(batch_leaves());
   const Decision d = schedule.next(p.id);
   if (d.kind == TaskKind::send && schedule.retiring(p.id)) {
     report.handed_back += schedule.transfer_leaves(d.transfer);
@@ -86,31 +88,57 @@ void Manager::Impl::depart(const std::string& token) {
 }
 
 void Manager::Impl::task_done(Peer& p, const Message& m) {
-  const double s = static_cast<double>(m.number) / 1000.0;
+  // The task's wall time as the worker measured it (box[5], microseconds); number is its CPU time.
+  const double s = static_cast<double>(m.box[5]) / 1e6;
   {
     std::uint64_t leaves = 1;
+    if (p.task->kind == TaskKind::extract) leaves = schedule.leaves_under(p.task->leaf);
     if (p.task->kind == TaskKind::merge) leaves = schedule.transfer_leaves(p.task->transfer);
     if (p.task->kind == TaskKind::finished) leaves = schedule.leaves_held(p.id);
     // box[5]: microseconds (0 from a worker that does not send them: the milliseconds then).
-    log_task(p, leaves, m.box[5] > 0 ? static_cast<double>(m.box[5]) / 1000.0 : static_cast<double>(m.number));
+    const bool piece_task = p.task->kind == TaskKind::extract || p.task->kind == TaskKind::merge;
+    log_task(p, leaves, static_cast<double>(m.box[5]) / 1000.0, piece_task ? static_cast<unsigned>(m.box[1] & 3) : 0u,
+             static_cast<double>(m.number) / 1000.0);
   }
   report.worker_peak_rss_kb = std::max(report.worker_peak_rss_kb, m.box[0]);
   switch (p.task->kind) {
-  case TaskKind::extract: ++report.extract, report.seconds_extract += s, advance(); break;
+  case TaskKind::extract: {
+    const std::size_t n = schedule.leaves_under(p.task->leaf);
+    report.extract += n, report.seconds_extract += s;
+    ++report.extract_tasks;
+    extracted_leaves += n;
+    extracted_seconds += s;
+    for (std::size_t i = 0; i < n; ++i)
+      advance();
+    break;
+  }
   case TaskKind::merge: ++report.merge, report.seconds_merge += s; break;
-  case TaskKind::finished:
+  case TaskKind::finished: {
     ++report.finish, report.seconds_finish += s, advance();
-    // The two totals of box[2] and box[3], then every counter from the text when it is there.
-    report.counters = {};
-    report.counters.input_triangles = static_cast<std::uint64_t>(m.box[2]);
-    report.counters.collapses = static_cast<std::uint64_t>(m.box[3]);
+    // The two totals of box[2] and box[3], then every counter from the text when it is there;
+    // added to those of the surfaces dropped empty on the way.
+    tandem::SimplifyCounters whole;
+    whole.input_triangles = static_cast<std::uint64_t>(m.box[2]);
+    whole.collapses = static_cast<std::uint64_t>(m.box[3]);
     try {
-      if (!m.text.empty()) report.counters = counters_from_json(m.text);
+      if (!m.text.empty()) whole = counters_from_json(m.text);
     } catch (const ProtocolError& e) { // statistics only: the run goes on without them
       log.warning("worker " + p.token + ": " + e.what() + "; the run's collapse counters are left out");
     }
+    report.counters += whole;
     break;
+  }
   default: break;
+  }
+  // An EXTRACT or a MERGE that left the worker's surface empty: it dropped it (worker.cpp), with
+  // the counters of that surface in the text.
+  const bool emptied = (m.box[1] & 1) == 1 && (p.task->kind == TaskKind::extract || p.task->kind == TaskKind::merge);
+  if (emptied && !m.text.empty()) {
+    try {
+      report.counters += counters_from_json(m.text);
+    } catch (const ProtocolError& e) {
+      log.warning("worker " + p.token + ": " + e.what() + "; a dropped surface's counters are left out");
+    }
   }
   task_finished(p);
   ++p.tasks;
@@ -121,7 +149,7 @@ void Manager::Impl::task_done(Peer& p, const Message& m) {
   if (log.enabled(LogLevel::debug)) log.debug("triangles held by the workers: " + std::to_string(held_triangles));
   // An empty surface: its leaves' components are all committed (the COMMIT came first). The leaves
   // recorded before are not looked at again: the cost stays with the leaves new to its surface.
-  if (m.box[1] == 1) {
+  if ((m.box[1] & 1) == 1) {
     std::vector<tandem::NodeId> leaves = schedule.take_unrecorded(p.id);
     if (log.enabled(LogLevel::debug))
       log.debug("worker " + p.token + ": surface empty after " + task_text(p) + "; " + std::to_string(leaves.size()) +
@@ -131,7 +159,7 @@ void Manager::Impl::task_done(Peer& p, const Message& m) {
   }
   const bool final = p.task->kind == TaskKind::finished;
   p.task.reset();
-  schedule.done(p.id);
+  schedule.done(p.id, emptied);
   if (final) depart(p.token);
 }
 

@@ -6,8 +6,10 @@
 #include <limits>
 #include <map>
 #include <queue>
+#include <utility>
 
 #include "geotandem/core/error.hpp"
+#include "geotandem/runtime/aggregate.hpp"
 #include "geotandem/runtime/schedule.hpp"
 
 namespace geotandem::runtime {
@@ -43,6 +45,13 @@ std::int64_t cells_of(const volume::Box& b) {
 constexpr double kWait = 0.020;                         // the manager's WAIT (manager_support.cpp)
 constexpr double kChunk = static_cast<double>(1 << 20); // bytes per surface chunk (protocol.hpp)
 
+double mean(const std::vector<double>& v) {
+  double sum = 0;
+  for (double x : v)
+    sum += x;
+  return v.empty() ? 0.0 : std::max(0.0, sum / static_cast<double>(v.size()));
+}
+
 double median(std::vector<double> v) {
   if (v.empty()) return 0;
   std::nth_element(v.begin(), v.begin() + static_cast<long>(v.size() / 2), v.end());
@@ -57,6 +66,9 @@ ScaleModelCalibration calibrate(const TaskLogRun& run) {
   c.leaf_size = run.leaf_size;
   const tandem::BlockTree tree(run.cube, run.leaf_size);
   c.extract.assign(tree.size(), std::numeric_limits<double>::quiet_NaN());
+  c.solid.assign(tree.size(), 1);
+  c.drops = run.empties;
+  c.batch = run.batch;
   std::vector<std::pair<double, double>> merges, sends, sizes;
   std::map<std::string, double> first_task;
   double extract_sum = 0;
@@ -64,6 +76,7 @@ ScaleModelCalibration calibrate(const TaskLogRun& run) {
   std::map<std::string, std::vector<double>> over;
   std::map<std::string, double> last_end;
   std::vector<double> gaps;
+  double cpu_sum = 0, cpu_wall = 0; // the workers' CPU and wall seconds in EXTRACT and MERGE
   for (const TaskRecord& t : run.tasks) {
     if (t.kind != "SEND") over[t.kind].push_back(t.end - t.start - t.worker_ms / 1000.0);
     if (auto e = last_end.find(t.worker); e != last_end.end()) gaps.push_back(t.start - e->second);
@@ -71,10 +84,23 @@ ScaleModelCalibration calibrate(const TaskLogRun& run) {
     auto [it, fresh] = first_task.try_emplace(t.worker, t.start);
     if (!fresh) it->second = std::min(it->second, t.start);
     const double s = t.worker_ms / 1000.0;
+    if ((t.kind == "EXTRACT" || t.kind == "MERGE") && t.cpu_ms >= 0) {
+      cpu_sum += t.cpu_ms / 1000.0;
+      cpu_wall += s;
+    }
     if (t.kind == "EXTRACT" && t.leaf >= 0 && static_cast<std::size_t>(t.leaf) < tree.size()) {
-      c.extract[static_cast<std::size_t>(t.leaf)] = s;
+      // A batch: its node's leaves share its time evenly (they include the merges inside it).
+      const NodeId end = subtree_end(tree, static_cast<NodeId>(t.leaf));
+      std::size_t k = 0;
+      for (NodeId n = static_cast<NodeId>(t.leaf); n < end; ++n)
+        k += tree.node(n).is_leaf() ? 1 : 0;
+      for (NodeId n = static_cast<NodeId>(t.leaf); n < end; ++n) {
+        if (!tree.node(n).is_leaf()) continue;
+        c.extract[static_cast<std::size_t>(n)] = s / static_cast<double>(k);
+        c.solid[static_cast<std::size_t>(n)] = run.empties && (t.empty & 2) != 0 ? 0 : 1;
+      }
       extract_sum += s;
-      ++extracts;
+      extracts += k;
     } else if (t.kind == "MERGE") {
       merges.emplace_back(static_cast<double>(t.bytes), s);
     } else if (t.kind == "SEND") {
@@ -88,9 +114,11 @@ ScaleModelCalibration calibrate(const TaskLogRun& run) {
   }
   if (extracts == 0) throw InvalidArgument("the task log's run has no EXTRACT: nothing to model");
   c.extract_mean = extract_sum / static_cast<double>(extracts);
-  c.overhead_extract = median(over["EXTRACT"]);
-  c.overhead_merge = median(over["MERGE"]);
-  c.overhead_finish = median(over["FINISHED"]);
+  // The mean, not the median: the replay must add up to what the log records, and the overheads are
+  // skewed (a task whose result waits behind a SEND's chunks at the manager).
+  c.overhead_extract = mean(over["EXTRACT"]);
+  c.overhead_merge = mean(over["MERGE"]);
+  c.overhead_finish = mean(over["FINISHED"]);
   c.gap = median(gaps);
   std::tie(c.merge_fixed, c.merge_per_byte) = fit_line(merges);
   std::tie(c.send_fixed, c.send_per_byte) = fit_line(sends);
@@ -115,15 +143,34 @@ ScaleModelCalibration calibrate(const TaskLogRun& run) {
   for (const auto& [w, t] : first_task)
     c.startup += t / static_cast<double>(first_task.size());
   c.recorded_workers = run.workers ? run.workers : first_task.size();
+  // The processors: the workers' CPU over their wall time in their tasks is the share of a core a
+  // worker got; with the host's cores, the workers and the manager's share of a core, what is left
+  // unexplained is the machine's other load (background), assumed constant and shared fairly.
+  c.cores = run.cores;
+  c.manager_share = run.wall_seconds > 0 ? std::min(1.0, run.manager_cpu_seconds / run.wall_seconds) : 0.0;
+  if (cpu_wall > 0 && cpu_sum > 0) {
+    c.cpu_share = std::clamp(cpu_sum / cpu_wall, 0.02, 1.0);
+    if (c.cores > 0 && c.cpu_share < 0.97)
+      c.background = std::max(0.0, static_cast<double>(c.cores) / c.cpu_share -
+                                       static_cast<double>(c.recorded_workers) - c.manager_share);
+  }
   c.recorded_wall = run.wall_seconds;
   c.recorded_manager_cpu = run.manager_cpu_seconds;
   return c;
 }
 
-ScalePrediction predict(const ScaleModelCalibration& c, const tandem::BlockTree& tree, std::size_t workers) {
+double cpu_share(const ScaleModelCalibration& c, std::size_t cores, std::size_t workers) {
+  if (cores == 0) return 1.0;
+  const double runnable = static_cast<double>(workers) + c.manager_share + c.background;
+  return std::min(1.0, static_cast<double>(cores) / runnable);
+}
+
+ScalePrediction predict(const ScaleModelCalibration& c, const tandem::BlockTree& tree, std::size_t workers,
+                        std::size_t cores) {
   // Each leaf's time: the recorded leaf at the same relative position, scaled by cells.
   const tandem::BlockTree recorded(c.cube, c.leaf_size);
   std::vector<double> extract(tree.size(), 0.0);
+  std::vector<char> solid(tree.size(), 1);
   const volume::Box& to = tree.cube();
   for (NodeId leaf : tree.leaves()) {
     const volume::Box& b = tree.node(leaf).cells;
@@ -136,6 +183,8 @@ ScalePrediction predict(const ScaleModelCalibration& c, const tandem::BlockTree&
                                      static_cast<std::int64_t>(centre * static_cast<double>(c.cube.size(a))));
     }
     const NodeId r = recorded.leaf_of(at);
+    if (r >= 0 && static_cast<std::size_t>(r) < c.solid.size())
+      solid[static_cast<std::size_t>(leaf)] = c.solid[static_cast<std::size_t>(r)];
     double s = r >= 0 ? c.extract[static_cast<std::size_t>(r)] : c.extract_mean;
     if (std::isnan(s)) s = c.extract_mean;
     if (r >= 0) s *= static_cast<double>(cells_of(b)) / static_cast<double>(cells_of(recorded.node(r).cells));
@@ -148,8 +197,12 @@ ScalePrediction predict(const ScaleModelCalibration& c, const tandem::BlockTree&
                             ? c.finish_seconds * bytes_of(tree.leaves().size()) / bytes_of(c.finish_leaves)
                             : c.finish_seconds;
 
+  // The processors (see scale_model.hpp): a worker's share of a core in the recorded run and in this
+  // one; the recorded times are stretched or shrunk by their ratio.
+  const double slow = cores > 0 ? c.cpu_share / cpu_share(c, cores, workers) : 1.0;
   Schedule schedule(tree);
   ScalePrediction out;
+  out.cpu_share = cores > 0 ? cpu_share(c, cores, workers) : 1.0;
   out.workers = workers;
   enum class Event { ask, done };
   struct Item {
@@ -163,6 +216,12 @@ ScalePrediction predict(const ScaleModelCalibration& c, const tandem::BlockTree&
   std::uint64_t seq = 0;
   std::map<WorkerId, Decision> task;
   std::map<WorkerId, double> task_bytes;
+  // Empty surfaces (the recorded run dropped them): a worker's surface is taken as empty when none
+  // of the leaves it holds left anything open by itself; solid leaves held by worker and by transfer.
+  std::map<WorkerId, std::size_t> solid_held;
+  std::map<TransferId, std::size_t> solid_sent;
+  double leaf_seconds = 0; // of the simulated leaves extracted so far (the manager's batch policy)
+  std::uint64_t leaves_done = 0;
   double manager_free = 0, manager_busy = 0, manager_waited = 0, index_free = 0, index_busy = 0;
   std::uint64_t manager_messages = 0;
   double last_extract_end = 0;
@@ -184,6 +243,11 @@ ScalePrediction predict(const ScaleModelCalibration& c, const tandem::BlockTree&
     events.pop();
     if (it.e == Event::ask) {
       const double t = manager(it.t, 2); // ASK and the answer
+      const std::uint64_t tasks = out.extract + out.send + out.merge;
+      const double per_task = tasks >= 16 ? manager_busy / static_cast<double>(tasks) : 0.0;
+      schedule.set_batch(extract_batch(leaves_done ? leaf_seconds / static_cast<double>(leaves_done) : 0.0,
+                                       schedule.unprocessed(), schedule.live_workers(), c.batch,
+                                       batch_seconds(per_task, schedule.live_workers())));
       const Decision d = schedule.next(it.w);
       double busy = 0;
       switch (d.kind) {
@@ -191,23 +255,35 @@ ScalePrediction predict(const ScaleModelCalibration& c, const tandem::BlockTree&
         ++out.wait;
         events.push({t + kWait, seq++, it.w, Event::ask});
         continue;
-      case TaskKind::extract:
+      case TaskKind::extract: {
         ++out.extract;
-        busy = extract[static_cast<std::size_t>(d.leaf)] + c.overhead_extract;
+        double s = 0;
+        for (NodeId n = d.leaf, end = subtree_end(tree, d.leaf); n < end; ++n)
+          if (tree.node(n).is_leaf()) {
+            s += extract[static_cast<std::size_t>(n)];
+            solid_held[it.w] += solid[static_cast<std::size_t>(n)] ? 1 : 0;
+          }
+        leaf_seconds += s;
+        leaves_done += schedule.leaves_under(d.leaf);
+        busy = s * slow + c.overhead_extract;
         last_extract_end = std::max(last_extract_end, t + busy);
         task_bytes[it.w] = 0;
         break;
+      }
       case TaskKind::send: {
         ++out.send;
+        solid_sent[d.transfer] = std::exchange(solid_held[it.w], 0);
         const double bytes = bytes_of(schedule.transfer_leaves(d.transfer));
-        busy = c.send_fixed + c.send_per_byte * bytes;
+        busy = (c.send_fixed + c.send_per_byte * bytes) * slow;
         task_bytes[it.w] = bytes;
         break;
       }
       case TaskKind::merge: {
         ++out.merge;
+        solid_held[it.w] += solid_sent[d.transfer];
+        solid_sent.erase(d.transfer);
         const double bytes = bytes_of(schedule.transfer_leaves(d.transfer));
-        busy = c.merge_fixed + c.merge_per_byte * bytes + c.overhead_merge;
+        busy = (c.merge_fixed + c.merge_per_byte * bytes) * slow + c.overhead_merge;
         task_bytes[it.w] = bytes;
         break;
       }
@@ -216,7 +292,7 @@ ScalePrediction predict(const ScaleModelCalibration& c, const tandem::BlockTree&
           schedule.leave(it.w);
           continue;
         }
-        busy = finish + c.overhead_finish;
+        busy = finish * slow + c.overhead_finish;
         task_bytes[it.w] = 0;
         break;
       }
@@ -238,7 +314,8 @@ ScalePrediction predict(const ScaleModelCalibration& c, const tandem::BlockTree&
     if (d.kind == TaskKind::send) {
       schedule.arrived(it.w, d.transfer);
     } else {
-      schedule.done(it.w);
+      const bool emptied = c.drops && d.kind != TaskKind::finished && solid_held[it.w] == 0;
+      schedule.done(it.w, emptied);
       if (d.kind == TaskKind::finished) {
         out.wall = std::max(t, index_free);
         break;

@@ -1,6 +1,7 @@
 // The manager's decisions, algorithm 6 of the seed (schedule.hpp).
 #include "geotandem/runtime/schedule.hpp"
 
+#include <algorithm>
 #include <stdexcept>
 #include <string>
 #include <utility>
@@ -24,13 +25,38 @@ const char* to_string(TaskKind kind) {
   return "?";
 }
 
+double batch_seconds(double manager_cpu_per_task, std::size_t workers) {
+  // `workers` tasks of T seconds cost the manager workers * c every T: at most kManagerShare of it.
+  const double needed = static_cast<double>(std::max<std::size_t>(workers, 1)) * manager_cpu_per_task / kManagerShare;
+  return std::clamp(needed, kBatchSeconds, 1.0);
+}
+
+std::size_t extract_batch(double leaf_seconds, std::size_t unprocessed, std::size_t workers, std::size_t cap,
+                          double target) {
+  if (cap <= 1 || !(leaf_seconds > 0)) return 1;
+  const double by_time = target / std::max(leaf_seconds, 1e-7);
+  const std::size_t by_balance = unprocessed / (4 * std::max<std::size_t>(workers, 1));
+  const double most = std::min({by_time, static_cast<double>(by_balance), static_cast<double>(cap)});
+  std::size_t n = 1;
+  while (static_cast<double>(2 * n) <= most)
+    n *= 2;
+  return n;
+}
+
 Schedule::Schedule(const tandem::BlockTree& tree)
     : tree_(tree), unprocessed_(tree.size(), 0), unprocessed_count_(tree.leaves().size()),
       open_(std::make_unique<detail::LeafCounts>(tree)), taken_(std::make_unique<detail::LeafCounts>(tree)),
-      owner_(tree.size(), 0) {
+      owner_(tree.size(), 0), leaves_under_(tree.size(), 0) {
   for (NodeId leaf : tree.leaves())
     unprocessed_[static_cast<std::size_t>(leaf)] = 1;
   open_->count_every_leaf();
+  // Ids are in depth-first order, a parent before its children: children are counted first.
+  for (std::size_t i = tree.size(); i-- > 0;) {
+    const tandem::BlockNode& n = tree.node(static_cast<NodeId>(i));
+    leaves_under_[i] = n.is_leaf() ? 1
+                                   : leaves_under_[static_cast<std::size_t>(n.children[0])] +
+                                         leaves_under_[static_cast<std::size_t>(n.children[1])];
+  }
 }
 
 Schedule::~Schedule() = default;
@@ -175,7 +201,7 @@ Decision Schedule::next_retiring(WorkerId id, Worker& w) {
     }
     // Nobody to take it, and it holds the whole surface: it finishes the run itself rather than
     // have everything re-done.
-    if (transfers_.empty() && w.held.size() == tree_.leaves().size() - skipped_)
+    if (transfers_.empty() && w.held.size() == tree_.leaves().size() - finished_leaves())
       return assign(w, {.kind = TaskKind::finished, .final = true});
     if (awaited_ > 0) return assign(w, {.kind = TaskKind::wait}); // a successor is on its way
   }
@@ -205,6 +231,43 @@ Decision Schedule::next(WorkerId id) {
   const NodeId leaf = unprocessed_leaf(w);
   if (expecting && leaf == kNoNode) return assign(w, {.kind = TaskKind::wait});
   if (leaf != kNoNode) {
+    const NodeId node = batch_of(leaf);
+    take_leaves(id, w, node);
+    return assign(w, {.kind = TaskKind::extract, .leaf = node});
+  }
+
+  // Finished leaves (skipped by a resume, dropped with an empty surface) can leave gaps between the
+  // aggregates that the restricted adjacency never bridges (any_holder).
+  if (finished_leaves() > 0 && !w.held.empty() && unprocessed() == 0)
+    if (const std::optional<WorkerId> v = any_holder(id)) return send_to(id, w, *v);
+
+  // Every leaf finished, none held: a resumed run with nothing left to do, or a run whose surfaces
+  // all ended empty.
+  if (finished_leaves() == tree_.leaves().size()) {
+    complete_ = true;
+    return assign(w, {.kind = TaskKind::finished});
+  }
+  // 4. The whole surface in one worker, nothing on its way: it finishes the run.
+  if (transfers_.empty() && !w.held.empty() && w.held.size() == tree_.leaves().size() - finished_leaves())
+    return assign(w, {.kind = TaskKind::finished, .final = true});
+  return assign(w, {.kind = TaskKind::wait});
+}
+
+NodeId Schedule::batch_of(NodeId leaf) const {
+  NodeId node = leaf;
+  while (batch_ > 1 && node != tree_.root()) {
+    const NodeId up = tree_.node(node).parent;
+    const std::uint32_t n = leaves_under_[static_cast<std::size_t>(up)];
+    if (n > batch_ || open_->total(up) != n) break;
+    node = up;
+  }
+  return node;
+}
+
+void Schedule::take_leaves(WorkerId id, Worker& w, NodeId node) {
+  const NodeId end = subtree_end(tree_, node);
+  for (NodeId leaf = node; leaf < end; ++leaf) {
+    if (!tree_.node(leaf).is_leaf()) continue;
     unprocessed_[static_cast<std::size_t>(leaf)] = 0;
     --unprocessed_count_;
     open_->change(leaf, -1);
@@ -213,23 +276,10 @@ Decision Schedule::next(WorkerId id) {
     w.fresh.push_back(leaf);
     claim_node(id, leaf);
     ++w.claimed;
-    return assign(w, {.kind = TaskKind::extract, .leaf = leaf});
   }
-
-  if (skipped_ > 0 && !w.held.empty() && unprocessed() == 0)
-    if (const std::optional<WorkerId> v = any_holder(id)) return send_to(id, w, *v);
-
-  if (skipped_ == tree_.leaves().size()) { // a resumed run with nothing left to do
-    complete_ = true;
-    return assign(w, {.kind = TaskKind::finished});
-  }
-  // 4. The whole surface in one worker, nothing on its way: it finishes the run.
-  if (transfers_.empty() && !w.held.empty() && w.held.size() == tree_.leaves().size() - skipped_)
-    return assign(w, {.kind = TaskKind::finished, .final = true});
-  return assign(w, {.kind = TaskKind::wait});
 }
 
-void Schedule::done(WorkerId id) {
+void Schedule::done(WorkerId id, bool emptied) {
   Worker& w = worker(id);
   if (!w.task) throw std::logic_error("schedule: worker " + std::to_string(id) + " reported a task it was not given");
   const Decision d = *w.task;
@@ -241,7 +291,17 @@ void Schedule::done(WorkerId id) {
   } else if (d.kind == TaskKind::finished) {
     w.held.clear();
     complete_ = true;
+    return;
   }
+  if (!emptied) return;
+  // Its surface is gone with every component of its leaves committed: they are finished, claimed
+  // by nobody, and never sent, merged or re-done. What is on its way to it stays addressed to it.
+  ++counts_.emptied;
+  unclaim(id, w.held);
+  for (NodeId leaf : w.held.leaves())
+    taken_->change(leaf, -1);
+  dropped_ += w.held.size();
+  w.held.clear();
 }
 
 bool Schedule::arrived(WorkerId sender, TransferId t) {

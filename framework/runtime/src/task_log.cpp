@@ -2,6 +2,7 @@
 #include "task_log.hpp"
 
 #include <fstream>
+#include <optional>
 #include <sstream>
 
 #include "geotandem/core/error.hpp"
@@ -10,16 +11,27 @@ namespace geotandem::runtime {
 
 namespace detail {
 
-TaskLogWriter::TaskLogWriter(const std::filesystem::path& path, const volume::Box& cube, std::int64_t leaf_size)
+TaskLogWriter::TaskLogWriter(const std::filesystem::path& path, const volume::Box& cube, std::int64_t leaf_size,
+                             std::size_t batch, std::size_t cores)
     : file_(std::fopen(path.c_str(), "ae")) {
   if (!file_) return;
   // A buffer of 1 MiB: a line costs the manager a formatted print, no system call.
   std::setvbuf(file_, nullptr, _IOFBF, std::size_t{1} << 20);
-  std::fprintf(file_, "# cube %lld %lld %lld %lld %lld %lld leaf_size %lld\n", static_cast<long long>(cube.lo[0]),
-               static_cast<long long>(cube.lo[1]), static_cast<long long>(cube.lo[2]),
-               static_cast<long long>(cube.hi[0]), static_cast<long long>(cube.hi[1]),
-               static_cast<long long>(cube.hi[2]), static_cast<long long>(leaf_size));
-  std::fprintf(file_, "worker\tkind\tleaf\tleaves\tstart\tend\tworker_ms\tbytes\trows\n");
+  // A manager killed mid-run leaves its last line cut: this run's lines start on a line of their own.
+  {
+    std::ifstream before(path, std::ios::binary | std::ios::ate);
+    if (before && before.tellg() > 0) {
+      before.seekg(-1, std::ios::end);
+      char last = '\n';
+      if (before.get(last) && last != '\n') std::fputc('\n', file_);
+    }
+  }
+  std::fprintf(file_, "# cube %lld %lld %lld %lld %lld %lld leaf_size %lld batch %zu cores %zu\n",
+               static_cast<long long>(cube.lo[0]), static_cast<long long>(cube.lo[1]),
+               static_cast<long long>(cube.lo[2]), static_cast<long long>(cube.hi[0]),
+               static_cast<long long>(cube.hi[1]), static_cast<long long>(cube.hi[2]),
+               static_cast<long long>(leaf_size), batch, cores);
+  std::fprintf(file_, "worker\tkind\tleaf\tleaves\tstart\tend\tworker_ms\tbytes\trows\tempty\tcpu_ms\n");
 }
 
 TaskLogWriter::~TaskLogWriter() {
@@ -28,9 +40,9 @@ TaskLogWriter::~TaskLogWriter() {
 
 void TaskLogWriter::add(const TaskRecord& t) {
   if (!file_) return;
-  std::fprintf(file_, "%s\t%s\t%lld\t%llu\t%.6f\t%.6f\t%.3f\t%llu\t%llu\n", t.worker.c_str(), t.kind.c_str(),
+  std::fprintf(file_, "%s\t%s\t%lld\t%llu\t%.6f\t%.6f\t%.3f\t%llu\t%llu\t%u\t%.3f\n", t.worker.c_str(), t.kind.c_str(),
                static_cast<long long>(t.leaf), static_cast<unsigned long long>(t.leaves), t.start, t.end, t.worker_ms,
-               static_cast<unsigned long long>(t.bytes), static_cast<unsigned long long>(t.rows));
+               static_cast<unsigned long long>(t.bytes), static_cast<unsigned long long>(t.rows), t.empty, t.cpu_ms);
 }
 
 void TaskLogWriter::close(const TaskLogRun& r) {
@@ -56,9 +68,16 @@ std::vector<TaskLogRun> read_task_log(const std::filesystem::path& path) {
     return DataError(path.string() + ":" + std::to_string(number) + ": " + why, {path.string()},
                      "a task log is written by the manager (task_log.hpp); do not edit it");
   };
+  // A line that does not read is the cut last line of a killed manager when a run's cube line or the
+  // end of the file follows it (the next run starts on a line of its own); anywhere else, an error.
+  std::optional<DataError> cut;
   while (std::getline(in, line)) {
     ++number;
     if (line.empty()) continue;
+    if (cut) {
+      if (line.rfind("# cube ", 0) != 0) throw *cut;
+      cut.reset();
+    }
     std::istringstream f(line);
     if (line.rfind("# cube ", 0) == 0) {
       TaskLogRun run;
@@ -66,6 +85,12 @@ std::vector<TaskLogRun> read_task_log(const std::filesystem::path& path) {
       f >> hash >> word >> run.cube.lo[0] >> run.cube.lo[1] >> run.cube.lo[2] >> run.cube.hi[0] >> run.cube.hi[1] >>
           run.cube.hi[2] >> leaf_word >> run.leaf_size;
       if (f.fail() || leaf_word != "leaf_size") throw bad("a cube line that does not read");
+      std::string key;
+      std::size_t value = 0;
+      while (f >> key >> value) {
+        if (key == "batch") run.batch = value;
+        if (key == "cores") run.cores = value;
+      }
       runs.push_back(std::move(run));
       continue;
     }
@@ -87,11 +112,18 @@ std::vector<TaskLogRun> read_task_log(const std::filesystem::path& path) {
       }
       continue;
     }
-    if (line[0] == '#' || line.rfind("worker\t", 0) == 0) continue;
+    if (line.rfind("worker\t", 0) == 0) {
+      if (!runs.empty()) runs.back().empties = line.find("\tempty") != std::string::npos;
+      continue;
+    }
+    if (line[0] == '#') continue;
     if (runs.empty()) throw bad("a task before a cube line");
     TaskRecord t;
     f >> t.worker >> t.kind >> t.leaf >> t.leaves >> t.start >> t.end >> t.worker_ms >> t.bytes >> t.rows;
-    if (f.fail()) throw bad("a task line that does not read");
+    if (f.fail() || (runs.back().empties && !(f >> t.empty >> t.cpu_ms))) {
+      cut = bad("a task line that does not read");
+      continue;
+    }
     runs.back().tasks.push_back(std::move(t));
   }
   return runs;

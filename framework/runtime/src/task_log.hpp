@@ -11,7 +11,8 @@ class TaskLogWriter {
 public:
   // Appends to `path`, with the header line and the cube's line. A file that cannot be opened
   // leaves the log off (the run does not depend on it): ok() says so.
-  TaskLogWriter(const std::filesystem::path& path, const volume::Box& cube, std::int64_t leaf_size);
+  TaskLogWriter(const std::filesystem::path& path, const volume::Box& cube, std::int64_t leaf_size, std::size_t batch,
+                std::size_t cores);
   ~TaskLogWriter();
   TaskLogWriter(const TaskLogWriter&) = delete;
   TaskLogWriter& operator=(const TaskLogWriter&) = delete;

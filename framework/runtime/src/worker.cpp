@@ -7,6 +7,7 @@
 
 #include <csignal>
 #include <cstdlib>
+#include <ctime>
 #include <functional>
 #include <optional>
 #include <thread>
@@ -17,6 +18,7 @@
 #include "geotandem/runtime/manager.hpp"
 #include "geotandem/runtime/surface_chunks.hpp"
 #include "geotandem/store/shard.hpp"
+#include "geotandem/tandem/blocks.hpp"
 #include "geotandem/tandem/marching_cubes.hpp"
 #include "geotandem/tandem/serialize.hpp"
 #include "walltime.hpp"
@@ -28,6 +30,13 @@ namespace geotandem::runtime {
 namespace {
 
 using Clock = std::chrono::steady_clock;
+
+// This process's CPU time (user + system, every thread), in microseconds.
+std::uint64_t cpu_microseconds() {
+  timespec t{};
+  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);
+  return static_cast<std::uint64_t>(t.tv_sec) * 1000000u + static_cast<std::uint64_t>(t.tv_nsec) / 1000u;
+}
 
 // Finished components to the worker's shard; their index entries wait for the next COMMIT, which
 // goes at the end of the task or, during a long one, every 200 ms (or 256 components): a manager
@@ -111,6 +120,7 @@ private:
   bool handle(const Message& m) {
     {
       task_lease_ = m.lease;
+      task_cpu_start_ = cpu_microseconds();
       switch (m.kind) {
       case MessageKind::setup: setup(m); break;
       case MessageKind::extract: extract(m); break;
@@ -198,20 +208,32 @@ private:
     d.kind = MessageKind::done;
     d.lease = task.lease;
     const auto spent = Clock::now() - start;
-    d.number = static_cast<std::uint64_t>(std::chrono::duration<double, std::milli>(spent).count());
+    d.number = cpu_microseconds() - task_cpu_start_;
     // 5: the same in microseconds, for the task log (a leaf of an empty region takes well under 1 ms).
     d.box[5] = std::chrono::duration_cast<std::chrono::microseconds>(spent).count();
     rusage u{};
     getrusage(RUSAGE_SELF, &u);
     d.box[0] = u.ru_maxrss;
     // 1: this worker's surface holds nothing after the task; every component of its leaves is in
-    // the COMMIT above, so the manager may record the leaves as finished (resume).
-    d.box[1] = !surface_ || surface_->component_count() == 0 ? 1 : 0;
+    // the COMMIT above, so the manager records the leaves as finished (resume) and, after an
+    // EXTRACT or a MERGE, schedules nothing more for them (issue 55): the worker drops the empty
+    // surface and its region, and nothing is sent or merged for it. Its counters go with the DONE,
+    // so that the run's totals keep them.
+    const bool empty = !surface_ || surface_->component_count() == 0;
+    // 2 (added to 1): the leaves this EXTRACT gave left nothing open by themselves (the task log's
+    // record of which leaves are empty, for the scale model).
+    d.box[1] = (empty ? 1 : 0) + (piece_empty_ ? 2 : 0);
     d.box[2] = static_cast<std::int64_t>(totals_.input_triangles);
     d.box[3] = static_cast<std::int64_t>(totals_.collapses);
     // 4: the triangles this worker's surface holds after the task (the run's triangles held).
     d.box[4] = surface_ ? static_cast<std::int64_t>(surface_->triangle_count()) : 0;
-    if (final) d.text = counters_to_json(totals_); // every counter of the whole surface
+    if (final) {
+      d.text = counters_to_json(totals_); // every counter of the whole surface
+    } else if (empty && surface_) {
+      const tandem::SimplifyCounters dropped = surface_->counters();
+      if (dropped.input_triangles > 0 || dropped.evaluations > 0) d.text = counters_to_json(dropped);
+      surface_.reset();
+    }
     link_.send(d);
   }
 
@@ -219,11 +241,18 @@ private:
     need_setup(m);
     const auto start = Clock::now();
     const volume::Box cells{{m.box[0], m.box[1], m.box[2]}, {m.box[3], m.box[4], m.box[5]}};
+    piece_empty_ = false;
     std::unique_ptr<tandem::WorkingSurface> piece;
-    tandem::extract_block(*volume_, cells, options_tandem_, &*sink_, &piece,
-                          settings_.extraction.mode == tandem::ExtractMode::brute);
+    const bool brute = settings_.extraction.mode == tandem::ExtractMode::brute;
+    const std::int64_t leaf = tandem::leaf_size(settings_.extraction, volume_->geometry().shape);
+    if (cells.size(0) > leaf || cells.size(1) > leaf || cells.size(2) > leaf) // a batch: a subtree's leaves
+      piece = tandem::extract_subtree(*volume_, cells, leaf, options_tandem_, &*sink_, brute);
+    else
+      tandem::extract_block(*volume_, cells, options_tandem_, &*sink_, &piece, brute);
+    piece_empty_ = !piece || piece->component_count() == 0;
     absorb(std::move(piece));
     report(m, start);
+    piece_empty_ = false;
   }
 
   void absorb(std::unique_ptr<tandem::WorkingSurface> piece) {
@@ -348,9 +377,11 @@ private:
   std::optional<store::ShardWriter> writer_;
   std::optional<ShardSink> sink_;
   std::unique_ptr<tandem::WorkingSurface> surface_;
-  Lease task_lease_;                // of the task in progress (mid-task COMMITs carry it)
-  bool retiring_ = false;           // near its walltime: RETIRE sent
-  tandem::SimplifyCounters totals_; // of the whole surface, once finished
+  Lease task_lease_;                 // of the task in progress (mid-task COMMITs carry it)
+  bool retiring_ = false;            // near its walltime: RETIRE sent
+  bool piece_empty_ = false;         // the EXTRACT in progress gave an empty piece
+  std::uint64_t task_cpu_start_ = 0; // this process's CPU microseconds when the task began
+  tandem::SimplifyCounters totals_;  // of the whole surface, once finished
 };
 
 } // namespace

@@ -133,6 +133,21 @@ private:
 
 } // namespace
 
+std::unique_ptr<WorkingSurface> extract_subtree(const volume::Volume& volume, const volume::Box& cells,
+                                                std::int64_t block_size, const TandemOptions& options,
+                                                mesh::ComponentSink* sink, bool brute) {
+  const volume::Box cube = cube_cells(volume.geometry().shape);
+  if (cells.empty() || !cube.contains(cells) || block_size <= 0)
+    throw InvalidArgument("extract subtree: cells " + cells.to_string() + " are empty or leave the cube's cells " +
+                              cube.to_string() + ", or the leaf size is not positive",
+                          {.block = cells.to_string()});
+  const BlockTree tree(cells, block_size);
+  TandemOptions quiet = options;
+  quiet.progress = nullptr;
+  Driver driver(volume, tree, quiet, sink, brute);
+  return driver.run(tree.root());
+}
+
 BlocksStats extract_blocks(const volume::Volume& volume, const volume::Box& cells, std::int64_t block_size,
                            const TandemOptions& options, mesh::ComponentSink* sink,
                            std::unique_ptr<WorkingSurface>* remaining, bool brute) {

@@ -54,7 +54,8 @@ struct ManagerReport {
   std::size_t workers = 0; // that joined
   std::size_t deaths = 0;
   std::size_t restarts = 0;
-  std::uint64_t extract = 0, send = 0, merge = 0, finish = 0; // tasks completed
+  std::uint64_t extract = 0, send = 0, merge = 0, finish = 0; // tasks completed (extract: leaves)
+  std::uint64_t extract_tasks = 0;                            // EXTRACTs (a batch is one)
   std::uint64_t redone_leaves = 0;
   std::size_t retirements = 0;   // workers that retired near their walltime
   std::uint64_t handed_back = 0; // leaves in the surfaces they handed to other workers

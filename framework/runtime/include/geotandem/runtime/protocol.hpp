@@ -41,8 +41,10 @@ enum class MessageKind : std::uint8_t {
   // worker -> manager
   hello = 1,         // token, pid: the worker is up
   ask = 2,           // the seed's get_task()
-  done = 3,          // lease, number = milliseconds, box[0] = peak RSS (KiB), box[1] = 1 when the worker's
-                     // surface is empty after it: EXTRACT, MERGE or final over; after the final FINISHED,
+  done = 3,          // lease, number = the task's CPU microseconds (the worker process's user + system; the
+                     // scale model's demand), box[0] = peak RSS (KiB), box[1] bit 0: the worker's
+                     // surface is empty after it (it dropped it), bit 1: the EXTRACT's leaves left
+                     // nothing open by themselves; after the final FINISHED,
                      // box[2], box[3] = marching-cubes triangles and collapses of the whole surface;
                      // box[5] = the task's microseconds (0 from an older worker; for the task log)
   surface = 4,       // lease, number = total bytes, box[0] = XXH64 of them: the end of the worker's surface for

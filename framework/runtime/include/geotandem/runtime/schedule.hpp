@@ -48,7 +48,7 @@ const char* to_string(TaskKind kind);
 
 struct Decision {
   TaskKind kind = TaskKind::wait;
-  tandem::NodeId leaf = tandem::kNoNode; // extract
+  tandem::NodeId leaf = tandem::kNoNode; // extract: a leaf, or a node whose leaves are all extracted (a batch)
   WorkerId target = 0;                   // send
   TransferId transfer = 0;               // send, merge
   bool final = false;                    // finished: this worker holds the whole surface
@@ -58,11 +58,24 @@ struct ScheduleCounts {
   std::uint64_t extract = 0, send = 0, merge = 0, wait = 0, finished = 0;
   std::uint64_t redone_leaves = 0; // leaves made unprocessed again by a worker's death
   std::uint64_t handback = 0;      // SENDs of retiring workers (counted in send too)
+  std::uint64_t emptied = 0;       // tasks after which the worker's surface was empty (done(..., true))
 };
 
 namespace detail {
 class LeafCounts;
 }
+
+// How many leaves an EXTRACT carries (Schedule::set_batch), the manager's policy and the scale
+// model's: a task worth about `target` seconds of a worker's time at `leaf_seconds` a leaf (the mean
+// so far; 0: none measured yet, one leaf), at most a quarter of the unprocessed leaves per worker
+// (the end of the extraction stays balanced) and at most `cap`; a power of two (a whole subtree in a
+// regular tree). batch_seconds() gives the target: kBatchSeconds, or more when the manager's CPU
+// per task so far would make it more than kManagerShare of the wall time with `workers` busy.
+inline constexpr double kBatchSeconds = 0.025;
+inline constexpr double kManagerShare = 0.04;
+double batch_seconds(double manager_cpu_per_task, std::size_t workers);
+std::size_t extract_batch(double leaf_seconds, std::size_t unprocessed, std::size_t workers, std::size_t cap,
+                          double target = kBatchSeconds);
 
 class Schedule {
 public:
@@ -75,6 +88,11 @@ public:
   // A leaf whose components are already committed in full by an earlier run (resume): never
   // extracted. Only before the first decision. Throws InvalidArgument for a non-leaf.
   void skip(tandem::NodeId leaf);
+  // Small leaves in batches (issue 55): an EXTRACT hands out the largest subtree, of at most
+  // `leaves` leaves, around the leaf it would have chosen, all of whose leaves are unprocessed (the
+  // worker extracts them in tree order and merges them bottom-up as one process does). 1 (the
+  // default): one leaf per EXTRACT, the seed's algorithm. May change between decisions.
+  void set_batch(std::size_t leaves) { batch_ = leaves < 1 ? 1 : leaves; }
 
   // Events. A worker id is joined once; events for unknown or departed workers throw std::logic_error
   // (the transport filters stale messages before they get here).
@@ -82,8 +100,11 @@ public:
   // The worker asks for its next task; it must have no task in progress.
   Decision next(WorkerId worker);
   // The worker finished its task: EXTRACT (its leaf is now in its surface), MERGE, the final
-  // FINISHED. For SEND use arrived().
-  void done(WorkerId worker);
+  // FINISHED. For SEND use arrived(). `emptied` (EXTRACT or MERGE): the worker's surface holds
+  // nothing after the task, every component of its leaves is committed, and the worker dropped it:
+  // the leaves it held are finished (as skipped ones are), it holds nothing, and no SEND or MERGE
+  // is ever made for them. A finished leaf is not re-done when its worker dies later.
+  void done(WorkerId worker, bool emptied = false);
   // The surface of the sender's SEND reached the manager; the sender is idle again. Returns false
   // when the transfer's target died meanwhile (the bytes are dropped: its leaves are re-done).
   bool arrived(WorkerId sender, TransferId transfer);
@@ -113,6 +134,10 @@ public:
   // task, these and the ones taken before are finished. O(leaves returned).
   std::vector<tandem::NodeId> take_unrecorded(WorkerId worker);
   std::size_t skipped() const { return skipped_; }
+  // The leaves under a node of the tree (1 for a leaf): those of an EXTRACT's batch.
+  std::size_t leaves_under(tandem::NodeId node) const { return leaves_under_.at(static_cast<std::size_t>(node)); }
+  // Leaves finished with an empty surface during this run (done(..., true)).
+  std::size_t dropped() const { return dropped_; }
   const ScheduleCounts& counts() const { return counts_; }
   std::size_t live_workers() const { return workers_.size(); }
 
@@ -148,6 +173,11 @@ private:
   Decision send_to(WorkerId id, Worker& w, WorkerId target);
   tandem::NodeId unprocessed_leaf(const Worker& w) const;
   void release(const Aggregate& leaves, std::vector<tandem::NodeId>& out);
+  // The node an EXTRACT hands out for `leaf` (see set_batch) and taking its leaves.
+  tandem::NodeId batch_of(tandem::NodeId leaf) const;
+  void take_leaves(WorkerId id, Worker& w, tandem::NodeId node);
+  // Leaves finished before this run (skipped) or during it with an empty surface (dropped).
+  std::size_t finished_leaves() const { return skipped_ + dropped_; }
   Decision assign(Worker& w, Decision d);
   // The claimed leaves (held or on their way) of each worker as maximal nodes, in owner_.
   void claim(WorkerId id, const Aggregate& leaves);
@@ -169,11 +199,14 @@ private:
   std::unique_ptr<detail::LeafCounts> open_;  // unprocessed leaves
   std::unique_ptr<detail::LeafCounts> taken_; // leaves a live worker claims
   std::vector<WorkerId> owner_;               // per node: the worker claiming it as a maximal node, 0: none
+  std::vector<std::uint32_t> leaves_under_;   // per node
   TransferId next_transfer_ = 1;
   std::uint64_t next_order_ = 1;
   bool started_ = false;
   bool complete_ = false;
   std::size_t skipped_ = 0;
+  std::size_t dropped_ = 0;
+  std::size_t batch_ = 1;
   std::size_t awaited_ = 0;
   ScheduleCounts counts_;
 };

@@ -39,6 +39,14 @@ struct BlocksStats {
   double seconds_merge = 0.0;       // merges (weld, seam simplification, dumping) and finish
 };
 
+// The leaves of `cells` (a node of the block tree of leaf size `block_size`: its subtree is the
+// block tree of `cells`, the split being local) extracted and merged bottom-up as extract_blocks
+// does, without the final pass: the surface stays open for later merges (a worker's batch of small
+// leaves, issue 55). Finished components go to `sink` as they are found.
+std::unique_ptr<WorkingSurface> extract_subtree(const volume::Volume& volume, const volume::Box& cells,
+                                                std::int64_t block_size, const TandemOptions& options,
+                                                mesh::ComponentSink* sink, bool brute = false);
+
 // Extracts the isosurface of `cells` (a box of cells of the volume's cube, usually
 // cube_cells(shape)) with a block tree of leaf size `block_size` cells (<= 0: one block), finished
 // components to `sink` (may be null). options.progress (may be null) sees one task, one unit per

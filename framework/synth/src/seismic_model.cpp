@@ -160,9 +160,10 @@ Aabb BrightSpot::bounds(const Frame& frame, double half_height) const {
   return Aabb{{c[0] - e[0], c[1] - e[1], centre.z - half_height}, {c[0] + e[0], c[1] + e[1], centre.z + half_height}};
 }
 
-SeismicModel::SeismicModel(const Frame& frame_, const Wavelet& wavelet_)
-    : frame(frame_), wavelet(wavelet_), chaotic_grid({frame_.geometry().shape[0], frame_.geometry().shape[1], 1}, 16),
-      spot_grid({frame_.geometry().shape[0], frame_.geometry().shape[1], 1}, 16) {}
+SeismicModel::SeismicModel(const Frame& frame_in, const Wavelet& wavelet_in)
+    : frame(frame_in), wavelet(wavelet_in),
+      chaotic_grid({frame_in.geometry().shape[0], frame_in.geometry().shape[1], 1}, 16),
+      spot_grid({frame_in.geometry().shape[0], frame_in.geometry().shape[1], 1}, 16) {}
 
 void SeismicModel::compute_layer(std::int64_t m, double& tau, double& amplitude) const {
   const std::uint64_t r = hash1(reflector_key, m);
@@ -226,7 +227,7 @@ std::uint64_t SeismicModel::next_cache_id() {
 const TraceInfo& SeismicModel::trace_info(std::int64_t i, std::int64_t j) const {
   // Per thread, direct-mapped on (i, j) mod 64: the traces of a 64 x 64 column of boxes, which a
   // consumer reading boxes down the sample axis asks for again and again.
-  thread_local std::vector<TraceInfo> cache(64 * 64);
+  thread_local std::vector<TraceInfo> cache(std::size_t{64} * 64);
   thread_local TraceInfo scratch;
   if (cache_id == 0) {
     describe(i, j, scratch);
@@ -241,10 +242,6 @@ const TraceInfo& SeismicModel::trace_info(std::int64_t i, std::int64_t j) const 
     slot.j = j;
   }
   return slot;
-}
-
-void SeismicModel::trace(std::int64_t i, std::int64_t j, std::int64_t k0, std::int64_t k1, double* out) const {
-  trace(i, j, trace_info(i, j), k0, k1, out);
 }
 
 GEOTANDEM_AVX2_CLONES void SeismicModel::trace(std::int64_t i, std::int64_t j, const TraceInfo& info, std::int64_t k0,
@@ -328,6 +325,11 @@ GEOTANDEM_AVX2_CLONES void SeismicModel::trace(std::int64_t i, std::int64_t j, c
   add_supports(a, wavelet.step2, wavelet.step32, spikes.position.data(), spikes.amplitude.data(), spikes.first.data(),
                spikes.last.data(), spikes.g.data(), spikes.ratio.data(), count_spikes, k0 - reach, spikes.ext.data());
   std::copy_n(spikes.ext.data() + reach, count, out);
+}
+
+// After the cloned overload: clang refuses a function that becomes multiversioned after a use.
+void SeismicModel::trace(std::int64_t i, std::int64_t j, std::int64_t k0, std::int64_t k1, double* out) const {
+  trace(i, j, trace_info(i, j), k0, k1, out);
 }
 
 } // namespace geotandem::synth::detail

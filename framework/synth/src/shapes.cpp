@@ -11,8 +11,8 @@ Axes Axes::of(double azimuth_rad) {
   return {s, c, c, -s};
 }
 
-Ellipsoid::Ellipsoid(Vec3 centre_, double a_, double b_, double c_, double azimuth_)
-    : centre(centre_), a(a_), b(b_), c(c_), azimuth(azimuth_), axes(Axes::of(azimuth_)) {}
+Ellipsoid::Ellipsoid(Vec3 centre_in, double a_in, double b_in, double c_in, double azimuth_in)
+    : centre(centre_in), a(a_in), b(b_in), c(c_in), azimuth(azimuth_in), axes(Axes::of(azimuth_in)) {}
 
 Ellipsoid::Column Ellipsoid::column(const Vec3& p) const {
   const double dx = p.x - centre.x, dy = p.y - centre.y;
@@ -40,9 +40,10 @@ Aabb Ellipsoid::bounds(const Frame& frame) const {
   return Aabb{{ci[0] - e[0], ci[1] - e[1], ci[2] - c}, {ci[0] + e[0], ci[1] + e[1], ci[2] + c}};
 }
 
-Shell::Shell(const Ellipsoid& outer_, double inner_)
-    : outer(outer_), cavity(outer_.centre, outer_.a * inner_, outer_.b * inner_, outer_.c * inner_, outer_.azimuth),
-      inner(inner_) {}
+Shell::Shell(const Ellipsoid& outer_in, double inner_in)
+    : outer(outer_in),
+      cavity(outer_in.centre, outer_in.a * inner_in, outer_in.b * inner_in, outer_in.c * inner_in, outer_in.azimuth),
+      inner(inner_in) {}
 
 double Shell::signed_distance(const Column& column, double z) const {
   return std::min(outer.signed_distance(column.outer, z), -cavity.signed_distance(column.cavity, z));

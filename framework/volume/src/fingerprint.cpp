@@ -25,7 +25,7 @@ std::uint64_t mix(std::uint64_t hash, const unsigned char* data, std::size_t siz
 std::uint64_t sample_file(const std::filesystem::path& path, std::uint64_t size, std::uint64_t hash) {
   int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC | O_NONBLOCK);
   if (fd < 0) return hash;
-  std::vector<unsigned char> buffer(64 * 1024);
+  std::vector<unsigned char> buffer(std::size_t{64} * 1024);
   auto take = [&](std::uint64_t offset, std::size_t length) {
     ssize_t got = ::pread(fd, buffer.data(), length, static_cast<off_t>(offset));
     if (got > 0) hash = mix(hash, buffer.data(), static_cast<std::size_t>(got));

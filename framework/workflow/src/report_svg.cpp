@@ -66,15 +66,16 @@ std::string svg_rose(const std::vector<double>& azimuths, const std::vector<doub
 }
 
 std::string svg_volume_histogram(const std::vector<double>& volumes, double threshold, const std::string& unit) {
-  const double W = 520, H = 260, left = 56, right = 12, top = 14, bottom = 44;
+  const double width = 520, height = 260, left = 56, right = 12, top = 14, bottom = 44;
   std::vector<double> logs;
   for (double v : volumes)
     if (v > 0) logs.push_back(std::log10(v));
   std::ostringstream s;
-  s << "<svg class=\"histogram\" xmlns=\"http://www.w3.org/2000/svg\" width=\"" << W << "\" height=\"" << H
-    << "\" viewBox=\"0 0 " << W << " " << H << "\"><title>Component volumes (log scale)</title>";
+  s << "<svg class=\"histogram\" xmlns=\"http://www.w3.org/2000/svg\" width=\"" << width << "\" height=\"" << height
+    << "\" viewBox=\"0 0 " << width << " " << height << "\"><title>Component volumes (log scale)</title>";
   if (logs.empty()) {
-    s << "<text x=\"" << W / 2 << "\" y=\"" << H / 2 << "\" text-anchor=\"middle\">no closed components</text></svg>";
+    s << "<text x=\"" << width / 2 << "\" y=\"" << height / 2
+      << "\" text-anchor=\"middle\">no closed components</text></svg>";
     return s.str();
   }
   double lo = std::floor(*std::min_element(logs.begin(), logs.end()));
@@ -90,7 +91,7 @@ std::string svg_volume_histogram(const std::vector<double>& volumes, double thre
     ++count[std::min<std::size_t>(static_cast<std::size_t>((l - lo) / (hi - lo) * bins), count.size() - 1)];
   std::size_t peak = *std::max_element(count.begin(), count.end());
   double peak_log = std::log10(static_cast<double>(peak) + 1.0);
-  double pw = W - left - right, ph = H - top - bottom;
+  double pw = width - left - right, ph = height - top - bottom;
   auto x_of = [&](double l) { return left + (l - lo) / (hi - lo) * pw; };
   // Counts on a log scale too: the bubbles outnumber the bodies by orders of magnitude.
   auto y_of = [&](std::size_t c) { return top + ph - ph * std::log10(static_cast<double>(c) + 1.0) / peak_log; };
@@ -107,9 +108,9 @@ std::string svg_volume_histogram(const std::vector<double>& volumes, double thre
       << (removed ? "#c9c9c9" : "#2b7bb9") << "\"><title>" << c << " components</title></rect>";
   }
   for (int e = static_cast<int>(lo); e <= static_cast<int>(hi); ++e)
-    s << "<text x=\"" << num(x_of(e)) << "\" y=\"" << H - bottom + 16 << "\" text-anchor=\"middle\" font-size=\"11\">"
-      << power_label(e) << "</text>";
-  s << "<text x=\"" << left + pw / 2 << "\" y=\"" << H - 6 << "\" text-anchor=\"middle\" font-size=\"12\">volume ("
+    s << "<text x=\"" << num(x_of(e)) << "\" y=\"" << height - bottom + 16
+      << "\" text-anchor=\"middle\" font-size=\"11\">" << power_label(e) << "</text>";
+  s << "<text x=\"" << left + pw / 2 << "\" y=\"" << height - 6 << "\" text-anchor=\"middle\" font-size=\"12\">volume ("
     << unit << ", log scale)</text>"
     << "<text x=\"14\" y=\"" << top + ph / 2 << "\" text-anchor=\"middle\" font-size=\"12\" transform=\"rotate(-90 14 "
     << top + ph / 2 << ")\">components (log)</text>"
@@ -128,16 +129,16 @@ std::string svg_volume_histogram(const std::vector<double>& volumes, double thre
 
 std::string svg_series(const std::vector<std::uint64_t>& values, const std::string& x_label,
                        const std::string& y_label) {
-  const double W = 520, H = 240, left = 64, right = 12, top = 14, bottom = 40;
+  const double width = 520, height = 240, left = 64, right = 12, top = 14, bottom = 40;
   std::ostringstream s;
-  s << "<svg class=\"series\" xmlns=\"http://www.w3.org/2000/svg\" width=\"" << W << "\" height=\"" << H
-    << "\" viewBox=\"0 0 " << W << " " << H << "\"><title>" << y_label << "</title>";
+  s << "<svg class=\"series\" xmlns=\"http://www.w3.org/2000/svg\" width=\"" << width << "\" height=\"" << height
+    << "\" viewBox=\"0 0 " << width << " " << height << "\"><title>" << y_label << "</title>";
   if (values.empty()) {
-    s << "<text x=\"" << W / 2 << "\" y=\"" << H / 2 << "\" text-anchor=\"middle\">no data</text></svg>";
+    s << "<text x=\"" << width / 2 << "\" y=\"" << height / 2 << "\" text-anchor=\"middle\">no data</text></svg>";
     return s.str();
   }
   double peak = static_cast<double>(std::max<std::uint64_t>(1, *std::max_element(values.begin(), values.end())));
-  double pw = W - left - right, ph = H - top - bottom;
+  double pw = width - left - right, ph = height - top - bottom;
   s << "<rect x=\"" << left << "\" y=\"" << top << "\" width=\"" << pw << "\" height=\"" << ph
     << "\" fill=\"none\" stroke=\"#999\"/><polyline class=\"line\" fill=\"none\" stroke=\"#2b7bb9\" "
        "stroke-width=\"1.5\" points=\"";
@@ -152,7 +153,7 @@ std::string svg_series(const std::vector<std::uint64_t>& values, const std::stri
     // The first and last x values, so the axis reads without counting.
     << "<text x=\"" << left << "\" y=\"" << top + ph + 14 << "\" text-anchor=\"start\" font-size=\"10\">1</text>"
     << "<text x=\"" << left + pw << "\" y=\"" << top + ph + 14 << "\" text-anchor=\"end\" font-size=\"10\">"
-    << values.size() << "</text><text x=\"" << left + pw / 2 << "\" y=\"" << H - 8
+    << values.size() << "</text><text x=\"" << left + pw / 2 << "\" y=\"" << height - 8
     << "\" text-anchor=\"middle\" font-size=\"12\">" << x_label << "</text><text x=\"14\" y=\"" << top + ph / 2
     << "\" text-anchor=\"middle\" font-size=\"12\" transform=\"rotate(-90 14 " << top + ph / 2 << ")\">" << y_label
     << "</text></svg>";

@@ -264,7 +264,7 @@ Array3 correlate(const Array3& in, int axis, const Kernel& kernel) {
 
 void correlate(const Array3& in, int axis, const Kernel& kernel, Array3& out) {
   volume::Index3 shape = in.shape;
-  shape[axis] -= 2 * kernel.radius();
+  shape[axis] -= 2 * std::int64_t{kernel.radius()};
   const auto needed = shape[axis] > 0 ? static_cast<std::size_t>(shape[0] * shape[1] * shape[2]) : 0;
   if (!out.data || out.count() != needed)
     out = Array3(shape[axis] > 0 ? shape : volume::Index3{0, 0, 0});
@@ -276,7 +276,7 @@ void correlate(const Array3& in, int axis, const Kernel& kernel, Array3& out) {
 volume::Index3 correlate(const float* in, const volume::Index3& in_shape, int axis, const Kernel& kernel, float* out) {
   const int radius = kernel.radius();
   volume::Index3 shape = in_shape;
-  shape[axis] -= 2 * radius;
+  shape[axis] -= 2 * std::int64_t{radius};
   if (shape[axis] <= 0)
     throw std::logic_error("filter of radius " + std::to_string(radius) + " along axis " + std::to_string(axis) +
                            " needs more than " + std::to_string(2 * radius) + " samples, got " +

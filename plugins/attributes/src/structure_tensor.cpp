@@ -17,7 +17,8 @@ namespace {
 class PlaneRings {
 public:
   PlaneRings(int banks, int size, std::size_t count)
-      : size_(size), stride_(padded(count)), data_(static_cast<std::size_t>(banks * size) * stride_) {}
+      : size_(size), stride_(padded(count)),
+        data_(static_cast<std::size_t>(banks) * static_cast<std::size_t>(size) * stride_) {}
   float* slot(int bank, std::int64_t p) {
     return data_.data() + static_cast<std::size_t>(bank * size_ + p % size_) * stride_;
   }
@@ -48,7 +49,7 @@ void stream_structure_tensor(const volume::Volume& input, const volume::Box& box
   const Array3 u = read_mirrored(input, box, f.halo);
   const std::int64_t n1 = box.size(1), n2 = box.size(2);
   // Plane sizes: gradient planes are the box grown by the smoothing radii on axes 1 and 2.
-  const std::int64_t g1 = n1 + 2 * ra, g2 = n2 + 2 * f.along.radius();
+  const std::int64_t g1 = n1 + 2 * std::int64_t{ra}, g2 = n2 + 2 * std::int64_t{f.along.radius()};
   const auto grad_count = static_cast<std::size_t>(g1 * g2), out_count = static_cast<std::size_t>(n1 * n2);
   const std::int64_t input_planes = u.shape[0]; // n0 + 2 (rg + ra)
 
@@ -70,7 +71,7 @@ void stream_structure_tensor(const volume::Volume& input, const volume::Box& box
   // Planes first .. first + count - 1 of `to`'s bank c from those of `from`'s, filtered across.
   const auto across = [&](PlaneRings& from, int c, std::int64_t first, const Kernel& kernel, PlaneRings& to,
                           std::int64_t count, std::size_t n) {
-    from.window(c, first, static_cast<int>(2 * kernel.radius() + count), window);
+    from.window(c, first, static_cast<int>(2 * std::int64_t{kernel.radius()} + count), window);
     outs.resize(static_cast<std::size_t>(count));
     for (std::int64_t t = 0; t < count; ++t)
       outs[static_cast<std::size_t>(t)] = to.slot(c, first + t);
@@ -92,7 +93,7 @@ void stream_structure_tensor(const volume::Volume& input, const volume::Box& box
     }
 
     // Gradient planes q up to end - 1 - 2 rg: across axis 0, derivative for component 0.
-    const std::int64_t gradients = end - 2 * rg - next_gradient;
+    const std::int64_t gradients = end - 2 * std::int64_t{rg} - next_gradient;
     if (gradients <= 0) continue;
     const std::int64_t q0 = next_gradient;
     across(partial, 0, q0, f.derive, grad, gradients, grad_count);
@@ -111,7 +112,7 @@ void stream_structure_tensor(const volume::Volume& input, const volume::Box& box
     next_gradient += gradients;
 
     // Output planes o up to next_gradient - 1 - 2 ra: tensor smoothing across axis 0.
-    const std::int64_t outputs = next_gradient - 2 * ra - next_output;
+    const std::int64_t outputs = next_gradient - 2 * std::int64_t{ra} - next_output;
     if (outputs <= 0) continue;
     for (int c = 0; c < 6; ++c)
       across(smoothed, c, next_output, f.across, tensor, outputs, out_count);

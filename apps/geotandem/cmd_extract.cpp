@@ -63,7 +63,7 @@ workflow::ParamValue value_of(const std::string& name, const std::string& option
 
 void add_extract_command(CLI::App& app, Context& context, Runner& run) {
   struct Args {
-    std::string cube, out, nan = "error", variable;
+    std::string cube, out, nan = "error", variable, crs;
     std::string iso, max_error = default_of("max_error"), isotropy = default_of("isotropy"), axis = default_of("axis"),
                      block_size = default_of("block_size"), mode = default_of("mode");
     bool no_extended_time_lag = false;
@@ -118,9 +118,11 @@ void add_extract_command(CLI::App& app, Context& context, Runner& run) {
   // Start afresh instead of resuming (refused while another process writes the store).
   cmd->add_flag("--fresh", a->fresh, "replace the store in --out instead of resuming it");
   add_cube_reading_options(*cmd, a->variable, a->segy);
+  add_crs_option(*cmd, a->crs);
   cmd->callback([a, &context, &run] {
     run = [a, &context] {
       volume::OpenOptions open;
+      open.crs = crs_option(a->crs);
       open.nan_policy = volume::parse_nan_policy(a->nan);
       open.no_data = no_data_option(a->no_data);
       open.variable = a->variable;
@@ -146,6 +148,7 @@ void add_extract_command(CLI::App& app, Context& context, Runner& run) {
       workflow::require_cells(cube->geometry(), a->cube); // before the store is made
       for (const std::string& warning : volume::open_warnings(*cube))
         context.log.warning(warning);
+      context.log.info("CRS: " + cube->geometry().crs.label());
       // One worker per core unless told otherwise (no more than there are blocks; one block is
       // extracted in this process); --workers 0 extracts in this process.
       s.workers = a->workers.value_or(workflow::default_worker_count(cube->geometry(), s.block_size));

@@ -85,7 +85,7 @@ void print_table(const std::vector<store::ComponentRow>& rows, std::uint64_t tot
 }
 
 std::string volume_unit(const volume::Geometry& g) {
-  return g.z_unit == volume::SampleUnit::metres ? "(m3)" : "(m2.ms)";
+  return "(" + volume::volume_unit(g) + ")";
 }
 
 void print_show(const store::ComponentRow& r, const volume::Geometry& g) {
@@ -107,7 +107,8 @@ void print_show(const store::ComponentRow& r, const volume::Geometry& g) {
   o << "\n";
   o << "volume:         " << format_number(s.volume) << " " << volume_unit(g) << "\n";
   o << "area:           " << format_number(s.area) << "\n";
-  o << "centroid:       " << triple(s.centroid) << "  (x m, y m, z " << z << ")\n";
+  const std::string xy = g.crs.empty() ? std::string("m") : g.crs.unit;
+  o << "centroid:       " << triple(s.centroid) << "  (x " << xy << ", y " << xy << ", z " << z << ")\n";
   o << "box min:        " << triple(s.box_min) << "\n";
   o << "box max:        " << triple(s.box_max) << "\n";
   o << "obb center:     " << triple(s.obb_center) << "\n";
@@ -117,6 +118,7 @@ void print_show(const store::ComponentRow& r, const volume::Geometry& g) {
   o << "azimuth:        " << format_number(s.azimuth, "%.2f") << " deg from north (axial)\n";
   o << "dip:            " << format_number(s.dip, "%.2f") << " deg\n";
   o << "elongation:     " << format_number(s.elongation, "%.3f") << "\n";
+  o << "crs:            " << g.crs.label() << "\n";
   o << "run:            " << (r.run ? std::to_string(*r.run) : std::string("-")) << "\n";
   o << "record:         shards/" << r.location.shard << ".gts offset " << r.location.offset << ", " << r.location.length
     << " bytes, xxh64 " << row_json(r)["checksum"].get<std::string>() << "\n";
@@ -195,7 +197,11 @@ void add_export(CLI::App* parent, Context& context, Runner& run) {
   auto args = std::make_shared<ExportArgs>();
   auto* cmd = parent->add_subcommand("export", "Export the components a filter selects (all by default).");
   cmd->add_option("store", args->store, "the store directory")->required();
-  cmd->add_option("--format", args->format, "ply, obj, vtp (ParaView) or ts (GOCAD TSurf)")->required();
+  cmd->add_option("--format", args->format,
+                  "ply, obj, vtp (ParaView), ts (GOCAD TSurf) or gpkg (GeoPackage for QGIS, ArcGIS, geopandas: "
+                  "layers 'footprints' and 'centroids' with every measure; with --selection only its members, "
+                  "otherwise a column in_NAME per selection)")
+      ->required();
   cmd->add_option("--out", args->out, "the output file, or directory with --per-component")->required();
   cmd->add_flag("--per-component", args->per_component, "one file per component, named geobody_<key>.<ext>");
   cmd->add_flag("--float32", args->float32, "PLY: float32 vertices instead of float64");
@@ -214,6 +220,7 @@ void add_export(CLI::App* parent, Context& context, Runner& run) {
       options.overwrite = args->overwrite;
       options.skip_damaged = args->skip_damaged;
       options.caps = !args->no_caps;
+      options.selection = args->filters.selection;
       auto s = store::ComponentStore::open(args->store);
       auto rows = s.query(args->filters.query());
       auto progress = context.progress();

@@ -22,7 +22,9 @@ ExportFormat parse_export_format(const std::string& text) {
   if (text == "obj") return ExportFormat::obj;
   if (text == "vtp") return ExportFormat::vtp;
   if (text == "ts" || text == "tsurf") return ExportFormat::tsurf;
-  throw InvalidArgument("unknown export format '" + text + "'", {}, "use ply, obj, vtp or ts (GOCAD TSurf)");
+  if (text == "gpkg") return ExportFormat::gpkg;
+  throw InvalidArgument("unknown export format '" + text + "'", {},
+                        "use ply, obj, vtp, ts (GOCAD TSurf) or gpkg (GeoPackage of footprints and centroids)");
 }
 
 const char* file_extension(ExportFormat format) {
@@ -31,6 +33,7 @@ const char* file_extension(ExportFormat format) {
   case ExportFormat::obj: return "obj";
   case ExportFormat::vtp: return "vtp";
   case ExportFormat::tsurf: return "ts";
+  case ExportFormat::gpkg: return "gpkg";
   }
   return "dat";
 }
@@ -74,6 +77,10 @@ namespace {
 
 void write_file(const ComponentStore& store, const std::vector<const ComponentRow*>& rows,
                 const std::filesystem::path& path, const ExportOptions& options, const std::function<void()>& tick) {
+  if (options.format == ExportFormat::gpkg) {
+    write_gpkg(store, rows, path, options, tick);
+    return;
+  }
   // A unique temporary beside the target, renamed over it when whole: two exports to one path each
   // write their own, and the later rename wins with a complete file (AtomicFile removes the
   // temporary on an error or a cancel).
@@ -85,6 +92,7 @@ void write_file(const ComponentStore& store, const std::vector<const ComponentRo
   case ExportFormat::obj: write_obj(source, out, options); break;
   case ExportFormat::vtp: write_vtp(source, out, options); break;
   case ExportFormat::tsurf: write_tsurf(source, out, options); break;
+  case ExportFormat::gpkg: break; // above
   }
   file.commit("the export file");
 }
@@ -120,6 +128,9 @@ ExportSummary export_components(const ComponentStore& store, const std::vector<C
   if (auto store_dir = enclosing_store(out))
     throw InvalidArgument("will not write an export inside a store directory (" + store_dir->string() + ")",
                           {out.string()}, "only the store writes there; export to a path outside it");
+  if (options.format == ExportFormat::gpkg && options.per_component)
+    throw InvalidArgument("a GeoPackage holds every component in one file: --per-component does not apply",
+                          {out.string()}, "leave --per-component out");
   ExportSummary summary;
   std::vector<ComponentRow> intact;
   const std::vector<ComponentRow>* chosen = &rows;

@@ -125,6 +125,9 @@ std::string ChainDescription::fingerprint() const {
 ChainDescription describe_chain(const Recipe& recipe, const PluginRegistry& plugins) {
   ChainDescription d;
   d.input = recipe.canonical.at("input");
+  // The CRS changes no sample and no component: it is the runner's (run_workflow gives it to the
+  // extraction's volume), not the chain's, whose fingerprint stays that of the recipe without it.
+  d.input.erase("crs");
   if (!recipe.input.synthetic) {
     fs::path path = recipe.input.file;
     if (path.is_relative() && !recipe.base_dir.empty()) path = fs::path(recipe.base_dir) / path;

@@ -76,7 +76,7 @@ std::size_t default_worker_count(const volume::Geometry& geometry, std::int64_t 
 ExtractResult extract_with_workers(const volume::Volume& volume, store::ComponentStore& store,
                                    const ExtractSettings& settings, Logger& log, Progress& progress,
                                    const CancelToken& cancel) {
-  if (!(store.geometry() == volume.geometry()))
+  if (!store.geometry().same_grid(volume.geometry()))
     throw InvalidArgument("the store was made for another cube geometry", {store.directory().string()},
                           "extract into a new store directory");
   if (settings.volume_description.empty() || settings.worker_command.empty())

@@ -8,6 +8,7 @@
 
 #include "geotandem/core/error.hpp"
 #include "geotandem/synth/options.hpp"
+#include "geotandem/volume/crs.hpp"
 #include "geotandem/volume/io.hpp"
 #include "geotandem/volume/size_guard.hpp"
 #include "geotandem/workflow/suggest.hpp"
@@ -45,6 +46,14 @@ void parse_input(MapReader& m, InputSpec& in) {
     in.no_data = m.real("no_data", 0.0, -largest, largest); // a float sample's value
   }
   in.variable = m.text("variable", "");
+  if (m.has("crs")) {
+    in.crs_text = m.text("crs", "");
+    try {
+      in.crs = volume::parse_crs(in.crs_text);
+    } catch (const Error& e) {
+      throw error_at(m.source(), m.node("crs"), "input.crs: " + e.message(), e.hint());
+    }
+  }
   if (m.has("segy")) {
     MapReader s(m.source(), m.node("segy"), "input.segy");
     in.segy_inline_byte = static_cast<int>(s.integer("inline_byte", 189, 1, 240));
@@ -86,7 +95,7 @@ void parse_input(MapReader& m, InputSpec& in) {
     in.snr = s.real("snr", 4.0, 1e-3, 1e6);
     s.finish({"kind", "shape", "seed", "snr"});
   }
-  m.finish({"file", "synthetic", "nan", "no_data", "variable", "segy"});
+  m.finish({"file", "synthetic", "nan", "no_data", "variable", "segy", "crs"});
 }
 
 // A list parameter's text ("[1, 1, 8]") from a YAML list of scalars (ParamSpec::list).
@@ -340,6 +349,7 @@ nlohmann::json to_json(const Recipe& r) {
   in["nan"] = r.input.nan;
   if (r.input.no_data) in["no_data"] = *r.input.no_data;
   if (!r.input.variable.empty()) in["variable"] = r.input.variable;
+  if (r.input.crs) in["crs"] = r.input.crs_text; // left out of the chain's description (describe_chain)
   if (r.input.segy_inline_byte != 189 || r.input.segy_crossline_byte != 193)
     in["segy"] = {{"inline_byte", r.input.segy_inline_byte}, {"crossline_byte", r.input.segy_crossline_byte}};
   j["input"] = in;

@@ -5,7 +5,9 @@
 #include <fcntl.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cerrno>
+#include <limits>
 #include <set>
 #include <string>
 #include <unordered_map>
@@ -24,9 +26,11 @@ using volume::GisFieldType;
 using volume::GisValue;
 
 // The attribute columns, in the order of values_of (the fields of `store ls --json`, less where
-// the record lies, with vectors split into _x/_y/_z as the Python DataFrame has them).
-std::vector<GisField> measure_fields() {
-  std::vector<GisField> f = {{"key", GisFieldType::integer},
+// the record lies, with vectors split into _x/_y/_z as the Python DataFrame has them). GeoPackage
+// integers are signed 64-bit: keys at or above 2^63 (possible in cubes of about 2^21 samples an
+// axis) make the key column text, so that no key turns negative.
+std::vector<GisField> measure_fields(bool text_key) {
+  std::vector<GisField> f = {{"key", text_key ? GisFieldType::text : GisFieldType::integer},
                              {"vertex_count", GisFieldType::integer},
                              {"triangle_count", GisFieldType::integer},
                              {"volume", GisFieldType::real},
@@ -55,9 +59,10 @@ std::vector<GisField> measure_fields() {
   return f;
 }
 
-std::vector<GisValue> values_of(const ComponentRow& row, double footprint_area) {
+std::vector<GisValue> values_of(const ComponentRow& row, double footprint_area, bool text_key) {
   const mesh::ComponentStats& s = row.stats;
-  std::vector<GisValue> v = {static_cast<std::int64_t>(row.key),
+  std::vector<GisValue> v = {text_key ? GisValue(std::to_string(row.key))
+                                      : GisValue(static_cast<std::int64_t>(row.key)),
                              static_cast<std::int64_t>(row.location.vertex_count),
                              static_cast<std::int64_t>(row.location.triangle_count),
                              s.volume,
@@ -142,8 +147,11 @@ private:
 
 void write_gpkg(const ComponentStore& store, const std::vector<const ComponentRow*>& rows,
                 const std::filesystem::path& path, const ExportOptions& options, const std::function<void()>& tick) {
+  const bool text_key = std::any_of(rows.begin(), rows.end(), [](const ComponentRow* row) {
+    return row->key > static_cast<std::uint64_t>(std::numeric_limits<std::int64_t>::max());
+  });
   volume::GeoPackageLayout layout;
-  layout.fields = measure_fields();
+  layout.fields = measure_fields(text_key);
   layout.crs = store.geometry().crs;
   layout.description = "geotandem bodies of " + store.directory().string() +
                        (options.selection.empty() ? std::string() : ", selection " + options.selection) +
@@ -161,7 +169,7 @@ void write_gpkg(const ComponentStore& store, const std::vector<const ComponentRo
   for (const ComponentRow* row : rows) {
     const mesh::SurfaceMesh surface = store.read(*row);
     const auto footprint = footprint_of(surface, row->stats.closed);
-    std::vector<GisValue> values = values_of(*row, volume::area_of(footprint));
+    std::vector<GisValue> values = values_of(*row, volume::area_of(footprint), text_key);
     for (const auto& keys : members)
       values.push_back(keys.count(row->key) > 0);
     writer->add_polygons(footprint, values);

@@ -181,6 +181,8 @@ int vtp_index_bits(std::uint64_t points, std::uint64_t polys) {
   return points <= int32_max && 3 * polys <= int32_max ? 32 : 64;
 }
 
+namespace {
+
 // A string array of one tuple, as vtkXMLWriter writes a vtkStringArray in ascii.
 void string_array(std::ostream& out, const char* name, const std::string& value) {
   out << "      <Array type=\"String\" Name=\"" << name << "\" NumberOfTuples=\"1\" format=\"ascii\">\n        ";
@@ -188,6 +190,8 @@ void string_array(std::ostream& out, const char* name, const std::string& value)
     out << static_cast<unsigned>(c) << ' ';
   out << "0\n      </Array>\n";
 }
+
+} // namespace
 
 void write_vtp(SurfaceSource& source, std::ostream& out, const ExportOptions&) {
   std::uint64_t points = 0, polys = 0;

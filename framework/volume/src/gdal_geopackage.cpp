@@ -116,8 +116,10 @@ public:
     set_values(feature, values);
     if (!polygons.empty()) {
       auto* multi = new OGRMultiPolygon();
-      for (const MapPolygon& p : polygons)
-        multi->addGeometry(&polygon_of(p)); // copies
+      for (const MapPolygon& p : polygons) {
+        const OGRPolygon polygon = polygon_of(p);
+        multi->addGeometry(&polygon); // copies
+      }
       feature.SetGeometryDirectly(multi);
     }
     if (polygons_->CreateFeature(&feature) != OGRERR_NONE) fail("cannot write a footprint", errors);

@@ -8,6 +8,8 @@
 
 #include "gdal_module.hpp"
 #include "geotandem/core/error.hpp"
+#include "geotandem/volume/crs.hpp"
+#include "geotandem/volume/geopackage.hpp"
 
 namespace geotandem::volume::detail {
 namespace {

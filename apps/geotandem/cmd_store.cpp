@@ -84,8 +84,12 @@ void print_table(const std::vector<store::ComponentRow>& rows, std::uint64_t tot
   o << "# " << rows.size() << " of " << total << " components\n";
 }
 
-std::string volume_unit(const volume::Geometry& g) {
-  return "(" + volume::volume_unit(g) + ")";
+// "(m2.ms)", "(m3)", "(ft3)": the volume unit as the table has always shown it.
+std::string volume_unit_text(const volume::Geometry& g) {
+  std::string text;
+  for (char c : volume::volume_unit(g))
+    if (c != '^') text += c == '*' ? '.' : c;
+  return "(" + text + ")";
 }
 
 void print_show(const store::ComponentRow& r, const volume::Geometry& g) {
@@ -105,7 +109,7 @@ void print_show(const store::ComponentRow& r, const volume::Geometry& g) {
       o << " (faces " << mesh::cut_faces_text(s.cut_faces) << "; caps " << format_number(s.cap_area) << " of the area)";
   }
   o << "\n";
-  o << "volume:         " << format_number(s.volume) << " " << volume_unit(g) << "\n";
+  o << "volume:         " << format_number(s.volume) << " " << volume_unit_text(g) << "\n";
   o << "area:           " << format_number(s.area) << "\n";
   const std::string xy = g.crs.empty() ? std::string("m") : g.crs.unit;
   o << "centroid:       " << triple(s.centroid) << "  (x " << xy << ", y " << xy << ", z " << z << ")\n";
@@ -163,7 +167,7 @@ void add_ls(CLI::App* parent, Runner& run) {
           list.push_back(row_json(r));
         std::cout << list.dump(2) << "\n";
       } else {
-        print_table(rows, s.size(), volume_unit(s.geometry()));
+        print_table(rows, s.size(), volume_unit_text(s.geometry()));
       }
       return 0;
     };

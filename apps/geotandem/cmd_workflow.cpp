@@ -43,7 +43,13 @@ void add_workflow_command(CLI::App& app, Context& context, Runner& run) {
       crs_option(args->crs); // a wrong code is named as --crs's, before the recipe is read
       auto registry = make_plugin_registry(context.log);
       auto sets = args->sets;
-      if (!args->crs.empty()) sets.push_back("input.crs=" + args->crs);
+      if (!args->crs.empty()) {
+        // A YAML single-quoted scalar: a WKT's brackets, commas and double quotes stay text.
+        std::string quoted = "'";
+        for (char c : args->crs)
+          quoted += c == '\'' ? std::string("''") : std::string(1, c);
+        sets.push_back("input.crs=" + quoted + "'");
+      }
       if (!args->scheduler.empty()) sets.push_back("execution.scheduler=" + args->scheduler);
       if (!args->bind.empty()) sets.push_back("execution.bind=" + args->bind);
       auto recipe = workflow::load_recipe(args->recipe, registry, sets);

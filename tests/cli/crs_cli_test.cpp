@@ -123,5 +123,42 @@ TEST(CrsCli, StoreExportWritesAGeoPackage) {
   EXPECT_NE(text.find("azimuth: Real"), std::string::npos) << text;
 }
 
+// A recipe run with --crs: the store, the TSurf and GeoPackage exports and the report's map all name
+// the CRS.
+TEST(CrsCli, ARecipeRunNamesTheCrsEverywhere) {
+  ScratchDir dir;
+  std::ofstream(dir.file("r.yaml")) << "version: 1\n"
+                                       "input:\n"
+                                       "  synthetic: {kind: analytic, shape: [64, 56, 48], seed: 4}\n"
+                                       "steps:\n"
+                                       "  - step: extract\n"
+                                       "    iso: 0.5\n"
+                                       "  - step: remove_bubbles\n"
+                                       "output:\n"
+                                       "  directory: out\n"
+                                       "  exports:\n"
+                                       "    - {format: ts}\n"
+                                       "    - {format: gpkg}\n"
+                                       "execution: {workers: 0}\n";
+  auto r = run_geotandem("-q run-workflow " + q(dir.file("r.yaml")) + " --crs EPSG:23031");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const std::string label = "ED50 / UTM zone 31N (EPSG:23031)";
+  EXPECT_EQ(nlohmann::json::parse(testing::file_text(dir.file("out/store/store.json")))["geometry"]["crs"]["code"],
+            "EPSG:23031");
+  EXPECT_NE(testing::file_text(dir.file("out/bodies.ts")).find("NAME \"" + label + "\""), std::string::npos);
+  EXPECT_NE(testing::file_text(dir.file("out/report.html")).find("x, easting (m), " + label), std::string::npos);
+  const std::string listing = dir.file("ogrinfo.txt");
+  ASSERT_EQ(std::system(
+                ("ogrinfo -ro -so " + q(dir.file("out/bodies.gpkg")) + " centroids > " + q(listing) + " 2>&1").c_str()),
+            0);
+  EXPECT_NE(testing::file_text(listing).find("ED50 / UTM zone 31N"), std::string::npos);
+  EXPECT_NE(testing::file_text(listing).find("footprint_area: Real"), std::string::npos) << testing::file_text(listing);
+  // Without --crs, the same recipe's outputs say so; its extraction is reused (same chain).
+  auto again = run_geotandem("-q run-workflow " + q(dir.file("r.yaml")) + " --fresh");
+  ASSERT_EQ(again.exit_code, 0) << again.err;
+  EXPECT_NE(testing::file_text(dir.file("out/bodies.ts")).find("# no CRS given\nNAME Default"), std::string::npos);
+  EXPECT_NE(testing::file_text(dir.file("out/report.html")).find("x, easting (m), no CRS given"), std::string::npos);
+}
+
 } // namespace
 } // namespace geotandem

@@ -59,27 +59,44 @@ std::vector<GisField> measure_fields(bool text_key) {
   return f;
 }
 
+// Built value by value: brace lists of variants holding strings trip GCC 12's maybe-uninitialized
+// warning at -O3.
 std::vector<GisValue> values_of(const ComponentRow& row, double footprint_area, bool text_key) {
   const mesh::ComponentStats& s = row.stats;
-  std::vector<GisValue> v = {text_key ? GisValue(std::to_string(row.key))
-                                      : GisValue(static_cast<std::int64_t>(row.key)),
-                             static_cast<std::int64_t>(row.location.vertex_count),
-                             static_cast<std::int64_t>(row.location.triangle_count),
-                             s.volume,
-                             s.area,
-                             footprint_area};
-  auto triple = [&](const std::array<double, 3>& a) { v.insert(v.end(), {a[0], a[1], a[2]}); };
+  std::vector<GisValue> v;
+  v.reserve(48);
+  if (text_key)
+    v.emplace_back(std::in_place_type<std::string>, std::to_string(row.key));
+  else
+    v.emplace_back(std::in_place_type<std::int64_t>, static_cast<std::int64_t>(row.key));
+  v.emplace_back(std::in_place_type<std::int64_t>, static_cast<std::int64_t>(row.location.vertex_count));
+  v.emplace_back(std::in_place_type<std::int64_t>, static_cast<std::int64_t>(row.location.triangle_count));
+  auto real = [&](double value) { v.emplace_back(std::in_place_type<double>, value); };
+  real(s.volume);
+  real(s.area);
+  real(footprint_area);
+  auto triple = [&](const std::array<double, 3>& a) {
+    for (double value : a)
+      real(value);
+  };
   triple(s.centroid);
   triple(s.box_min);
   triple(s.box_max);
   triple(s.obb_center);
   for (const auto& axis : s.obb_axes)
     triple(axis);
-  for (double h : s.obb_half_extents)
-    v.push_back(h);
-  v.insert(v.end(), {GisValue(s.azimuth), GisValue(s.dip), GisValue(s.elongation), GisValue(s.closed),
-                     GisValue(s.cut_by_border), GisValue(mesh::cut_faces_text(s.cut_faces)), GisValue(s.cap_area)});
-  v.push_back(row.run ? GisValue(*row.run) : GisValue());
+  triple(s.obb_half_extents);
+  real(s.azimuth);
+  real(s.dip);
+  real(s.elongation);
+  v.emplace_back(std::in_place_type<bool>, s.closed);
+  v.emplace_back(std::in_place_type<bool>, s.cut_by_border);
+  v.emplace_back(std::in_place_type<std::string>, mesh::cut_faces_text(s.cut_faces));
+  real(s.cap_area);
+  if (row.run)
+    v.emplace_back(std::in_place_type<std::int64_t>, *row.run);
+  else
+    v.emplace_back();
   return v;
 }
 
@@ -171,7 +188,7 @@ void write_gpkg(const ComponentStore& store, const std::vector<const ComponentRo
     const auto footprint = footprint_of(surface, row->stats.closed);
     std::vector<GisValue> values = values_of(*row, volume::area_of(footprint), text_key);
     for (const auto& keys : members)
-      values.push_back(keys.count(row->key) > 0);
+      values.emplace_back(std::in_place_type<bool>, keys.count(row->key) > 0);
     writer->add_polygons(footprint, values);
     writer->add_point({row->stats.centroid[0], row->stats.centroid[1]}, values);
     tick();

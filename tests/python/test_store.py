@@ -183,3 +183,22 @@ def test_an_unknown_key_and_a_missing_store(scratch_root, quickstart_store):
         s.mesh(int(s.components().key.max()) + 1)
     with pytest.raises(geotandem.Error):
         geotandem.open_store(scratch_root / "no-such-store")
+
+
+def test_the_store_and_its_dataframe_show_the_crs(analytic_cube, scratch_root, quickstart_store):
+    """Issue 54: the CRS the store keeps, as the command line gave it; a store without one says so."""
+    out = scratch_root / "crs-store"
+    cli("-q", "extract", str(analytic_cube), "--iso", "0.5", "--workers", "0", "--crs", "EPSG:23031",
+        "--out", str(out))
+    store = geotandem.open_store(out)
+    assert store.crs["code"] == "EPSG:23031"
+    assert store.crs["unit"] == "m"
+    assert store.crs_label == "ED50 / UTM zone 31N (EPSG:23031)"
+    df = store.components()
+    assert df.attrs["crs_label"] == store.crs_label
+    assert df.attrs["crs"] == store.crs["wkt"]
+    assert store.runs()[0]["parameters"]["crs"]["code"] == "EPSG:23031"
+    plain = geotandem.open_store(quickstart_store)  # a synthetic cube, no CRS given
+    assert plain.crs is None
+    assert plain.crs_label == "no CRS given"
+    assert plain.components().attrs["crs"] is None

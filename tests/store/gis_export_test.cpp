@@ -6,10 +6,13 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <limits>
 #include <map>
+#include <numbers>
 #include <set>
 
 #include "export_fixture.hpp"
+#include "geotandem/mesh/measure.hpp"
 #include "geotandem/volume/crs.hpp"
 
 namespace geotandem::store::testing {
@@ -66,6 +69,44 @@ std::string vtp_string(const std::string& vtp, const std::string& name) {
   for (int code; in >> code && code != 0;)
     out.push_back(static_cast<char>(code));
   return out;
+}
+
+// A ring-shaped body (a torus about the vertical through (ci, cj, ck), in index coordinates): its
+// footprint is an annulus whose hole holds the body's centroid. Quads split into triangles, all
+// oriented alike; `nv` even so that the innermost and outermost vertex rings exist.
+mesh::Component torus_component(std::uint64_t key, const volume::Geometry& g, double big, double small, int nu,
+                                int nv) {
+  const double ci = 30, cj = 25, ck = 20;
+  mesh::Component c;
+  c.key = key;
+  const double two_pi = 2.0 * std::numbers::pi;
+  for (int a = 0; a < nu; ++a)
+    for (int b = 0; b < nv; ++b) {
+      const double u = two_pi * a / nu, v = two_pi * b / nv;
+      const double radius = big + small * std::cos(v);
+      c.surface.points.push_back({ci + radius * std::cos(u), cj + radius * std::sin(u), ck + small * std::sin(v)});
+    }
+  auto at = [&](int a, int b) { return static_cast<std::uint32_t>((a % nu) * nv + (b % nv)); };
+  for (int a = 0; a < nu; ++a)
+    for (int b = 0; b < nv; ++b) {
+      c.surface.triangles.push_back({at(a, b), at(a + 1, b), at(a + 1, b + 1)});
+      c.surface.triangles.push_back({at(a, b), at(a + 1, b + 1), at(a, b + 1)});
+    }
+  const auto world = mesh::to_world(c.surface, g);
+  auto& st = c.stats;
+  st.vertex_count = world.points.size();
+  st.triangle_count = world.triangles.size();
+  st.box_min = st.box_max = world.points.front();
+  for (const auto& p : world.points)
+    for (int d = 0; d < 3; ++d) {
+      st.box_min[d] = std::min(st.box_min[d], p[d]);
+      st.box_max[d] = std::max(st.box_max[d], p[d]);
+    }
+  // The solid's centroid: the torus's centre, by symmetry.
+  st.centroid = g.world(ci, cj, ck);
+  st.closed = true;
+  st.volume = 2.0 * std::numbers::pi * std::numbers::pi * big * small * small;
+  return c;
 }
 
 class GisExportTest : public ::testing::Test {
@@ -148,11 +189,33 @@ TEST_F(GisExportTest, WithoutACrsEveryExportSaysNoCrsGiven) {
   EXPECT_NE(slurp(scratch_.path() / "b.ply").find("comment crs no CRS given\n"), std::string::npos);
   Dataset gpkg(scratch_.path() / "b.gpkg");
   ASSERT_NE(gpkg.handle, nullptr);
-  OGRLayer* layer = gpkg.handle->GetLayerByName("footprints");
-  ASSERT_NE(layer, nullptr);
-  EXPECT_EQ(layer->GetSpatialRef(), nullptr); // GeoPackage's undefined Cartesian SRS
-  EXPECT_NE(std::string(gpkg.handle->GetLayerByName("centroids")->GetMetadataItem("DESCRIPTION")).find("no CRS given"),
-            std::string::npos);
+  // No CRS is invented: not GDAL's default for a layer without one (srs_id 0, "Undefined
+  // geographic SRS", which says degrees of latitude and longitude), but srs_id -1, the standard's
+  // "Undefined Cartesian SRS", which GDAL reads back as a LOCAL_CS of that name with no authority.
+  for (const char* table : {"gpkg_contents", "gpkg_geometry_columns"}) {
+    const std::string sql = std::string("SELECT table_name AS name, srs_id AS srs FROM ") + table +
+                            " WHERE table_name IN ('footprints', 'centroids') ORDER BY table_name";
+    OGRLayer* srs_ids = gpkg.handle->ExecuteSQL(sql.c_str(), nullptr, nullptr);
+    ASSERT_NE(srs_ids, nullptr) << table;
+    std::vector<std::string> seen;
+    for (auto& row : *srs_ids) {
+      seen.push_back(row->GetFieldAsString("name"));
+      EXPECT_EQ(row->GetFieldAsInteger("srs"), -1) << table << " " << seen.back();
+    }
+    gpkg.handle->ReleaseResultSet(srs_ids);
+    EXPECT_EQ(seen, (std::vector<std::string>{"centroids", "footprints"})) << table;
+  }
+  for (const char* name : {"footprints", "centroids"}) {
+    OGRLayer* layer = gpkg.handle->GetLayerByName(name);
+    ASSERT_NE(layer, nullptr);
+    if (const OGRSpatialReference* srs = layer->GetSpatialRef()) {
+      EXPECT_TRUE(srs->IsLocal()) << name;
+      EXPECT_FALSE(srs->IsGeographic()) << name;
+      EXPECT_FALSE(srs->IsProjected()) << name;
+      EXPECT_EQ(srs->GetAuthorityName(nullptr), nullptr) << name;
+    }
+    EXPECT_NE(std::string(layer->GetMetadataItem("DESCRIPTION")).find("no CRS given"), std::string::npos) << name;
+  }
 }
 
 TEST_F(GisExportTest, FootprintsContainTheCentroidsAndAgreeWithTheStore) {
@@ -193,12 +256,23 @@ TEST_F(GisExportTest, FootprintsContainTheCentroidsAndAgreeWithTheStore) {
     const OGRGeometry* footprint = feature->GetGeometryRef();
     ASSERT_NE(footprint, nullptr);
     const double area = footprint->toMultiPolygon()->get_Area();
-    EXPECT_NEAR(feature->GetFieldAsDouble("footprint_area"), area, 1e-9 * area);
+    // The shoelace sum over map coordinates of ~6.7e6 m: each term's rounding is about
+    // eps * |x| * |y| (~1e-3 m^2 here), so an area of n vertices is good to about n * 4 * eps * |x| * |y|
+    // whatever the order of the sums (OGR's get_Area, the export's area_of relative to a vertex and
+    // the hull below each sum differently). Exactness beyond that (1e-9 relative on ~1e4 m^2) is
+    // not in the doubles.
+    OGREnvelope box;
+    footprint->getEnvelope(&box);
+    const double reach =
+        std::max(std::abs(box.MinX), std::abs(box.MaxX)) * std::max(std::abs(box.MinY), std::abs(box.MaxY));
+    const double rounding =
+        4.0 * std::numeric_limits<double>::epsilon() * reach * static_cast<double>(store_->read(row).points.size() + 8);
+    EXPECT_NEAR(feature->GetFieldAsDouble("footprint_area"), area, rounding);
     // The oracle: the hull of the body's vertices on the map.
     std::vector<std::array<double, 2>> map;
     for (const auto& p : store_->read(row).points)
       map.push_back({p[0], p[1]});
-    EXPECT_NEAR(area, hull_area(map), 1e-6 * area);
+    EXPECT_NEAR(area, hull_area(map), 2.0 * rounding);
     const OGRPoint centroid(row.stats.centroid[0], row.stats.centroid[1]);
     EXPECT_TRUE(footprint->Contains(&centroid));
   }
@@ -210,6 +284,51 @@ TEST_F(GisExportTest, FootprintsContainTheCentroidsAndAgreeWithTheStore) {
     EXPECT_DOUBLE_EQ(point->getX(), row.stats.centroid[0]);
     EXPECT_DOUBLE_EQ(point->getY(), row.stats.centroid[1]);
   }
+}
+
+// The footprint is the outline seen from above, not a hull: a ring-shaped body's has its hole, and
+// the centroid of the solid lies in it (outside the footprint), as for any C- or ring-shaped body.
+// The oracle: the annulus between the outermost and innermost vertex rings, regular polygons of nu
+// sides, in index units times the bin's area.
+TEST_F(GisExportTest, ARingShapedBodysFootprintKeepsItsHoleWithTheCentroidInIt) {
+  volume::Geometry g = test_geometry();
+  g.crs = volume::parse_crs("EPSG:23031");
+  store_.emplace(ComponentStore::create(scratch_.path() / "store", g));
+  const double big = 12, small = 4;
+  const int nu = 48, nv = 16;
+  {
+    LocalSink sink(*store_, {"local", std::nullopt, 8});
+    sink.commit(torus_component(77, g, big, small, nu, nv));
+    sink.close();
+  }
+  rows_ = store_->query();
+  ExportOptions options;
+  options.format = ExportFormat::gpkg;
+  run(scratch_.path() / "ring.gpkg", options, rows_);
+  Dataset gpkg(scratch_.path() / "ring.gpkg");
+  ASSERT_NE(gpkg.handle, nullptr);
+  OGRLayer* polygons = gpkg.handle->GetLayerByName("footprints");
+  ASSERT_NE(polygons, nullptr);
+  ASSERT_EQ(polygons->GetFeatureCount(), 1);
+  polygons->ResetReading();
+  std::unique_ptr<OGRFeature> feature(polygons->GetNextFeature());
+  ASSERT_NE(feature, nullptr);
+  const OGRMultiPolygon* footprint = feature->GetGeometryRef()->toMultiPolygon();
+  ASSERT_EQ(footprint->getNumGeometries(), 1);
+  EXPECT_EQ(footprint->getGeometryRef(0)->getNumInteriorRings(), 1);
+  const auto& f = g.affine;
+  const double bin_area = std::abs(f.xi * f.yj - f.xj * f.yi);
+  const double polygon = nu / 2.0 * std::sin(2.0 * std::numbers::pi / nu);
+  const double expected = polygon * ((big + small) * (big + small) - (big - small) * (big - small)) * bin_area;
+  EXPECT_NEAR(footprint->get_Area(), expected, 1e-6 * expected);
+  EXPECT_NEAR(feature->GetFieldAsDouble("footprint_area"), expected, 1e-6 * expected);
+  const auto& centroid = rows_.front().stats.centroid;
+  const OGRPoint point(centroid[0], centroid[1]);
+  EXPECT_FALSE(footprint->Contains(&point)) << "the centroid of a ring lies in its hole";
+  // A point on the ring itself (the middle of the tube, on the map) is inside.
+  const auto on_ring = g.world(30 + big, 25, 20);
+  const OGRPoint ring_point(on_ring[0], on_ring[1]);
+  EXPECT_TRUE(footprint->Contains(&ring_point));
 }
 
 TEST_F(GisExportTest, ASelectionExportHoldsExactlyThatSelection) {

@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "gdal_common.hpp"
 #include "gdal_module.hpp"
@@ -66,7 +67,8 @@ OGRPolygon polygon_of(const MapPolygon& polygon) {
 
 class OgrGeoPackageWriter final : public GeoPackageWriter {
 public:
-  OgrGeoPackageWriter(const std::string& path, const GeoPackageLayout& layout) : path_(path), fields_(layout.fields) {
+  OgrGeoPackageWriter(const std::string& path, const GeoPackageLayout& layout)
+      : path_(path), fields_(layout.fields), undefined_crs_(layout.crs.empty()) {
     gdal::register_drivers();
     gdal::ErrorCapture errors;
     GDALDriver* driver = GetGDALDriverManager()->GetDriverByName("GPKG");
@@ -135,6 +137,22 @@ public:
 
   void finish() override {
     gdal::ErrorCapture errors;
+    if (undefined_crs_) {
+      // A layer created without an SRS gets srs_id 0, GeoPackage's "Undefined geographic SRS":
+      // degrees of latitude and longitude, which QGIS would then assume. Without a CRS the
+      // coordinates are projected x and y of no known system: srs_id -1, the standard's "Undefined
+      // Cartesian SRS" (GDAL reads it back as a LOCAL_CS of that name, no authority). The layers'
+      // description says "no CRS given". Done here: GDAL creates a layer's tables with its first
+      // feature.
+      for (OGRLayer* layer : {polygons_, points_}) {
+        const std::string name = layer->GetName();
+        for (const char* table : {"gpkg_geometry_columns", "gpkg_contents"}) {
+          const std::string sql =
+              std::string("UPDATE ") + table + " SET srs_id = -1 WHERE lower(table_name) = lower('" + name + "')";
+          dataset_->ReleaseResultSet(dataset_->ExecuteSQL(sql.c_str(), nullptr, nullptr));
+        }
+      }
+    }
     if (dataset_->CommitTransaction() != OGRERR_NONE) fail("cannot commit the features", errors);
     gdal::close_written(std::move(dataset_), path_);
   }
@@ -170,6 +188,7 @@ private:
   gdal::DatasetPtr dataset_;
   OGRLayer* polygons_ = nullptr; // owned by the dataset
   OGRLayer* points_ = nullptr;
+  bool undefined_crs_ = false; // no CRS given: srs_id -1 (finish)
 };
 
 } // namespace
@@ -184,10 +203,17 @@ std::vector<MapPolygon> gdal::union_of_triangles(std::span<const MapTriangle> tr
   for (const MapTriangle& t : triangles)
     for (const MapPoint& p : t)
       largest = std::max({largest, std::abs(p[0]), std::abs(p[1])});
-  // Triangles seen edge-on (a wall of the body) have no area on the map.
-  const double tiny = 1e-12 * std::max(1.0, largest * largest);
   for (const MapTriangle& t : triangles) {
-    const double twice = (t[1][0] - t[0][0]) * (t[2][1] - t[0][1]) - (t[2][0] - t[0][0]) * (t[1][1] - t[0][1]);
+    // Triangles seen edge-on (a wall of the body) have no area on the map. What is "no area" is
+    // the rounding of this cross product: its differences of coordinates of magnitude `largest`
+    // carry errors of about eps * largest each, times the triangle's own edges. (A threshold
+    // scaled by largest^2 alone, 45 m^2 at 6.7e6 m, dropped real triangles of a finely meshed
+    // body: footprints with holes, smaller than the body, some missing their centroid.)
+    const double ux = t[1][0] - t[0][0], uy = t[1][1] - t[0][1];
+    const double vx = t[2][0] - t[0][0], vy = t[2][1] - t[0][1];
+    const double twice = ux * vy - vx * uy;
+    const double edges = std::abs(ux) + std::abs(uy) + std::abs(vx) + std::abs(vy);
+    const double tiny = 8.0 * std::numeric_limits<double>::epsilon() * std::max(1.0, largest) * edges;
     if (!(std::abs(twice) > tiny)) continue;
     auto* polygon = new OGRPolygon();
     auto* ring = new OGRLinearRing();

@@ -98,31 +98,61 @@ TEST(Crs, ReadFromACfNetcdfWrittenWithGdal) {
   expect_formula(cube->read(cube->geometry().bounds()), cube->geometry().bounds());
 }
 
-TEST(Crs, ReadFromACrsAttributeOfAZarrArray) {
-  ScratchDir dir;
-  const std::string path = dir.file("attr.zarr");
+// A Zarr store as xarray writes one: each dimension named (_ARRAY_DIMENSIONS) with its coordinate
+// array, the sample axis's `units` as given, the CRS as a `crs` attribute. GDAL 3.6's Zarr writer
+// names an array's dimensions only when every one has an indexing variable; without that the file
+// says nothing of the sample axis (its dimensions read back as dim0, dim1, dim2).
+std::unique_ptr<gv::Volume> zarr_with_sample_axis(const std::string& path, const char* axis, double first, double step,
+                                                  const char* unit) {
   GDALAllRegister();
   GDALDriver* driver = GetGDALDriverManager()->GetDriverByName("Zarr");
-  ASSERT_NE(driver, nullptr);
+  EXPECT_NE(driver, nullptr);
+  if (!driver) return nullptr;
   GDALDataset* dataset = driver->CreateMultiDimensional(path.c_str(), nullptr, nullptr);
-  ASSERT_NE(dataset, nullptr);
+  EXPECT_NE(dataset, nullptr);
+  if (!dataset) return nullptr;
   {
     auto root = dataset->GetRootGroup();
     std::vector<std::shared_ptr<GDALDimension>> dims{root->CreateDimension("iline", "", "", 4),
                                                      root->CreateDimension("xline", "", "", 3),
-                                                     root->CreateDimension("depth", "", "", 5)};
-    write_coordinate(*root, dims[2], 1000, 10, "ft");
+                                                     root->CreateDimension(axis, "", "", 5)};
+    write_coordinate(*root, dims[0], 100, 1, nullptr);
+    write_coordinate(*root, dims[1], 200, 1, nullptr);
+    write_coordinate(*root, dims[2], first, step, unit);
+    for (auto& dim : dims)
+      EXPECT_TRUE(dim->SetIndexingVariable(root->OpenMDArray(dim->GetName())));
     auto array = add_array(*root, "seismic", dims, GDT_Float32);
     array->CreateAttribute("crs", {}, GDALExtendedDataType::CreateString())->Write("EPSG:2227");
     fill_array(*array, {0, 1, 2});
   }
   GDALClose(GDALDataset::ToHandle(dataset));
-  auto cube = gv::open_volume(path);
+  return gv::open_volume(path);
+}
+
+TEST(Crs, ReadFromACrsAttributeOfAZarrArray) {
+  ScratchDir dir;
+  auto cube = zarr_with_sample_axis(dir.file("attr.zarr"), "depth", 1000, 10, "ft");
+  ASSERT_NE(cube, nullptr);
   EXPECT_EQ(cube->geometry().crs.code, "EPSG:2227");
   EXPECT_EQ(cube->geometry().crs.unit, "ftUS");
-  // Depth in feet as the file says, not metres.
+  EXPECT_EQ(cube->geometry().inline0, 100);
+  EXPECT_EQ(cube->geometry().crossline0, 200);
+  // Depth in feet as the file says, not metres nor milliseconds.
   EXPECT_EQ(cube->geometry().z_unit, gv::SampleUnit::feet);
+  EXPECT_EQ(cube->geometry().z0, 1000);
+  EXPECT_EQ(cube->geometry().dz, 10);
   EXPECT_EQ(gv::volume_unit(cube->geometry()), "ftUS^2*ft");
+  expect_formula(cube->read(cube->geometry().bounds()), cube->geometry().bounds());
+}
+
+TEST(Crs, ASampleAxisInSecondsIsReadAsMilliseconds) {
+  ScratchDir dir;
+  auto cube = zarr_with_sample_axis(dir.file("seconds.zarr"), "twt", 0.5, 0.004, "s");
+  ASSERT_NE(cube, nullptr);
+  EXPECT_EQ(cube->geometry().z_unit, gv::SampleUnit::milliseconds);
+  EXPECT_NEAR(cube->geometry().z0, 500.0, 1e-9);
+  EXPECT_NEAR(cube->geometry().dz, 4.0, 1e-9);
+  EXPECT_EQ(gv::volume_unit(cube->geometry()), "ftUS^2*ms");
 }
 
 TEST(Crs, AnUnknownCrsInAFileIsAFormatErrorUnlessOneIsGiven) {

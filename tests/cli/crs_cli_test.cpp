@@ -67,6 +67,13 @@ TEST(CrsCli, TheStoreAndItsRunsKeepTheCrsAndTheKeysStayTheSame) {
   ASSERT_EQ(with.exit_code, 0) << with.err;
   EXPECT_EQ(keys_of(dir.file("p")), keys_of(dir.file("c")));
   ASSERT_FALSE(keys_of(dir.file("c")).empty());
+  // With workers, which reopen the cube from the description the manager sends (--crs in it).
+  auto workers = run_geotandem("-q extract " + q(dir.file("a.raw")) +
+                               " --iso 0.5 --workers 2 --block-size 32 --crs EPSG:23031 --out " + q(dir.file("w")));
+  ASSERT_EQ(workers.exit_code, 0) << workers.err;
+  EXPECT_EQ(keys_of(dir.file("w")), keys_of(dir.file("c")));
+  EXPECT_EQ(nlohmann::json::parse(testing::file_text(dir.file("w/store.json")))["geometry"]["crs"]["code"],
+            "EPSG:23031");
 
   const auto info = nlohmann::json::parse(testing::file_text(dir.file("c/store.json")));
   EXPECT_EQ(info["geometry"]["crs"]["code"], "EPSG:23031");
@@ -135,11 +142,13 @@ TEST(CrsCli, ARecipeRunNamesTheCrsEverywhere) {
                                        "    iso: 0.5\n"
                                        "  - step: remove_bubbles\n"
                                        "output:\n"
-                                       "  directory: out\n"
-                                       "  exports:\n"
-                                       "    - {format: ts}\n"
-                                       "    - {format: gpkg}\n"
-                                       "execution: {workers: 0}\n";
+                                       "  directory: " +
+                                           q(dir.file("out")) +
+                                           "\n"
+                                           "  exports:\n"
+                                           "    - {format: ts}\n"
+                                           "    - {format: gpkg}\n"
+                                           "execution: {workers: 1}\n";
   auto r = run_geotandem("-q run-workflow " + q(dir.file("r.yaml")) + " --crs EPSG:23031");
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const std::string label = "ED50 / UTM zone 31N (EPSG:23031)";

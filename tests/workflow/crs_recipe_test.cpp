@@ -46,6 +46,20 @@ TEST_F(CrsRecipes, AnEpsgCodeIsCheckedAndKept) {
   EXPECT_FALSE(describe_chain(r, registry).input.contains("crs"));
 }
 
+// The workers' copy of the chain carries the recipe's CRS (the runner adds it, as it adds the
+// reopen hint): the volume a worker opens from it says the manager's CRS.
+TEST_F(CrsRecipes, TheWorkersCopyOfTheChainOpensWithTheCrs) {
+  Recipe r = parse_recipe(recipe("  crs: \"EPSG:23031\"\n"), "dir/recipe.yaml", registry);
+  nlohmann::json copy = describe_chain(r, registry).to_json();
+  EXPECT_TRUE(open_chain(ChainDescription::from_json(copy), registry).result->geometry().crs.empty());
+  copy["input"]["crs"] = r.input.crs_text;
+  const ChainVolumes volumes = open_chain(ChainDescription::from_json(copy), registry);
+  EXPECT_EQ(volumes.input->geometry().crs.code, "EPSG:23031");
+  EXPECT_EQ(volumes.result->geometry().crs.code, "EPSG:23031");
+  copy["input"]["crs"] = 23031;
+  EXPECT_THROW(ChainDescription::from_json(copy), FormatError);
+}
+
 TEST_F(CrsRecipes, AWrongCodeIsRefusedAtItsLineAndColumn) {
   try {
     parse_recipe(recipe("  crs: EPSG:999999\n"), "dir/recipe.yaml", registry);

@@ -6,11 +6,13 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <cstring>
 #include <limits>
 #include <map>
 #include <numbers>
 #include <set>
 
+#include "base64_decode.hpp"
 #include "export_fixture.hpp"
 #include "geotandem/mesh/measure.hpp"
 #include "geotandem/volume/crs.hpp"
@@ -59,16 +61,21 @@ struct Dataset {
   }
 };
 
-// VTK's ascii strings: character codes, each string ended by 0.
+// A VTK string array of one tuple in binary: base64 of a UInt64 byte count, then the string's
+// characters ended by 0 (as vtkXMLWriter writes a vtkStringArray).
 std::string vtp_string(const std::string& vtp, const std::string& name) {
-  const std::string tag = "<Array type=\"String\" Name=\"" + name + "\" NumberOfTuples=\"1\" format=\"ascii\">";
+  const std::string tag = "<Array type=\"String\" Name=\"" + name + "\" NumberOfTuples=\"1\" format=\"binary\">";
   const auto at = vtp.find(tag);
   if (at == std::string::npos) return "(missing)";
-  std::istringstream in(vtp.substr(at + tag.size()));
-  std::string out;
-  for (int code; in >> code && code != 0;)
-    out.push_back(static_cast<char>(code));
-  return out;
+  const auto begin = vtp.find_first_not_of(" \n", at + tag.size());
+  const auto end = vtp.find_first_of(" \n<", begin);
+  const auto bytes = decode_base64(std::string_view(vtp).substr(begin, end - begin));
+  if (!bytes || bytes->size() < 9) return "(not base64)";
+  std::uint64_t count = 0;
+  std::memcpy(&count, bytes->data(), 8);
+  const std::string payload = bytes->substr(8);
+  if (count != payload.size() || payload.back() != '\0') return "(bad byte count or no 0)";
+  return payload.substr(0, payload.size() - 1);
 }
 
 // A ring-shaped body (a torus about the vertical through (ci, cj, ck), in index coordinates): its

@@ -5,8 +5,7 @@
 // it. One piece holds every component; per-body key, volume and azimuth are cell data (for
 // colouring and thresholding in ParaView) and field data (one tuple per body). The field data also
 // holds the CRS as string arrays of one tuple (crs: its label or "no CRS given", crs_wkt, and
-// crs_units: the units of x, y and z), in the ascii form VTK writes strings: each character's code,
-// each string ended by 0.
+// crs_units: the units of x, y and z), binary as VTK writes strings: the characters ended by 0.
 //
 // The byte count comes first, so it is computed from the index's counts before any surface is
 // read; the surfaces then stream one at a time, and an array whose values do not match its count
@@ -183,12 +182,16 @@ int vtp_index_bits(std::uint64_t points, std::uint64_t polys) {
 
 namespace {
 
-// A string array of one tuple, as vtkXMLWriter writes a vtkStringArray in ascii.
+// A string array of one tuple, binary like every other array: as vtkXMLWriter writes a
+// vtkStringArray, the string's characters ended by 0, after the UInt64 byte count.
 void string_array(std::ostream& out, const char* name, const std::string& value) {
-  out << "      <Array type=\"String\" Name=\"" << name << "\" NumberOfTuples=\"1\" format=\"ascii\">\n        ";
-  for (unsigned char c : value)
-    out << static_cast<unsigned>(c) << ' ';
-  out << "0\n      </Array>\n";
+  out << "      <Array type=\"String\" Name=\"" << name << "\" NumberOfTuples=\"1\" format=\"binary\">\n        ";
+  Base64Writer encoder(out);
+  const std::uint64_t bytes = value.size() + 1;
+  encoder.write(&bytes, sizeof bytes);
+  encoder.write(value.c_str(), value.size() + 1); // with its terminating 0
+  encoder.finish();
+  out << "\n      </Array>\n";
 }
 
 } // namespace

@@ -79,6 +79,18 @@ TEST_F(CrsRecipes, AWrongCodeIsRefusedAtItsLineAndColumn) {
   }
 }
 
+// input.crs is a declared key of the input section: a misspelling gets its did-you-mean.
+TEST_F(CrsRecipes, AMisspelledCrsKeyIsNamedWithTheRightOne) {
+  try {
+    parse_recipe(recipe("  crss: \"EPSG:23031\"\n"), "dir/recipe.yaml", registry);
+    FAIL() << "accepted";
+  } catch (const InvalidArgument& e) {
+    EXPECT_NE(std::string(e.what()).find("dir/recipe.yaml:4:3: unknown key 'crss' in input (did you mean 'crs'?)"),
+              std::string::npos)
+        << e.what();
+  }
+}
+
 TEST(ReportMap, TheAxesNameTheCrsAndItsUnit) {
   ReportSurvey survey;
   survey.known = true;

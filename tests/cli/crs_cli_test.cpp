@@ -67,9 +67,14 @@ TEST(CrsCli, TheStoreAndItsRunsKeepTheCrsAndTheKeysStayTheSame) {
   ASSERT_EQ(with.exit_code, 0) << with.err;
   EXPECT_EQ(keys_of(dir.file("p")), keys_of(dir.file("c")));
   ASSERT_FALSE(keys_of(dir.file("c")).empty());
+  // Blocks in this process, whose surfaces go through the wire form (which carries no CRS) to merge.
+  auto blocks = run_geotandem("-q extract " + q(dir.file("a.raw")) +
+                              " --iso 0.5 --workers 0 --block-size 16 --crs EPSG:23031 --out " + q(dir.file("b")));
+  ASSERT_EQ(blocks.exit_code, 0) << blocks.err;
+  EXPECT_EQ(keys_of(dir.file("b")), keys_of(dir.file("c")));
   // With workers, which reopen the cube from the description the manager sends (--crs in it).
   auto workers = run_geotandem("-q extract " + q(dir.file("a.raw")) +
-                               " --iso 0.5 --workers 2 --block-size 32 --crs EPSG:23031 --out " + q(dir.file("w")));
+                               " --iso 0.5 --workers 2 --block-size 16 --crs EPSG:23031 --out " + q(dir.file("w")));
   ASSERT_EQ(workers.exit_code, 0) << workers.err;
   EXPECT_EQ(keys_of(dir.file("w")), keys_of(dir.file("c")));
   EXPECT_EQ(nlohmann::json::parse(testing::file_text(dir.file("w/store.json")))["geometry"]["crs"]["code"],

@@ -117,7 +117,7 @@ tandem::ExtractionOptions extraction_options_of(const std::map<std::string, std:
 
 void add_extract_command(CLI::App& app, Context& context, Runner& run) {
   struct Args {
-    std::string cube, out, nan = "error", variable;
+    std::string cube, out, nan = "error", variable, crs;
     std::map<std::string, std::string> extraction; // by option name, as given or the default
     std::optional<std::size_t> workers;
     std::optional<double> no_data;
@@ -149,9 +149,11 @@ void add_extract_command(CLI::App& app, Context& context, Runner& run) {
   // Start afresh instead of resuming (refused while another process writes the store).
   cmd->add_flag("--fresh", a->fresh, "replace the store in --out instead of resuming it");
   add_cube_reading_options(*cmd, a->variable, a->segy);
+  add_crs_option(*cmd, a->crs);
   cmd->callback([a, &context, &run] {
     run = [a, &context] {
       volume::OpenOptions open;
+      open.crs = crs_option(a->crs);
       open.nan_policy = volume::parse_nan_policy(a->nan);
       open.no_data = no_data_option(a->no_data);
       open.variable = a->variable;
@@ -164,6 +166,7 @@ void add_extract_command(CLI::App& app, Context& context, Runner& run) {
       workflow::require_cells(cube->geometry(), a->cube); // before the store is made
       for (const std::string& warning : volume::open_warnings(*cube))
         context.log.warning(warning);
+      context.log.info("CRS: " + cube->geometry().crs.label());
       // One worker per core unless told otherwise (no more than there are blocks; one block is
       // extracted in this process); --workers 0 extracts in this process.
       s.workers = a->workers.value_or(workflow::default_worker_count(cube->geometry(), options.block_size));
@@ -181,7 +184,7 @@ void add_extract_command(CLI::App& app, Context& context, Runner& run) {
       }
       if (s.workers > 0) {
         s.volume_description =
-            describe_cube_file(a->cube, a->nan, open.no_data, a->variable, a->segy, cube->reopen_hint());
+            describe_cube_file(a->cube, a->nan, open.no_data, a->variable, a->segy, a->crs, cube->reopen_hint());
         s.worker_command = worker_command(context);
       }
       s.record = {{"command", "geotandem extract"}, {"cube", a->cube}};

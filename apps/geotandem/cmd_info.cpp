@@ -22,6 +22,7 @@ struct Info {
   std::optional<double> no_data;
   std::string variable;
   volume::SegyOptions segy;
+  std::string crs;
 };
 
 struct ValueStats {
@@ -101,6 +102,15 @@ nlohmann::json describe(const volume::Volume& cube, const ValueStats* stats) {
   const auto& a = g.affine;
   j["affine"] = {{"x0", a.x0}, {"xi", a.xi}, {"xj", a.xj}, {"y0", a.y0}, {"yi", a.yi}, {"yj", a.yj}};
   j["bin_size_m"] = {a.step_i(), a.step_j()};
+  // The CRS of x and y, or "no CRS given" (with x and y then taken as metres).
+  if (g.crs.empty())
+    j["crs"] = {{"name", volume::kNoCrs}, {"unit", "m"}};
+  else
+    j["crs"] = {{"name", g.crs.name},
+                {"code", g.crs.code},
+                {"unit", g.crs.unit},
+                {"unit_name", g.crs.unit_name},
+                {"wkt", g.crs.wkt}};
   nlohmann::json corners = nlohmann::json::array();
   for (auto [i, jj] : {std::pair{0.0, 0.0},
                        {double(g.shape[0] - 1), 0.0},
@@ -153,7 +163,15 @@ void print_text(const nlohmann::json& j, const std::vector<volume::FormatDetail>
     << j["crossline"]["step"] << "\n";
   o << "samples:    " << j["sample"]["first"] << " to " << j["sample"]["last"] << " "
     << j["sample"]["unit"].get<std::string>() << ", interval " << j["sample"]["interval"] << "\n";
-  o << "bins:       " << j["bin_size_m"][0] << " m x " << j["bin_size_m"][1] << " m\n";
+  const std::string xy = j["crs"]["unit"].get<std::string>();
+  if (j["crs"].contains("wkt"))
+    o << "crs:        " << j["crs"]["name"].get<std::string>()
+      << (j["crs"]["code"].get<std::string>().empty() ? std::string()
+                                                      : " (" + j["crs"]["code"].get<std::string>() + ")")
+      << ", x and y in " << j["crs"]["unit_name"].get<std::string>() << "\n";
+  else
+    o << "crs:        " << volume::kNoCrs << " (x and y taken as metres; give one with --crs)\n";
+  o << "bins:       " << j["bin_size_m"][0] << " " << xy << " x " << j["bin_size_m"][1] << " " << xy << "\n";
   for (const auto& c : j["corners"])
     o << "corner:     il index " << c["inline_index"] << ", xl index " << c["crossline_index"] << " -> x " << std::fixed
       << std::setprecision(2) << c["x"].get<double>() << ", y " << c["y"].get<double>() << "\n"
@@ -190,9 +208,11 @@ void add_info_command(CLI::App& app, Context& context, Runner& run) {
                   "the statistics (a SEG-Y or raw cube's null, often -999.25)")
       ->type_name("VALUE");
   add_cube_reading_options(*cmd, info->variable, info->segy);
+  add_crs_option(*cmd, info->crs);
   cmd->callback([info, &context, &run] {
     run = [info, &context] {
       volume::OpenOptions options;
+      options.crs = crs_option(info->crs);
       options.nan_policy = volume::NanPolicy::fill; // info reports non-finite samples instead of failing
       options.fill_value = std::numeric_limits<float>::quiet_NaN();
       options.segy = info->segy;

@@ -85,8 +85,12 @@ void print_table(const std::vector<store::ComponentRow>& rows, std::uint64_t tot
   o << "# " << rows.size() << " of " << total << " components\n";
 }
 
-std::string volume_unit(const volume::Geometry& g) {
-  return g.z_unit == volume::SampleUnit::metres ? "(m3)" : "(m2.ms)";
+// "(m2.ms)", "(m3)", "(ft3)": the volume unit as the table has always shown it.
+std::string volume_unit_text(const volume::Geometry& g) {
+  std::string text;
+  for (char c : volume::volume_unit(g))
+    if (c != '^') text += c == '*' ? '.' : c;
+  return "(" + text + ")";
 }
 
 void print_show(const store::ComponentRow& r, const volume::Geometry& g) {
@@ -106,9 +110,10 @@ void print_show(const store::ComponentRow& r, const volume::Geometry& g) {
       o << " (faces " << mesh::cut_faces_text(s.cut_faces) << "; caps " << format_number(s.cap_area) << " of the area)";
   }
   o << "\n";
-  o << "volume:         " << format_number(s.volume) << " " << volume_unit(g) << "\n";
+  o << "volume:         " << format_number(s.volume) << " " << volume_unit_text(g) << "\n";
   o << "area:           " << format_number(s.area) << "\n";
-  o << "centroid:       " << triple(s.centroid) << "  (x m, y m, z " << z << ")\n";
+  const std::string xy = g.crs.empty() ? std::string("m") : g.crs.unit;
+  o << "centroid:       " << triple(s.centroid) << "  (x " << xy << ", y " << xy << ", z " << z << ")\n";
   o << "box min:        " << triple(s.box_min) << "\n";
   o << "box max:        " << triple(s.box_max) << "\n";
   o << "obb center:     " << triple(s.obb_center) << "\n";
@@ -118,6 +123,7 @@ void print_show(const store::ComponentRow& r, const volume::Geometry& g) {
   o << "azimuth:        " << format_number(s.azimuth, "%.2f") << " deg from north (axial)\n";
   o << "dip:            " << format_number(s.dip, "%.2f") << " deg\n";
   o << "elongation:     " << format_number(s.elongation, "%.3f") << "\n";
+  o << "crs:            " << g.crs.label() << "\n";
   o << "run:            " << (r.run ? std::to_string(*r.run) : std::string("-")) << "\n";
   o << "record:         shards/" << r.location.shard << ".gts offset " << r.location.offset << ", " << r.location.length
     << " bytes, xxh64 " << row_json(r)["checksum"].get<std::string>() << "\n";
@@ -162,7 +168,7 @@ void add_ls(CLI::App* parent, Runner& run) {
           list.push_back(row_json(r));
         std::cout << list.dump(2) << "\n";
       } else {
-        print_table(rows, s.size(), volume_unit(s.geometry()));
+        print_table(rows, s.size(), volume_unit_text(s.geometry()));
       }
       return 0;
     };
@@ -218,6 +224,7 @@ void add_export(CLI::App* parent, Context& context, Runner& run) {
       options.overwrite = args->overwrite;
       options.skip_damaged = args->skip_damaged;
       options.caps = !args->no_caps;
+      options.selection = args->filters.selection;
       auto s = store::ComponentStore::open(args->store);
       auto rows = s.query(args->filters.query());
       auto progress = context.progress();

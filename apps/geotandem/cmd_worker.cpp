@@ -12,6 +12,7 @@
 #include "geotandem/core/error.hpp"
 #include "geotandem/runtime/worker.hpp"
 #include "geotandem/synth/synthetic.hpp"
+#include "geotandem/volume/crs.hpp"
 #include "geotandem/volume/io.hpp"
 #include "geotandem/workflow/chain.hpp"
 #include "plugins_setup.hpp"
@@ -31,13 +32,15 @@ std::vector<std::string> worker_command(const Context& context) {
 }
 
 std::string describe_cube_file(const std::string& path, const std::string& nan, std::optional<float> no_data,
-                               const std::string& variable, const volume::SegyOptions& segy, const std::string& hint) {
+                               const std::string& variable, const volume::SegyOptions& segy, const std::string& crs,
+                               const std::string& hint) {
   nlohmann::json d{{"kind", "file"},
                    {"path", std::filesystem::absolute(path).string()},
                    {"nan", nan},
                    {"variable", variable},
                    {"segy", volume::to_json(segy)}};
   if (no_data) d["no_data"] = *no_data;
+  if (!crs.empty()) d["crs"] = crs; // --crs as given: the workers' volume says the manager's CRS
   if (!hint.empty()) d["reopen_hint"] = hint;
   return d.dump();
 }
@@ -54,6 +57,7 @@ std::shared_ptr<const volume::Volume> open_described_volume(const std::string& d
       if (d.contains("no_data")) open.no_data = d.at("no_data").get<float>();
       if (d.contains("segy")) open.segy = volume::segy_options_from_json(d["segy"]);
       open.reopen_hint = d.value("reopen_hint", "");
+      if (d.contains("crs")) open.crs = volume::parse_crs(d.at("crs").get<std::string>());
       return volume::open_volume(d.at("path").get<std::string>(), open);
     }
     if (kind == "analytic") {

@@ -17,6 +17,7 @@ void add_workflow_command(CLI::App& app, Context& context, Runner& run) {
     bool fresh = false;
     std::string scheduler;
     std::string bind;
+    std::string crs;
   };
   auto args = std::make_shared<Args>();
   auto* cmd = app.add_subcommand(
@@ -36,10 +37,19 @@ void add_workflow_command(CLI::App& app, Context& context, Runner& run) {
   cmd->add_option("--bind", args->bind,
                   "where the manager listens for its workers: loopback (the default), an interface (ib0) or an "
                   "address (10.0.0.5[:PORT]); anything but loopback turns CurveZMQ on (overrides execution.bind)");
+  add_crs_option(*cmd, args->crs);
   cmd->callback([args, &context, &run] {
     run = [args, &context] {
+      crs_option(args->crs); // a wrong code is named as --crs's, before the recipe is read
       auto registry = make_plugin_registry(context.log);
       auto sets = args->sets;
+      if (!args->crs.empty()) {
+        // A YAML single-quoted scalar: a WKT's brackets, commas and double quotes stay text.
+        std::string quoted = "'";
+        for (char c : args->crs)
+          quoted += c == '\'' ? std::string("''") : std::string(1, c);
+        sets.push_back("input.crs=" + quoted + "'");
+      }
       if (!args->scheduler.empty()) sets.push_back("execution.scheduler=" + args->scheduler);
       if (!args->bind.empty()) sets.push_back("execution.bind=" + args->bind);
       auto recipe = workflow::load_recipe(args->recipe, registry, sets);

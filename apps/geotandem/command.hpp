@@ -56,12 +56,17 @@ std::optional<float> no_data_option(const std::optional<double>& value);
 // The options that say which cube of a file to read and how: --variable (multidimensional files)
 // and --inline-byte / --crossline-byte (SEG-Y), shared by the commands that open a cube.
 void add_cube_reading_options(CLI::App& cmd, std::string& variable, volume::SegyOptions& segy);
+// --crs: the CRS of the cube's map coordinates (an EPSG code or a WKT), replacing the file's.
+void add_crs_option(CLI::App& cmd, std::string& crs);
+// The CRS of a --crs option checked through OSR (volume::parse_crs); nullopt when not given.
+// Throws InvalidArgument naming the option.
+std::optional<volume::Crs> crs_option(const std::string& text);
 
 // cmd_worker.cpp: how workers rebuild the input volume. The description of a cube file (JSON
 // text), and the volume a description names (the runtime's VolumeFactory).
 // `hint`: what opening the file found, for the workers (volume::Volume::reopen_hint).
 std::string describe_cube_file(const std::string& path, const std::string& nan, std::optional<float> no_data,
-                               const std::string& variable, const volume::SegyOptions& segy,
+                               const std::string& variable, const volume::SegyOptions& segy, const std::string& crs,
                                const std::string& hint = {});
 std::shared_ptr<const volume::Volume> open_described_volume(const std::string& description, Logger& log);
 // This executable's path, for the command line of local workers.

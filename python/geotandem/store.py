@@ -45,6 +45,22 @@ class Store:
         return json.loads(self._core.geometry_json())
 
     @property
+    def crs(self) -> Optional[Dict[str, Any]]:
+        """The CRS of the map coordinates (x, y) as the store keeps it: ``name``, ``code``
+        ("EPSG:23031"), ``unit`` ("m", "ft", "ftUS"), ``unit_name``, ``metres_per_unit`` and
+        ``wkt`` (usable as ``pyproj.CRS(store.crs["wkt"])`` or ``GeoDataFrame.set_crs``); None
+        when the store was made without one ("no CRS given")."""
+        return self.geometry.get("crs")
+
+    @property
+    def crs_label(self) -> str:
+        """``"ED50 / UTM zone 31N (EPSG:23031)"``, or ``"no CRS given"``."""
+        crs = self.crs
+        if not crs:
+            return "no CRS given"
+        return crs["name"] + (f" ({crs['code']})" if crs.get("code") else "")
+
+    @property
     def info(self) -> Dict[str, Any]:
         """The whole store.json (format version, geometry, creation info)."""
         return json.loads(self._core.info_json())
@@ -63,6 +79,9 @@ class Store:
 
         With ``selection="sorted"``: only that selection's members, in the order it was saved,
         with their ``rank`` (0-based) in it.
+
+        ``df.attrs["crs"]`` is the WKT of the CRS of the x and y columns (None without one) and
+        ``df.attrs["crs_label"]`` its name, or "no CRS given".
         """
         cols = self._core.columns(selection or "")
         run = pd.array(cols.pop("run"), dtype="Int64")
@@ -78,6 +97,10 @@ class Store:
             df["in_" + sel["name"]] = np.isin(keys, members)
         if selection:
             df.insert(1, "rank", np.arange(len(df), dtype=np.int64))
+        # The CRS of x and y (centroid_x, box_min_x, ...): df.attrs["crs"] is its WKT, or None.
+        crs = self.crs
+        df.attrs["crs"] = crs["wkt"] if crs else None
+        df.attrs["crs_label"] = self.crs_label
         return df
 
     def selections(self) -> pd.DataFrame:

@@ -183,3 +183,55 @@ def test_an_unknown_key_and_a_missing_store(scratch_root, quickstart_store):
         s.mesh(int(s.components().key.max()) + 1)
     with pytest.raises(geotandem.Error):
         geotandem.open_store(scratch_root / "no-such-store")
+
+
+def test_the_store_and_its_dataframe_show_the_crs(analytic_cube, scratch_root, quickstart_store):
+    """Issue 54: the CRS the store keeps, as the command line gave it; a store without one says so."""
+    out = scratch_root / "crs-store"
+    cli("-q", "extract", str(analytic_cube), "--iso", "0.5", "--workers", "0", "--crs", "EPSG:23031",
+        "--out", str(out))
+    store = geotandem.open_store(out)
+    assert store.crs["code"] == "EPSG:23031"
+    assert store.crs["unit"] == "m"
+    assert store.crs_label == "ED50 / UTM zone 31N (EPSG:23031)"
+    df = store.components()
+    assert df.attrs["crs_label"] == store.crs_label
+    assert df.attrs["crs"] == store.crs["wkt"]
+    assert store.runs()[0]["parameters"]["crs"]["code"] == "EPSG:23031"
+    plain = geotandem.open_store(quickstart_store)  # a synthetic cube, no CRS given
+    assert plain.crs is None
+    assert plain.crs_label == "no CRS given"
+    assert plain.components().attrs["crs"] is None
+
+
+def test_the_geopackage_reads_in_fiona_as_the_store_says(scratch_root, analytic_cube):
+    """Issue 54 part 2: the GeoPackage as geopandas users read it (fiona, from Debian's
+    python3-fiona): both layers, one feature per component, the store's CRS, its measures."""
+    import fiona  # python3-fiona, installed by scripts/setup.sh
+    from osgeo import osr  # python3-gdal (scripts/setup.sh)
+    out = scratch_root / "gpkg-store"
+    cli("-q", "extract", str(analytic_cube), "--iso", "0.5", "--workers", "0", "--crs", "EPSG:23031",
+        "--out", str(out))
+    gpkg = scratch_root / "bodies.gpkg"
+    if gpkg.exists():
+        gpkg.unlink()
+    cli("-q", "store", "export", str(out), "--format", "gpkg", "--out", str(gpkg))
+    df = geotandem.open_store(out).components().set_index("key")
+    assert sorted(fiona.listlayers(str(gpkg))) == ["centroids", "footprints"]
+    epsg = osr.SpatialReference()
+    epsg.ImportFromEPSG(23031)
+    for name in ("footprints", "centroids"):
+        with fiona.open(str(gpkg), layer=name) as layer:
+            srs = osr.SpatialReference()
+            srs.ImportFromWkt(layer.crs_wkt)
+            assert srs.IsSame(epsg), name
+            features = list(layer)
+        assert sorted(int(f["properties"]["key"]) for f in features) == sorted(df.index.tolist()), name
+        for f in features:
+            row = df.loc[int(f["properties"]["key"])]
+            assert f["properties"]["volume"] == pytest.approx(row.volume, rel=1e-12)
+            assert f["properties"]["azimuth"] == pytest.approx(row.azimuth, rel=1e-12, abs=1e-12)
+            if name == "centroids":
+                assert f["geometry"]["coordinates"][0] == pytest.approx(row.centroid_x, rel=1e-15)
+                assert f["geometry"]["coordinates"][1] == pytest.approx(row.centroid_y, rel=1e-15)
+

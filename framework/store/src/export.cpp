@@ -32,6 +32,12 @@ const std::vector<FormatRow>& format_rows() {
       {{ExportFormat::obj, "obj", "Wavefront OBJ"}, write_obj},
       {{ExportFormat::vtp, "vtp", "VTK XML PolyData: ParaView, with each body's key, volume and azimuth"}, write_vtp},
       {{ExportFormat::tsurf, "ts", "GOCAD TSurf: Petrel, SKUA-GOCAD, OpendTect"}, write_tsurf},
+      // Not a stream: GDAL writes the file itself (write_gpkg, called by write_file).
+      {{ExportFormat::gpkg, "gpkg",
+        "GeoPackage: QGIS, ArcGIS, geopandas; layers 'footprints' (outlines seen from above) and 'centroids' with "
+        "every measure of the index, in the store's CRS; with a selection its members only, otherwise a column "
+        "in_NAME per selection of the store"},
+       nullptr},
   };
   return rows;
 }
@@ -111,6 +117,10 @@ namespace {
 
 void write_file(const ComponentStore& store, const std::vector<const ComponentRow*>& rows,
                 const std::filesystem::path& path, const ExportOptions& options, const std::function<void()>& tick) {
+  if (options.format == ExportFormat::gpkg) {
+    write_gpkg(store, rows, path, options, tick);
+    return;
+  }
   // A unique temporary beside the target, renamed over it when whole: two exports to one path each
   // write their own, and the later rename wins with a complete file (AtomicFile removes the
   // temporary on an error or a cancel).
@@ -152,6 +162,9 @@ ExportSummary export_components(const ComponentStore& store, const std::vector<C
   if (auto store_dir = enclosing_store(out))
     throw InvalidArgument("will not write an export inside a store directory (" + store_dir->string() + ")",
                           {out.string()}, "only the store writes there; export to a path outside it");
+  if (options.format == ExportFormat::gpkg && options.per_component)
+    throw InvalidArgument("a GeoPackage holds every component in one file: --per-component does not apply",
+                          {out.string()}, "leave --per-component out");
   ExportSummary summary;
   std::vector<ComponentRow> intact;
   const std::vector<ComponentRow>* chosen = &rows;

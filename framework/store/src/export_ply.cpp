@@ -2,6 +2,7 @@
 // property (the component's position in the export; comments map it to the key).
 
 #include <cstring>
+#include <string>
 #include <vector>
 
 #include "export_writers.hpp"
@@ -16,6 +17,13 @@ void write_ply(SurfaceSource& source, std::ostream& out, const ExportOptions& op
   }
   const char* type = options.ply_float32 ? "float" : "double";
   out << "ply\nformat binary_little_endian 1.0\ncomment geotandem component store export, world coordinates\n";
+  // The CRS on one comment line (PLY comments end at the line): its label, or "no CRS given".
+  const volume::Geometry& geometry = source.store().geometry();
+  std::string crs = geometry.crs.label();
+  for (char& c : crs)
+    if (c == '\n' || c == '\r') c = ' ';
+  out << "comment crs " << crs << "\ncomment units x " << (geometry.crs.empty() ? "m" : geometry.crs.unit) << " y "
+      << (geometry.crs.empty() ? "m" : geometry.crs.unit) << " z " << volume::to_string(geometry.z_unit) << "\n";
   for (std::size_t i = 0; i < source.size(); ++i) {
     const auto& row = source.row(i);
     out << "comment body " << i << " key " << row.key << " volume ";

@@ -3,7 +3,9 @@
 // encoded together as one block on one line, uncompressed; vtkXMLWriter lays out an uncompressed
 // array the same way. The file stays well-formed XML that any XML parser reads, and ParaView opens
 // it. One piece holds every component; per-body key, volume and azimuth are cell data (for
-// colouring and thresholding in ParaView) and field data (one tuple per body).
+// colouring and thresholding in ParaView) and field data (one tuple per body). The field data also
+// holds the CRS as string arrays of one tuple (crs: its label or "no CRS given", crs_wkt, and
+// crs_units: the units of x, y and z), binary as VTK writes strings: the characters ended by 0.
 //
 // The byte count comes first, so it is computed from the index's counts before any surface is
 // read; the surfaces then stream one at a time, and an array whose values do not match its count
@@ -178,6 +180,22 @@ int vtp_index_bits(std::uint64_t points, std::uint64_t polys) {
   return points <= int32_max && 3 * polys <= int32_max ? 32 : 64;
 }
 
+namespace {
+
+// A string array of one tuple, binary like every other array: as vtkXMLWriter writes a
+// vtkStringArray, the string's characters ended by 0, after the UInt64 byte count.
+void string_array(std::ostream& out, const char* name, const std::string& value) {
+  out << "      <Array type=\"String\" Name=\"" << name << "\" NumberOfTuples=\"1\" format=\"binary\">\n        ";
+  Base64Writer encoder(out);
+  const std::uint64_t bytes = value.size() + 1;
+  encoder.write(&bytes, sizeof bytes);
+  encoder.write(value.c_str(), value.size() + 1); // with its terminating 0
+  encoder.finish();
+  out << "\n      </Array>\n";
+}
+
+} // namespace
+
 void write_vtp(SurfaceSource& source, std::ostream& out, const ExportOptions&) {
   std::uint64_t points = 0, polys = 0;
   for (std::size_t i = 0; i < source.size(); ++i) {
@@ -190,6 +208,11 @@ void write_vtp(SurfaceSource& source, std::ostream& out, const ExportOptions&) {
   field_array<std::uint64_t>(out, source, "key", key_of);
   field_array<double>(out, source, "volume", volume_of);
   field_array<double>(out, source, "azimuth", azimuth_of);
+  const volume::Geometry& geometry = source.store().geometry();
+  const std::string xy = geometry.crs.empty() ? std::string("m") : geometry.crs.unit;
+  string_array(out, "crs", geometry.crs.label());
+  string_array(out, "crs_wkt", geometry.crs.wkt);
+  string_array(out, "crs_units", xy + " " + xy + " " + volume::to_string(geometry.z_unit));
   out << "    </FieldData>\n    <Piece NumberOfPoints=\"" << points
       << "\" NumberOfVerts=\"0\" NumberOfLines=\"0\" NumberOfStrips=\"0\" NumberOfPolys=\"" << polys << "\">\n";
   out << "      <CellData Scalars=\"volume\">\n";

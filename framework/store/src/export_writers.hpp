@@ -48,6 +48,10 @@ void write_vtp(SurfaceSource& source, std::ostream& out, const ExportOptions& op
 // (half the bytes of Int64; VTK readers take either), else Int64.
 int vtp_index_bits(std::uint64_t points, std::uint64_t polys);
 void write_tsurf(SurfaceSource& source, std::ostream& out, const ExportOptions& options);
+// The GeoPackage is written by GDAL to a file, not a stream: written under a unique temporary name
+// beside `path` and renamed over it when complete (export_gpkg.cpp). `tick` after each component.
+void write_gpkg(const ComponentStore& store, const std::vector<const ComponentRow*>& rows,
+                const std::filesystem::path& path, const ExportOptions& options, const std::function<void()>& tick);
 
 // Shortest text that reads back to the same double (std::to_chars), for the text formats.
 inline void put_number(std::ostream& out, double value) {

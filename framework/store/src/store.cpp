@@ -181,9 +181,19 @@ ComponentStore ComponentStore::open_or_create(const std::filesystem::path& dir, 
                                               const CreateOptions& options) {
   if (!exists(dir)) return create(dir, geometry, options);
   auto store = open(dir, OpenMode::read_write);
-  if (!(store.geometry() == geometry))
+  if (!store.geometry().same_grid(geometry))
     throw InvalidArgument("the store was made for a cube of another geometry", {dir.string()},
                           "write to a new store, or extract from the cube the store was made for");
+  // The CRS does not change the components, but a store has one: a run that names another is
+  // refused; one that names none keeps the store's; a store made before CRSs were kept takes the
+  // run's.
+  const volume::Crs& kept = store.geometry().crs;
+  if (!geometry.crs.empty() && !kept.empty() && !(kept == geometry.crs))
+    throw InvalidArgument("the store's CRS is " + kept.label() + ", this run's is " + geometry.crs.label(),
+                          {dir.string()},
+                          "give the store's CRS (--crs, input.crs), write to another store, or pass --fresh to "
+                          "replace the store");
+  if (kept.empty() && !geometry.crs.empty()) store.record_crs(geometry.crs);
   return store;
 }
 
@@ -192,6 +202,20 @@ const std::filesystem::path& ComponentStore::directory() const {
 }
 const volume::Geometry& ComponentStore::geometry() const {
   return impl_->geometry;
+}
+
+void ComponentStore::record_crs(const volume::Crs& crs) {
+  impl_->require_writable("record a CRS");
+  auto info = nlohmann::json::parse(impl_->info_json, nullptr, false);
+  if (info.is_discarded() || !info.is_object() || !info.contains("geometry"))
+    throw FormatError("store.json is not valid JSON", {info_path(impl_->dir).string()});
+  volume::Geometry geometry = impl_->geometry;
+  geometry.crs = crs;
+  info["geometry"] = geometry_to_json(geometry);
+  const std::string text = info.dump(2) + "\n";
+  write_file_atomically(info_path(impl_->dir), text);
+  impl_->info_json = text;
+  impl_->geometry = geometry;
 }
 std::string ComponentStore::info_json() const {
   return impl_->info_json;

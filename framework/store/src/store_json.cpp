@@ -48,6 +48,8 @@ volume::Geometry geometry_from_json(const nlohmann::json& j, const std::string& 
     const auto& a = j.at("affine");
     g.affine = {a.at("x0").get<double>(), a.at("xi").get<double>(), a.at("xj").get<double>(),
                 a.at("y0").get<double>(), a.at("yi").get<double>(), a.at("yj").get<double>()};
+    // Stores made before CRSs were kept have none: they open as "no CRS given".
+    if (j.contains("crs")) g.crs = volume::crs_from_json(j.at("crs"));
     g.validate();
     return g;
   } catch (const nlohmann::json::exception& e) {

@@ -46,14 +46,17 @@ std::string where(const Region& a, const Region& b) {
 
 } // namespace
 
+// The same grid, whatever CRS each side names: the CRS changes no vertex, and the working-surface
+// wire form (surface_wire.cpp) does not carry it, so a surface decoded from another block or worker
+// has none while this process's volume may.
 Region WorkingSurface::Engine::merge_region(const Engine& b) const {
-  if (!(cube_ == b.cube_))
+  if (!cube_.same_grid(b.cube_))
     throw InvalidArgument("merge: the two surfaces belong to different cubes", {.block = b.region_.to_string()});
   return merge_region_of(b.region_, b.axis_, b.options_, b.front_);
 }
 
 Region WorkingSurface::Engine::merge_region_state(const detail::SurfaceState& b) const {
-  if (!(cube_ == b.cube))
+  if (!cube_.same_grid(b.cube))
     throw InvalidArgument("merge: the two surfaces belong to different cubes", {.block = b.region.to_string()});
   return merge_region_of(b.region, b.axis, b.options, b.front);
 }

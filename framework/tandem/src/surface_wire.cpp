@@ -161,7 +161,7 @@ detail::SurfaceState decode(Reader& r) {
   for (double* v : {&g.inline0, &g.inline_step, &g.crossline0, &g.crossline_step, &g.z0, &g.dz})
     *v = r.get<double>();
   const auto unit = r.get<std::uint8_t>();
-  if (unit > static_cast<std::uint8_t>(volume::SampleUnit::metres))
+  if (unit > static_cast<std::uint8_t>(volume::SampleUnit::feet))
     throw DataError("working-surface record: unknown sample unit " + std::to_string(unit));
   g.z_unit = static_cast<volume::SampleUnit>(unit);
   for (double* v : {&g.affine.x0, &g.affine.xi, &g.affine.xj, &g.affine.y0, &g.affine.yi, &g.affine.yj})

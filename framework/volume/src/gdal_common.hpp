@@ -8,6 +8,7 @@
 // handle; use one Volume per thread (open the file once per thread).
 
 #include <gdal_priv.h>
+#include <ogr_spatialref.h>
 
 #include <functional>
 #include <memory>
@@ -91,6 +92,18 @@ inline constexpr const char* raster_layout_key = "geotandem_layout";
 inline constexpr const char* inline_slices = "inline_slices";
 inline constexpr const char* time_slices = "time_slices";
 double field_value(const Geometry& geometry, const GeometryField& field);
+// The CRS geotandem writes: a WKT text attribute of the array (netCDF, Zarr) or a metadata item
+// (GeoTIFF). Read before what the driver finds (a CF grid_mapping, GeoTIFF keys).
+inline constexpr const char* crs_key = "geotandem_crs";
+
+// The CRS of `srs` (name, code, WKT, linear unit); InvalidArgument for a geographic CRS, naming
+// `what`. (gdal_crs.cpp)
+Crs describe(const OGRSpatialReference& srs, const std::string& what);
+// A CRS a file declares, as text (an attribute) or as the driver's spatial reference; `where` says
+// which ("attribute crs of array /amp"). Null or empty: nullopt. Throws FormatError naming `path`
+// when OSR does not know it or it is geographic, with the hint to give one with --crs.
+std::optional<Crs> crs_of_text(const std::string& text, const std::string& where, const std::string& path);
+std::optional<Crs> crs_of_srs(const OGRSpatialReference* srs, const std::string& where, const std::string& path);
 
 // Text that parses back to the same double; and its inverse (nullopt unless the whole text is a
 // finite number).

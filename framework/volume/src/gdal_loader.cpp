@@ -8,6 +8,8 @@
 
 #include "gdal_module.hpp"
 #include "geotandem/core/error.hpp"
+#include "geotandem/volume/crs.hpp"
+#include "geotandem/volume/geopackage.hpp"
 
 namespace geotandem::volume::detail {
 namespace {
@@ -57,16 +59,18 @@ Loaded load() {
 
 } // namespace
 
-const GdalModule& gdal_module(const std::string& file, Format format) {
+const GdalModule& gdal_module(const std::string& file, const std::string& what) {
   static const Loaded loaded = load(); // once per process, thread-safe
   if (!loaded.module)
-    throw IoError(std::string(format_name(format)) +
-                      " needs geotandem's GDAL module, which cannot be loaded: " + loaded.why,
-                  {file},
+    throw IoError(what + " needs geotandem's GDAL module, which cannot be loaded: " + loaded.why, {file},
                   "install geotandem again (the module, " + std::string(kGdalModuleFile) +
                       ", belongs beside libgeotandem_volume) or point " + kGdalModuleVariable +
                       " at it; SEG-Y and raw cubes do not need it");
   return *loaded.module;
+}
+
+const GdalModule& gdal_module(const std::string& file, Format format) {
+  return gdal_module(file, std::string(format_name(format)));
 }
 
 std::unique_ptr<Volume> open_gdal_md(const std::string& path, Format format, const OpenOptions& options) {
@@ -97,3 +101,19 @@ void write_geotiff(const Volume& volume, const std::string& path, const WriteOpt
 }
 
 } // namespace geotandem::volume::detail
+
+namespace geotandem::volume {
+
+Crs parse_crs(const std::string& text) {
+  return detail::gdal_module(text, "checking the CRS").parse_crs(text);
+}
+
+std::vector<MapPolygon> union_of_triangles(std::span<const MapTriangle> triangles) {
+  return detail::gdal_module("", "the union of map triangles").union_of_triangles(triangles);
+}
+
+std::unique_ptr<GeoPackageWriter> create_geopackage(const std::string& path, const GeoPackageLayout& layout) {
+  return detail::gdal_module(path, "writing a GeoPackage").create_geopackage(path, layout);
+}
+
+} // namespace geotandem::volume

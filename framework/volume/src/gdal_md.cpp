@@ -251,6 +251,13 @@ std::unique_ptr<Volume> volume_of(gdal::DatasetPtr dataset, const std::string& p
   std::shared_ptr<GDALMDArray> cube = gdal::in_cube_order(stored, path);
   gdal::LineGaps gaps;
   Geometry geometry = gdal::read_geometry(*cube, *stored, path, options.nan_policy == NanPolicy::fill, &gaps);
+  try {
+    if (auto crs = gdal::read_crs(*root, *stored, path)) geometry.crs = *crs;
+  } catch (const FormatError&) {
+    // A user's CRS (applied by open_volume) replaces the file's: what OSR cannot read there then
+    // does not matter.
+    if (!options.crs) throw;
+  }
   std::string name = format_of(*dataset, format);
   bool declared = false;
   const double no_data = stored->GetNoDataValueAsDouble(&declared);

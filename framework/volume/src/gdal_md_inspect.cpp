@@ -291,6 +291,10 @@ Geometry read_geometry(const GDALMDArray& array, const GDALMDArray& attributes_o
   if (unit == "m" || unit == "meter" || unit == "meters" || unit == "metre" || unit == "metres" ||
       (unit.empty() && lower(z.GetName()) == "depth"))
     g.z_unit = SampleUnit::metres;
+  // Feet as the file says (UDUNITS names; US survey feet differ from feet by 2 parts in a million).
+  if (unit == "ft" || unit == "foot" || unit == "feet" || unit == "international_foot" || unit == "us_survey_foot" ||
+      unit == "ftus")
+    g.z_unit = SampleUnit::feet;
   std::vector<double> zs = coordinates_of(z);
   if (unit == "s" || unit == "second" || unit == "seconds")
     for (double& value : zs)
@@ -337,6 +341,36 @@ Geometry read_geometry(const GDALMDArray& array, const GDALMDArray& attributes_o
                       {path}, "repair the geotandem_* attributes or the coordinate variables");
   }
   return g;
+}
+
+namespace {
+
+// The text of a string attribute, or "" when there is none or it holds no text.
+std::string text_attribute(const GDALIHasAttribute& holder, const char* name) {
+  auto attribute = holder.GetAttribute(name);
+  if (!attribute || attribute->GetDataType().GetClass() != GEDTC_STRING) return {};
+  const char* text = attribute->ReadAsString();
+  return text ? text : "";
+}
+
+} // namespace
+
+std::optional<Crs> read_crs(GDALGroup& root, const GDALMDArray& stored, const std::string& path) {
+  const std::string array = stored.GetFullName();
+  if (auto text = text_attribute(stored, crs_key); !text.empty())
+    return crs_of_text(text, std::string("attribute ") + crs_key + " of array " + array, path);
+  if (auto srs = stored.GetSpatialRef())
+    if (auto crs = crs_of_srs(srs.get(), "the grid mapping of array " + array, path)) return crs;
+  if (auto name = text_attribute(stored, "grid_mapping"); !name.empty())
+    if (auto mapping = root.OpenMDArray(name))
+      for (const char* key : {"crs_wkt", "spatial_ref"})
+        if (auto text = text_attribute(*mapping, key); !text.empty())
+          return crs_of_text(text, "attribute " + std::string(key) + " of the grid mapping variable " + name, path);
+  if (auto text = text_attribute(stored, "crs"); !text.empty())
+    return crs_of_text(text, "attribute crs of array " + array, path);
+  if (auto text = text_attribute(root, "crs"); !text.empty())
+    return crs_of_text(text, "attribute crs of the file", path);
+  return std::nullopt;
 }
 
 } // namespace geotandem::volume::detail::gdal

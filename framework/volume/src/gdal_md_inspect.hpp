@@ -7,6 +7,7 @@
 #include <array>
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -44,5 +45,13 @@ struct LineGaps {
 // grid and `gaps` says where the stored lines go; otherwise a FormatError names the missing lines.
 Geometry read_geometry(const GDALMDArray& array, const GDALMDArray& attributes_of, const std::string& path,
                        bool read_missing = false, LineGaps* gaps = nullptr);
+
+// The CRS the file declares for the cube `stored` (the array as stored), in this order: geotandem's
+// own attribute (geotandem_crs, a WKT), the spatial reference the driver finds (netCDF CF
+// grid_mapping, Zarr _CRS), the variable a `grid_mapping` attribute names (its crs_wkt or
+// spatial_ref attribute, as xarray/rioxarray write them), a `crs` text attribute of the array, then
+// of the root group (an EPSG code or a WKT). nullopt when none. Throws FormatError naming `path`
+// (and what held it) when OSR does not know what the file says.
+std::optional<Crs> read_crs(GDALGroup& root, const GDALMDArray& stored, const std::string& path);
 
 } // namespace geotandem::volume::detail::gdal

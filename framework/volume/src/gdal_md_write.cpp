@@ -78,7 +78,7 @@ void create(Output& out, const Volume& volume, const std::string& path, Format f
   out.root = out.dataset->GetRootGroup();
   if (!out.root) fail("cannot get the root group of the new file", errors, path);
 
-  const bool depth = g.z_unit == SampleUnit::metres;
+  const bool depth = g.z_unit != SampleUnit::milliseconds;
   const std::array<const char*, 3> names{"iline", "xline", depth ? "depth" : "twt"};
   // Dimension types as GDAL's multidimensional model names them, for tools that look at them.
   const std::array<const char*, 3> types{"HORIZONTAL_Y", "HORIZONTAL_X", "VERTICAL"};
@@ -103,6 +103,9 @@ void create(Output& out, const Volume& volume, const std::string& path, Format f
   for (const gdal::GeometryField& field : gdal::geometry_fields())
     write_number(*out.array, field.key, gdal::field_value(g, field), path, errors);
   write_text(*out.array, gdal::z_unit_key, to_string(g.z_unit), path, errors);
+  // A WKT attribute rather than a CF grid_mapping: the dimensions are line numbers, not the
+  // projected x and y a grid mapping would make of them.
+  if (!g.crs.empty()) write_text(*out.array, gdal::crs_key, g.crs.wkt, path, errors);
 }
 
 } // namespace

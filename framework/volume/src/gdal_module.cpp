@@ -5,9 +5,11 @@
 namespace {
 
 const geotandem::volume::detail::GdalModule kModule{
-    geotandem::volume::detail::kGdalModuleVersion,     &geotandem::volume::detail::gdal::open_md,
-    &geotandem::volume::detail::gdal::open_md_dataset, &geotandem::volume::detail::gdal::write_md,
-    &geotandem::volume::detail::gdal::open_raster,     &geotandem::volume::detail::gdal::write_geotiff,
+    geotandem::volume::detail::kGdalModuleVersion,       &geotandem::volume::detail::gdal::open_md,
+    &geotandem::volume::detail::gdal::open_md_dataset,   &geotandem::volume::detail::gdal::write_md,
+    &geotandem::volume::detail::gdal::open_raster,       &geotandem::volume::detail::gdal::write_geotiff,
+    &geotandem::volume::detail::gdal::parse_crs,         &geotandem::volume::detail::gdal::union_of_triangles,
+    &geotandem::volume::detail::gdal::create_geopackage,
 };
 
 } // namespace

@@ -14,6 +14,7 @@
 #include <string>
 
 #include "formats.hpp"
+#include "geotandem/volume/geopackage.hpp"
 
 namespace geotandem::volume::detail {
 
@@ -26,10 +27,13 @@ struct GdalModule {
   std::unique_ptr<Volume> (*open_raster)(const std::string& path, Format format, const OpenOptions& options);
   void (*write_geotiff)(const Volume& volume, const std::string& path, const WriteOptions& options, Progress& progress,
                         const CancelToken& cancel);
+  Crs (*parse_crs)(const std::string& text);
+  std::vector<MapPolygon> (*union_of_triangles)(std::span<const MapTriangle> triangles);
+  std::unique_ptr<GeoPackageWriter> (*create_geopackage)(const std::string& path, const GeoPackageLayout& layout);
 };
 
 // Bumped whenever GdalModule or a signature in it changes.
-inline constexpr std::uint32_t kGdalModuleVersion = 1;
+inline constexpr std::uint32_t kGdalModuleVersion = 2;
 inline constexpr const char* kGdalModuleEntry = "geotandem_volume_gdal_module";
 inline constexpr const char* kGdalModuleFile = "libgeotandem_volume_gdal.so";
 // Where to load the module from instead of beside libgeotandem_volume (packagers, tests).
@@ -45,11 +49,17 @@ void write_md(const Volume& volume, const std::string& path, Format format, cons
 std::unique_ptr<Volume> open_raster(const std::string& path, Format format, const OpenOptions& options);
 void write_geotiff(const Volume& volume, const std::string& path, const WriteOptions& options, Progress& progress,
                    const CancelToken& cancel);
+Crs parse_crs(const std::string& text);
+std::vector<MapPolygon> union_of_triangles(std::span<const MapTriangle> triangles);
+std::unique_ptr<GeoPackageWriter> create_geopackage(const std::string& path, const GeoPackageLayout& layout);
 } // namespace gdal
 
 // The library's side: the module's table, loaded on first use (thread-safe). When it cannot be
 // loaded, throws IoError naming `file` (the cube being read or written), its format, the module's
 // path and the loader's reason.
 const GdalModule& gdal_module(const std::string& file, Format format);
+// The same for work that is not a cube's format: `what` says what needs the module ("checking the
+// CRS", "the GeoPackage export"), `file` what it was about (a path, or the CRS's text).
+const GdalModule& gdal_module(const std::string& file, const std::string& what);
 
 } // namespace geotandem::volume::detail

@@ -200,7 +200,15 @@ std::string assumed_of(GDALDataset& dataset, const Geometry& g) {
 
 } // namespace
 
-std::unique_ptr<Volume> gdal::open_raster(const std::string& path, Format format, const OpenOptions&) {
+// What the file says: geotandem's metadata item, else the dataset's georeference (GeoTIFF keys,
+// ENVI's coordinate system string).
+std::optional<Crs> crs_of(GDALDataset& dataset, const std::string& path) {
+  if (const char* text = dataset.GetMetadataItem(gdal::crs_key); text && *text)
+    return gdal::crs_of_text(text, std::string("metadata item ") + gdal::crs_key, path);
+  return gdal::crs_of_srs(dataset.GetSpatialRef(), "the raster's georeference", path);
+}
+
+std::unique_ptr<Volume> gdal::open_raster(const std::string& path, Format format, const OpenOptions& options) {
   const char* driver = format == Format::geotiff ? "GTiff" : format == Format::envi ? "ENVI" : nullptr;
   if (!driver) throw InvalidArgument(std::string("not a classic raster format: ") + format_name(format), {path});
   gdal::DatasetPtr dataset = gdal::open_dataset(path, GDAL_OF_RASTER, driver, format_name(format));
@@ -216,6 +224,11 @@ std::unique_ptr<Volume> gdal::open_raster(const std::string& path, Format format
   }
   const RasterLayout layout = layout_of(*dataset, path);
   Geometry geometry = geometry_of(*dataset, layout, path);
+  try {
+    if (auto crs = crs_of(*dataset, path)) geometry.crs = *crs;
+  } catch (const FormatError&) {
+    if (!options.crs) throw; // a user's CRS replaces it (open_volume)
+  }
   int declared = FALSE;
   const double no_data = dataset->GetRasterBand(1)->GetNoDataValue(&declared);
   std::string assumed = assumed_of(*dataset, geometry);

@@ -54,6 +54,8 @@ void gdal::write_geotiff(const Volume& volume, const std::string& path, const Wr
     for (const gdal::GeometryField& field : gdal::geometry_fields())
       dataset->SetMetadataItem(field.key, gdal::format_double(gdal::field_value(g, field)).c_str());
     dataset->SetMetadataItem(gdal::z_unit_key, to_string(g.z_unit));
+    // As a metadata item, not as GeoTIFF keys: raster x and y are samples and crosslines here.
+    if (!g.crs.empty()) dataset->SetMetadataItem(gdal::crs_key, g.crs.wkt.c_str());
     // Says that the bands are inlines, not time slices (the reader's default for other files).
     dataset->SetMetadataItem(gdal::raster_layout_key, gdal::inline_slices);
     // Boxes as deep as the chunk in inlines and one tile wide, so that each tile is written once.

@@ -7,6 +7,7 @@
 #include "formats.hpp"
 #include "geotandem/core/error.hpp"
 #include "geotandem/core/output_path.hpp"
+#include "geotandem/volume/crs.hpp"
 #include "geotandem/volume/size_guard.hpp"
 #include "raw_sidecar.hpp"
 
@@ -189,6 +190,7 @@ std::unique_ptr<Volume> open_volume(const std::string& path, const OpenOptions& 
     // The geometry came from the file, not from the caller: a broken file, not a bad argument.
     throw FormatError("the file describes an invalid geometry: " + e.message(), {path}, e.hint());
   }
+  if (options.crs) volume = with_crs(std::move(volume), *options.crs);
   return detail::guard_nan(std::move(volume), options);
 }
 
@@ -199,6 +201,7 @@ std::unique_ptr<Volume> open_gdal_dataset(GDALDataset* dataset, const std::strin
   } catch (const InvalidArgument& e) {
     throw FormatError("the dataset describes an invalid geometry: " + e.message(), {name}, e.hint());
   }
+  if (options.crs) volume = with_crs(std::move(volume), *options.crs);
   return detail::guard_nan(std::move(volume), options);
 }
 

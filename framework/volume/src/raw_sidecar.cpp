@@ -25,14 +25,19 @@ class SidecarReader {
 public:
   explicit SidecarReader(std::string file) : file_(std::move(file)) {}
 
-  void expect_keys(const json& object, const std::string& where, std::initializer_list<const char*> keys) const {
+  void expect_keys(const json& object, const std::string& where, std::initializer_list<const char*> keys,
+                   std::initializer_list<const char*> optional = {}) const {
     if (!object.is_object()) fail("'" + where + "' must be a JSON object");
     std::string known;
     for (const char* key : keys)
       known += std::string(known.empty() ? "" : ", ") + key;
+    for (const char* key : optional)
+      known += std::string(", ") + key + " (optional)";
     for (const auto& item : object.items()) {
       bool found = false;
       for (const char* key : keys)
+        found = found || item.key() == key;
+      for (const char* key : optional)
         found = found || item.key() == key;
       if (!found) fail("unknown key '" + join(where, item.key()) + "'", "the keys here are: " + known);
     }
@@ -141,7 +146,7 @@ Geometry read_raw_sidecar(const std::string& sidecar) {
 
   const json& geo = doc.at("geometry");
   r.expect_keys(geo, "geometry",
-                {"inline0", "inline_step", "crossline0", "crossline_step", "z0", "dz", "z_unit", "affine"});
+                {"inline0", "inline_step", "crossline0", "crossline_step", "z0", "dz", "z_unit", "affine"}, {"crs"});
   g.inline0 = r.number(geo, "geometry", "inline0");
   g.inline_step = r.number(geo, "geometry", "inline_step");
   g.crossline0 = r.number(geo, "geometry", "crossline0");
@@ -152,7 +157,7 @@ Geometry read_raw_sidecar(const std::string& sidecar) {
   try {
     g.z_unit = parse_sample_unit(unit);
   } catch (const InvalidArgument&) {
-    r.fail("key 'geometry.z_unit' is \"" + unit + "\"", "use \"ms\" (time) or \"m\" (depth)");
+    r.fail("key 'geometry.z_unit' is \"" + unit + "\"", "use \"ms\" (time), \"m\" or \"ft\" (depth)");
   }
   const json& affine = geo.at("affine");
   r.expect_keys(affine, "geometry.affine", {"x0", "xi", "xj", "y0", "yi", "yj"});
@@ -162,6 +167,13 @@ Geometry read_raw_sidecar(const std::string& sidecar) {
   g.affine.y0 = r.number(affine, "geometry.affine", "y0");
   g.affine.yi = r.number(affine, "geometry.affine", "yi");
   g.affine.yj = r.number(affine, "geometry.affine", "yj");
+  if (geo.contains("crs")) {
+    try {
+      g.crs = crs_from_json(geo.at("crs"));
+    } catch (const InvalidArgument& e) {
+      r.fail("key 'geometry.crs': " + e.message(), e.hint());
+    }
+  }
   try {
     g.validate();
   } catch (const InvalidArgument& e) {

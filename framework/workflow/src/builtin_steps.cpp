@@ -94,8 +94,7 @@ public:
     rules.selection = p.at("selection").text;
     auto r = remove_bubbles(store, rules);
     std::ostringstream note;
-    note << "volume threshold " << r.threshold << " "
-         << (store.geometry().z_unit == volume::SampleUnit::milliseconds ? "m^2*ms" : "m^3");
+    note << "volume threshold " << r.threshold << " " << volume::volume_unit(store.geometry());
     return {r.before, r.after, rules.selection, note.str(), {{"volume_threshold", r.threshold}}};
   }
 };
@@ -150,6 +149,7 @@ public:
     options.format = store::parse_export_format(p.at("format").text);
     options.per_component = p.at("per_component").boolean;
     options.caps = p.at("caps").boolean;
+    options.selection = q.selection;
     std::string path = p.at("path").text.empty() ? "bodies." + p.at("format").text : p.at("path").text;
     // A rerun replaces the run's own exports, inside its output directory; a file elsewhere
     // (an absolute path, or ../ leading out) is never replaced.

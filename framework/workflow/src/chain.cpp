@@ -9,6 +9,7 @@
 
 #include "geotandem/core/error.hpp"
 #include "geotandem/synth/synthetic.hpp"
+#include "geotandem/volume/crs.hpp"
 #include "geotandem/volume/io.hpp"
 #include "shared_input.hpp"
 
@@ -16,6 +17,11 @@ namespace fs = std::filesystem;
 
 namespace geotandem::workflow {
 namespace {
+
+// The CRS a description's input names (an EPSG code or a WKT, checked again through OSR).
+volume::Crs crs_of(const nlohmann::json& in) {
+  return volume::parse_crs(in.at("crs").get<std::string>());
+}
 
 // `missing_as_nan`: under `nan: fill`, the missing samples read as NaN rather than the lowest float
 // (the attributes then see them as dead samples and the result masks them: open_chain).
@@ -36,6 +42,7 @@ std::shared_ptr<const volume::Volume> open_input(const nlohmann::json& in, bool 
       o.snr = s.at("snr").get<double>();
       cube = synth::make_seismic(o);
     }
+    if (in.contains("crs")) return volume::with_crs(std::shared_ptr<const volume::Volume>(std::move(cube)), crs_of(in));
     return std::shared_ptr<const volume::Volume>(std::move(cube));
   }
   volume::OpenOptions options;
@@ -46,6 +53,9 @@ std::shared_ptr<const volume::Volume> open_input(const nlohmann::json& in, bool 
   if (in.contains("segy")) options.segy = volume::segy_options_from_json(in["segy"]);
   // Not part of the chain's identity: the runner adds it to the workers' copy only.
   options.reopen_hint = in.value("reopen_hint", "");
+  // Nor is the CRS (it changes no sample and no component): the runner adds the recipe's to the
+  // workers' copy, so that the workers' volume says what the manager's does.
+  if (in.contains("crs")) options.crs = crs_of(in);
   options.progress = progress;
   return std::shared_ptr<const volume::Volume>(volume::open_volume(in.at("file").get<std::string>(), options));
 }
@@ -85,6 +95,7 @@ ChainDescription ChainDescription::from_json(const nlohmann::json& j) {
   if (in.contains("file") == in.contains("synthetic")) bad("the input needs exactly one of 'file' or 'synthetic'");
   if (in.contains("file") && !in["file"].is_string()) bad("input.file is not a string");
   if (in.contains("no_data") && !in["no_data"].is_number()) bad("input.no_data is not a number");
+  if (in.contains("crs") && !in["crs"].is_string()) bad("input.crs is not a string");
   if (in.contains("synthetic")) {
     const auto& s = in["synthetic"];
     if (!s.is_object() || !s.contains("kind") || !s.contains("shape") || !s.contains("seed") || !s.contains("snr") ||
@@ -123,6 +134,9 @@ std::string ChainDescription::fingerprint() const {
 ChainDescription describe_chain(const Recipe& recipe, const PluginRegistry& plugins) {
   ChainDescription d;
   d.input = recipe.canonical.at("input");
+  // The CRS changes no sample and no component: it is the runner's (run_workflow gives it to the
+  // extraction's volume), not the chain's, whose fingerprint stays that of the recipe without it.
+  d.input.erase("crs");
   if (!recipe.input.synthetic) {
     fs::path path = recipe.input.file;
     if (path.is_relative() && !recipe.base_dir.empty()) path = fs::path(recipe.base_dir) / path;

@@ -14,6 +14,7 @@
 #include "geotandem/tandem/marching_cubes.hpp"
 #include "geotandem/tandem/tandem.hpp"
 #include "geotandem/volume/fingerprint.hpp"
+#include "geotandem/volume/geometry_json.hpp"
 #include "geotandem/workflow/chain.hpp"
 
 namespace geotandem::workflow {
@@ -37,6 +38,10 @@ nlohmann::json extract_run_parameters(const volume::Volume& volume, const Extrac
   const nlohmann::json codec = tandem::to_json(options); // the options as SETUP carries them
   parameters.update(codec);
   parameters["source"] = volume.source();
+  // The CRS of the map coordinates: kept with the run, outside its identity (it changes no
+  // component; the store refuses a run that names another CRS than its own).
+  const volume::Crs& crs = volume.geometry().crs;
+  parameters["crs"] = crs.empty() ? nlohmann::json(volume::kNoCrs) : nlohmann::json(volume::crs_json(crs));
   // What decides the components. The store refuses a run of another identity (it would mix
   // two extractions); a rerun of the same one resumes.
   parameters["identity"] = codec;
@@ -112,7 +117,7 @@ ExtractResult extract_to_store(const volume::Volume& volume, store::ComponentSto
                                const ExtractionOptions& extraction, const ExecutionContext& context, Logger& log,
                                Progress& progress, const CancelToken& cancel) {
   require_cells(volume.geometry(), {});
-  if (!(store.geometry() == volume.geometry()))
+  if (!store.geometry().same_grid(volume.geometry()))
     throw InvalidArgument("the store was made for another cube geometry", {store.directory().string()},
                           "extract into a new store directory");
   extraction.validate(); // block_size 0 or at least min_block_size, every value in its range

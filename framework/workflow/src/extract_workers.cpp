@@ -78,7 +78,7 @@ std::size_t default_worker_count(const volume::Geometry& geometry, std::int64_t 
 ExtractResult extract_with_workers(const volume::Volume& volume, store::ComponentStore& store,
                                    const ExtractionOptions& extraction, const ExecutionContext& context, Logger& log,
                                    Progress& progress, const CancelToken& cancel) {
-  if (!(store.geometry() == volume.geometry()))
+  if (!store.geometry().same_grid(volume.geometry()))
     throw InvalidArgument("the store was made for another cube geometry", {store.directory().string()},
                           "extract into a new store directory");
   if (context.volume_description.empty() || context.worker_command.empty())

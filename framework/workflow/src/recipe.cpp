@@ -8,6 +8,7 @@
 
 #include "geotandem/core/error.hpp"
 #include "geotandem/synth/options.hpp"
+#include "geotandem/volume/crs.hpp"
 #include "geotandem/volume/io.hpp"
 #include "geotandem/volume/size_guard.hpp"
 #include "geotandem/workflow/suggest.hpp"
@@ -42,6 +43,15 @@ void parse_input(MapReader& m, InputSpec& in) {
                    "a synthetic cube has no missing samples");
   if (given.count("no_data")) in.no_data = given.at("no_data").real; // a float sample's value
   if (given.count("variable")) in.variable = given.at("variable").text;
+  if (given.count("crs")) {
+    // Declared as text; what the declaration cannot check (a CRS OSR knows) is checked here.
+    in.crs_text = given.at("crs").text;
+    try {
+      in.crs = volume::parse_crs(in.crs_text);
+    } catch (const Error& e) {
+      throw error_at(m.source(), m.node("crs"), "input.crs: " + e.message(), e.hint());
+    }
+  }
   if (m.has("segy")) {
     const RecipeSection& segy = recipe_section("input.segy");
     MapReader s(m.source(), m.node("segy"), segy.path);
@@ -342,6 +352,7 @@ nlohmann::json to_json(const Recipe& r) {
   in["nan"] = r.input.nan;
   if (r.input.no_data) in["no_data"] = *r.input.no_data;
   if (!r.input.variable.empty()) in["variable"] = r.input.variable;
+  if (r.input.crs) in["crs"] = r.input.crs_text; // left out of the chain's description (describe_chain)
   if (!(r.input.segy == volume::SegyOptions{})) in["segy"] = volume::to_json(r.input.segy);
   j["input"] = in;
   j["steps"] = json::array();

@@ -70,9 +70,17 @@ std::vector<RecipeSection> make_sections() {
           "attributes see them as dead samples (0, as the dead traces that pad an irregular survey) and the "
           "attribute is the lowest float wherever the input is missing",
           {}, {}, {"error", "fill"}),
+      param_spec(
+          "crs", ParamType::text, std::nullopt,
+          "the coordinate reference system of the map coordinates: an EPSG code (`EPSG:23031`) or a WKT, checked "
+          "through GDAL's OSR while the recipe is read (an unknown code, or a geographic CRS in degrees, is refused "
+          "at its line and column). It replaces the CRS the file says (a netCDF CF `grid_mapping`, a `crs` "
+          "attribute, a GeoTIFF/ENVI georeference) and is kept in the store, its runs and every export; without "
+          "either, outputs say \"no CRS given\". `--crs` on `run-workflow` sets it. It changes no component: a "
+          "store keeps its keys and its extraction with or without it"),
   };
   input.keys[1].single_precision = true;
-  input.absent = {{"file", "—"}, {"no_data", "—"}, {"variable", "the only 3-D array"}};
+  input.absent = {{"file", "—"}, {"no_data", "—"}, {"variable", "the only 3-D array"}, {"crs", "the file's"}};
   s.push_back(input);
 
   RecipeSection segy_section{"input.segy", {}, {}, {}};

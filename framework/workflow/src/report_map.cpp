@@ -1,5 +1,6 @@
 // The report's map view: inline SVG of the survey outline and every kept body's footprint,
-// coloured by azimuth, with a north arrow, a scale bar and a colour key. North is up.
+// coloured by azimuth, with a north arrow, a scale bar, a colour key, and axes with tick values in
+// map coordinates that name the CRS (or say "no CRS given"). North is up.
 
 #include <algorithm>
 #include <cmath>
@@ -7,6 +8,7 @@
 #include <iomanip>
 #include <limits>
 #include <sstream>
+#include <vector>
 
 #include "geotandem/workflow/report.hpp"
 
@@ -28,12 +30,46 @@ double nice_length(double limit) {
   return power;
 }
 
-std::string length_label(double metres) {
+// A length in the map's unit: km beyond 1000 m; feet stay feet.
+std::string length_label(double length, const std::string& unit) {
   std::ostringstream out;
-  if (metres >= 1000.0)
-    out << metres / 1000.0 << " km";
+  if (unit == "m" && length >= 1000.0)
+    out << length / 1000.0 << " km";
   else
-    out << metres << " m";
+    out << length << " " << unit;
+  return out.str();
+}
+
+std::string escaped(const std::string& text) {
+  std::string out;
+  for (char c : text) {
+    if (c == '<')
+      out += "&lt;";
+    else if (c == '>')
+      out += "&gt;";
+    else if (c == '&')
+      out += "&amp;";
+    else if (c == '"')
+      out += "&quot;";
+    else
+      out += c;
+  }
+  return out;
+}
+
+// Tick values: multiples of a nice step, about `count` of them across [lo, hi].
+std::vector<double> ticks(double lo, double hi, int count) {
+  std::vector<double> out;
+  const double step = nice_length((hi - lo) / count);
+  if (!(step > 0.0) || !std::isfinite(lo) || !std::isfinite(hi)) return out;
+  for (double v = std::ceil(lo / step) * step; v <= hi + 1e-9 * step && out.size() < 20; v += step)
+    out.push_back(v);
+  return out;
+}
+
+std::string tick_text(double value) {
+  std::ostringstream out;
+  out << std::fixed << std::setprecision(0) << value;
   return out.str();
 }
 
@@ -61,7 +97,7 @@ std::string azimuth_colour(double azimuth) {
 }
 
 std::string svg_body_map(const ReportSurvey& survey, const std::vector<ReportBody>& bodies) {
-  const double width = 560, height = 460, margin = 34, key_height = 40;
+  const double width = 560, height = 500, margin = 44, key_height = 80;
   double x0 = std::numeric_limits<double>::infinity(), y0 = x0, x1 = -x0, y1 = -x0;
   auto extend = [&](const std::array<double, 2>& p) {
     x0 = std::min(x0, p[0]), x1 = std::max(x1, p[0]), y0 = std::min(y0, p[1]), y1 = std::max(y1, p[1]);
@@ -87,6 +123,25 @@ std::string svg_body_map(const ReportSurvey& survey, const std::vector<ReportBod
   std::ostringstream s;
   s << "<svg class=\"map\" xmlns=\"http://www.w3.org/2000/svg\" width=\"" << width << "\" height=\"" << height
     << "\" viewBox=\"0 0 " << width << " " << height << "\"><title>Map view of the kept bodies</title>";
+  // Axes: the frame of the map's coordinates, ticks in the CRS's unit, labels naming the CRS.
+  const double left = ox, right = ox + dx * scale, bottom = oy, top = oy - dy * scale;
+  s << "<g class=\"axes\" font-size=\"9\" fill=\"#555\"><rect x=\"" << num(left) << "\" y=\"" << num(top)
+    << "\" width=\"" << num(right - left) << "\" height=\"" << num(bottom - top)
+    << "\" fill=\"none\" stroke=\"#bbb\" stroke-width=\"0.6\"/>";
+  for (double x : ticks(x0, x1, 4))
+    s << "<line x1=\"" << sx(x) << "\" y1=\"" << num(bottom) << "\" x2=\"" << sx(x) << "\" y2=\"" << num(bottom + 4)
+      << "\" stroke=\"#777\"/><text x=\"" << sx(x) << "\" y=\"" << num(bottom + 13) << "\" text-anchor=\"middle\">"
+      << tick_text(x) << "</text>";
+  for (double y : ticks(y0, y1, 4))
+    s << "<line x1=\"" << num(left - 4) << "\" y1=\"" << sy(y) << "\" x2=\"" << num(left) << "\" y2=\"" << sy(y)
+      << "\" stroke=\"#777\"/><text x=\"" << num(left - 6) << "\" y=\"" << sy(y) << "\" text-anchor=\"end\" "
+      << "transform=\"rotate(-90 " << num(left - 6) << " " << sy(y) << ")\">" << tick_text(y) << "</text>";
+  s << "<text class=\"axis-label\" x=\"" << num((left + right) / 2) << "\" y=\"" << num(bottom + 26)
+    << "\" font-size=\"10\" text-anchor=\"middle\">x, easting (" << escaped(survey.xy_unit) << "), "
+    << escaped(survey.crs) << "</text>";
+  s << "<text class=\"axis-label\" x=\"12\" y=\"" << num((top + bottom) / 2)
+    << "\" font-size=\"10\" text-anchor=\"middle\" transform=\"rotate(-90 12 " << num((top + bottom) / 2)
+    << ")\">y, northing (" << escaped(survey.xy_unit) << ")</text></g>";
   s << "<polygon class=\"survey\" points=\"" << points({survey.corners.begin(), survey.corners.end()})
     << "\" fill=\"#f4f4f4\" stroke=\"#777\" stroke-width=\"1.2\"><title>survey outline (trace centres)</title>"
        "</polygon>";
@@ -118,10 +173,11 @@ std::string svg_body_map(const ReportSurvey& survey, const std::vector<ReportBod
     << ny + 38 << "\" font-size=\"12\" text-anchor=\"middle\" fill=\"#333\">N</text></g>";
   // Scale bar, bottom left, about a quarter of the map's width.
   const double metres = nice_length(0.25 * (width - 2 * margin) / scale), bar = metres * scale;
-  const double bx = margin, by = height - key_height - 10;
+  const double bx = margin, by = height - key_height + 44;
   s << "<g class=\"scale-bar\"><rect x=\"" << bx << "\" y=\"" << num(by) << "\" width=\"" << num(bar)
     << "\" height=\"5\" fill=\"#333\"/><text x=\"" << num(bx + bar / 2) << "\" y=\"" << num(by - 4)
-    << "\" font-size=\"11\" text-anchor=\"middle\" fill=\"#333\">" << length_label(metres) << "</text></g>";
+    << "\" font-size=\"11\" text-anchor=\"middle\" fill=\"#333\">" << length_label(metres, survey.xy_unit)
+    << "</text></g>";
   // Azimuth colour key, bottom.
   const double kx = margin, ky = height - 22, kw = 180;
   s << "<g class=\"azimuth-key\">";

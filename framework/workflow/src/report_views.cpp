@@ -97,6 +97,8 @@ ReportSurvey survey_outline(const volume::Geometry& g) {
   s.z_min = g.z0;
   s.z_max = g.z0 + g.dz * static_cast<double>(g.shape[2] - 1);
   s.z_unit = volume::to_string(g.z_unit);
+  s.crs = g.crs.label();
+  s.xy_unit = g.crs.empty() ? std::string("m") : g.crs.unit;
   s.known = g.shape[0] > 0 && g.shape[1] > 0 && g.shape[2] > 0;
   return s;
 }

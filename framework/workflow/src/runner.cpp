@@ -13,6 +13,7 @@
 #include "geotandem/core/error.hpp"
 #include "geotandem/store/writer_lock.hpp"
 #include "geotandem/synth/synthetic.hpp"
+#include "geotandem/volume/crs.hpp"
 #include "geotandem/volume/fingerprint.hpp"
 #include "geotandem/volume/io.hpp"
 #include "geotandem/workflow/chain.hpp"
@@ -234,6 +235,8 @@ private:
         nlohmann::json chain = chain_.to_json();
         // What opening the input found (an irregular SEG-Y survey's grid): the workers skip that work.
         if (const std::string hint = volumes_.input->reopen_hint(); !hint.empty()) chain["input"]["reopen_hint"] = hint;
+        // The CRS the recipe gives (input.crs, --crs), which the chain's identity leaves out.
+        if (recipe_.input.crs) chain["input"]["crs"] = recipe_.input.crs_text;
         run.volume_description = nlohmann::json{{"kind", "chain"}, {"chain", std::move(chain)}}.dump();
         run.record["workers"] = workers;
         run.record["scheduler"] = ex.scheduler;
@@ -256,7 +259,7 @@ private:
                                    warnings_of(r)});
     }
     outcome_.components = outcome_.kept = store_->size();
-    report_.volume_unit = store_->geometry().z_unit == volume::SampleUnit::milliseconds ? "m^2*ms" : "m^3";
+    report_.volume_unit = volume::volume_unit(store_->geometry());
   }
 
   // Optional: the final attribute cube on disk (an option of the output, not a step).
@@ -383,6 +386,15 @@ RunOutcome run_workflow(const Recipe& recipe, const PluginRegistry& plugins, con
   log.info("input: " + volumes.input->source());
   for (const std::string& warning : volume::open_warnings(*volumes.input))
     log.warning(warning);
+  if (recipe.input.crs) {
+    // The recipe's CRS replaces the file's on the volume the extraction reads (and the store keeps).
+    const volume::Crs& file = volumes.input->geometry().crs;
+    if (!file.empty() && !(file == *recipe.input.crs))
+      log.warning(volumes.input->source() + ": the file says the CRS is " + file.label() + "; input.crs " +
+                  recipe.input.crs->label() + " replaces it");
+    volumes.result = volume::with_crs(volumes.result, *recipe.input.crs);
+  }
+  log.info("CRS: " + volumes.result->geometry().crs.label());
   if (settings.dry_run) {
     log.info("dry run: the recipe is valid and its chain builds; the extraction would read " +
              volumes.result->source() + "; nothing was written");

@@ -1,7 +1,9 @@
 #pragma once
 // Exports of stored components to the formats interpreters open: PLY (ParaView, MeshLab,
 // CloudCompare), OBJ, VTP (ParaView; per-body key, volume and azimuth as cell and field data) and
-// GOCAD TSurf (Petrel, SKUA-GOCAD, OpendTect). Coordinates are world coordinates.
+// GOCAD TSurf (Petrel, SKUA-GOCAD, OpendTect), and the inventory as a GIS layer: a GeoPackage
+// (QGIS, ArcGIS, geopandas) of body footprints and centroids with every measure of the index.
+// Coordinates are world coordinates; every format names the store's CRS, or says "no CRS given".
 
 #include <cstdint>
 #include <filesystem>
@@ -14,7 +16,7 @@
 
 namespace geotandem::store {
 
-enum class ExportFormat { ply, obj, vtp, tsurf };
+enum class ExportFormat { ply, obj, vtp, tsurf, gpkg };
 
 // The export formats as a table, like the steps' registry: the export step's `format` choices,
 // `geotandem store export --format`, the docs and the writers are read from it, and it is the only
@@ -24,7 +26,7 @@ struct ExportFormatInfo {
   const char* name;    // as recipes and the command line spell it; also the file extension
   const char* summary; // which programs open it
 };
-// ply, obj, vtp, ts: in that order.
+// ply, obj, vtp, ts, gpkg: in that order.
 const std::vector<ExportFormatInfo>& export_formats();
 // Their names, in the same order.
 std::vector<std::string> export_format_names();
@@ -32,7 +34,7 @@ std::vector<std::string> export_format_names();
 // A name of export_formats() (or "tsurf" for ts); throws InvalidArgument otherwise, with the
 // nearest name.
 ExportFormat parse_export_format(const std::string& text);
-// The file extension without dot: ply, obj, vtp, ts.
+// The file extension without dot: ply, obj, vtp, ts, gpkg.
 const char* file_extension(ExportFormat format);
 
 struct ExportOptions {
@@ -53,6 +55,10 @@ struct ExportOptions {
   // Keep the caps that close bodies cut by the cube's border (docs/caps.md). Off: a cut body is
   // exported as the open surface the isovalue makes, without the triangles on the cube's faces.
   bool caps = true;
+  // GeoPackage only: the selection the rows were filtered by ("" when none), named in the layers'
+  // description. Without one, every named selection of the store becomes a boolean column
+  // in_<name>.
+  std::string selection;
 };
 
 struct ExportSummary {
@@ -63,6 +69,11 @@ struct ExportSummary {
   std::vector<std::uint64_t> skipped; // keys of damaged components left out (skip_damaged)
 };
 
+// GeoPackage (ExportFormat::gpkg): one file with two layers, `footprints` (each body's outline
+// seen from above: the union of its surface's triangles projected on the map, holes included) and
+// `centroids` (points), both with the key and every measure of the index as attributes
+// (footprint_area on both), in the store's CRS. One file only: per_component is refused.
+//
 // Writes `rows` (from ComponentStore::query) to `out`. Each file is written beside its final name
 // and renamed into place when complete. Streams component by component: memory holds one
 // component at a time. Throws InvalidArgument for an empty `rows` or an output inside a store

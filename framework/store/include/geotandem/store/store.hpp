@@ -89,8 +89,9 @@ public:
   // Opens an existing store. Throws IoError when `dir` does not exist, FormatError when it is not a
   // store (no store.json, unreadable JSON, a newer format version, a damaged index).
   static ComponentStore open(const std::filesystem::path& dir, OpenMode mode = OpenMode::read_only);
-  // Opens the store in `dir` for writing if there is one (its geometry must equal `geometry`, else
-  // InvalidArgument), creates it otherwise. Used to resume an interrupted run.
+  // Opens the store in `dir` for writing if there is one (its grid must equal `geometry`'s, else
+  // InvalidArgument; so must its CRS when both have one), creates it otherwise. Used to resume an
+  // interrupted run. A store without a CRS takes the CRS of `geometry`.
   static ComponentStore open_or_create(const std::filesystem::path& dir, const volume::Geometry& geometry,
                                        const CreateOptions& options = {});
   // True when `dir` holds a store.json.
@@ -105,7 +106,13 @@ public:
   ComponentStore& operator=(ComponentStore&&) noexcept;
 
   const std::filesystem::path& directory() const;
+  // The cube's geometry, with the CRS of its map coordinates (geometry().crs; empty in stores made
+  // without one, which show "no CRS given").
   const volume::Geometry& geometry() const;
+  // Keeps `crs` in store.json (replaced atomically). open_or_create calls it for a store made
+  // without one. Throws InvalidArgument for a read-only store, IoError when store.json cannot be
+  // written.
+  void record_crs(const volume::Crs& crs);
   // The whole store.json as text.
   std::string info_json() const;
   bool writable() const;

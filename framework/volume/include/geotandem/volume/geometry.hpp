@@ -11,11 +11,31 @@
 
 namespace geotandem::volume {
 
-enum class SampleUnit { milliseconds, metres };
+// Time (ms), depth in metres or depth in feet (international foot), as the file says. A sample
+// axis in seconds is read as milliseconds.
+enum class SampleUnit { milliseconds, metres, feet };
 
-// "ms" or "m"; parse_sample_unit throws InvalidArgument on anything else.
+// "ms", "m" or "ft"; parse_sample_unit throws InvalidArgument on anything else.
 const char* to_string(SampleUnit unit);
 SampleUnit parse_sample_unit(const std::string& text);
+
+// The coordinate reference system of the map coordinates (x, y), as GDAL's OSR understood the
+// text a file or a user gave (volume/crs.hpp parses it). Everything a program needs to show it is
+// kept here as text, so that reading a store or an export needs no GDAL. Empty (no wkt): none was
+// given, and outputs say "no CRS given" rather than inventing one; x and y are then taken as metres.
+struct Crs {
+  std::string name;             // "ED50 / UTM zone 31N"
+  std::string code;             // "EPSG:23031" when OSR identifies an authority code, else ""
+  std::string wkt;              // WKT 2 (2019) as OSR writes it; "" when no CRS was given
+  std::string unit = "m";       // the linear unit of x and y: "m", "ft" (international foot), "ftUS"
+  std::string unit_name;        // as OSR names it: "metre", "foot", "US survey foot"
+  double metres_per_unit = 1.0; // of `unit`
+  bool empty() const { return wkt.empty(); }
+  // "ED50 / UTM zone 31N (EPSG:23031)", or "no CRS given".
+  std::string label() const;
+  bool operator==(const Crs&) const = default;
+};
+inline constexpr const char* kNoCrs = "no CRS given";
 
 // World map coordinates of the trace at array indices (i, j):
 //   x = x0 + xi * i + xj * j,   y = y0 + yi * i + yj * j.
@@ -42,6 +62,9 @@ struct Geometry {
   double dz = 4.0; // sample interval, in `z_unit` (> 0)
   SampleUnit z_unit = SampleUnit::milliseconds;
   SurveyAffine affine{};
+  // Of the map coordinates the affine gives. Not part of the grid: two geometries of one grid with
+  // different CRSs describe the same samples (same_grid).
+  Crs crs{};
 
   Box bounds() const { return Box::of_shape(shape); }
   std::size_t sample_count() const { return bounds().count(); }
@@ -50,7 +73,13 @@ struct Geometry {
   // Throws InvalidArgument naming the offending field when the geometry cannot describe a cube
   // (non-positive shape or dz, degenerate affine).
   void validate() const;
+  // Everything but the CRS is equal: the same samples at the same places in the same numbers.
+  bool same_grid(const Geometry& other) const;
   bool operator==(const Geometry&) const = default;
 };
+
+// The unit of enclosed volumes in this geometry's world coordinates: "m^3", "m^2*ms", "ft^3",
+// "ft^2*ms", "ftUS^2*ft", ... (the CRS's linear unit squared times the sample unit).
+std::string volume_unit(const Geometry& geometry);
 
 } // namespace geotandem::volume

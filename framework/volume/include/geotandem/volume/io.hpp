@@ -9,6 +9,8 @@
 // sidecar (FILE.raw + FILE.raw.json).
 // Writers (format from the extension): .nc (netCDF-4), .zarr (Zarr v2), .tif (GeoTIFF, one band
 // per inline), .segy/.sgy (SEG-Y rev 1, IEEE floats), .raw (+ .raw.json).
+// CRS: read from netCDF/Zarr (geotandem_crs, a CF grid_mapping, a `crs` attribute), GeoTIFF/ENVI
+// (their georeference, or geotandem_crs) and raw sidecars; written by every writer but SEG-Y's.
 
 #include <functional>
 #include <limits>
@@ -51,6 +53,9 @@ struct OpenOptions {
   // manager, for its workers). Used only while it still describes the file (same size and
   // modification time, same header bytes); ignored otherwise, and by formats that have none.
   std::string reopen_hint;
+  // The coordinate reference system of the map coordinates (volume::parse_crs), replacing what
+  // the file says (input.crs, --crs). nullopt: the file's, if it says one.
+  std::optional<Crs> crs;
 };
 
 // Opens a cube; throws IoError (missing, unreadable) or FormatError (unknown or broken format),

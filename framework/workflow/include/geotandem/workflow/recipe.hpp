@@ -11,6 +11,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "geotandem/volume/geometry.hpp"
 #include "geotandem/volume/segy_options.hpp"
 #include "geotandem/workflow/plugin.hpp"
 #include "geotandem/workflow/registry.hpp"
@@ -33,6 +34,10 @@ struct InputSpec {
   // SEG-Y trace header fields: input.segy.{inline,crossline,x,y}_{byte,type} and
   // input.segy.coordinate_scalar.
   volume::SegyOptions segy;
+  // input.crs: the CRS of the map coordinates as given (an EPSG code or a WKT), checked through
+  // OSR while the recipe is read; it replaces what the file says. nullopt: the file's, if any.
+  std::string crs_text;
+  std::optional<volume::Crs> crs;
   bool synthetic = false;
   std::string synthetic_kind = "seismic"; // analytic | seismic
   std::int64_t shape[3] = {160, 160, 128};

@@ -37,9 +37,13 @@ inline constexpr std::size_t kDisplayBodies = 2000;
 // The survey's outline on the map and its sample range, for the body views.
 struct ReportSurvey {
   bool known = false;                           // false: no views are drawn
-  std::array<std::array<double, 2>, 4> corners; // world x (east), y (north) in metres, in order around
+  std::array<std::array<double, 2>, 4> corners; // world x (east), y (north) in xy_unit, in order around
   double z_min = 0.0, z_max = 0.0;              // first and last sample, in z_unit (down)
   std::string z_unit = "ms";
+  // The CRS of x and y as the map's axes name it ("ED50 / UTM zone 31N (EPSG:23031)", or "no CRS
+  // given"), and their unit ("m", "ft", "ftUS").
+  std::string crs = "no CRS given";
+  std::string xy_unit = "m";
 };
 
 // A kept body as the views draw it.

@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
+#include <limits>
 #include <optional>
 #include <string>
 #include <thread>
@@ -64,7 +65,7 @@ workflow::ParamValue value_of(const std::string& name, const std::string& option
 void add_extract_command(CLI::App& app, Context& context, Runner& run) {
   struct Args {
     std::string cube, out, nan = "error", variable;
-    std::string iso, max_error = default_of("max_error"), isotropy = default_of("isotropy"), axis = default_of("axis"),
+    std::string iso, side = default_of("side"), max_error = default_of("max_error"), isotropy = default_of("isotropy"), axis = default_of("axis"),
                      block_size = default_of("block_size"), mode = default_of("mode");
     bool no_extended_time_lag = false;
     std::optional<std::size_t> workers;
@@ -74,11 +75,18 @@ void add_extract_command(CLI::App& app, Context& context, Runner& run) {
   };
   auto a = std::make_shared<Args>();
   auto* cmd =
-      app.add_subcommand("extract", "Extract the isosurface value >= ISO of a cube with the extended tandem algorithm "
+      app.add_subcommand("extract", "Extract the isosurface value >= ISO (or <= ISO) of a cube with the extended tandem algorithm "
                                     "(marching cubes interleaved with edge-collapse simplification) into a component "
                                     "store. Finished components are written as they are found.");
   cmd->add_option("cube", a->cube, "the cube (any format 'geotandem info' reads)")->required();
-  cmd->add_option("--iso", a->iso, "isovalue: samples >= ISO are inside a body")->required()->type_name("NUMBER");
+  cmd->add_option("--iso", a->iso, "isovalue: samples >= ISO (--side above) or <= ISO (--side below) are inside a body")
+      ->required()
+      ->type_name("NUMBER");
+  cmd->add_option("--side", a->side,
+                  "which side of ISO is inside a body: above (value >= ISO) or below (value <= ISO, e.g. low "
+                  "coherence)")
+      ->capture_default_str()
+      ->type_name("above|below");
   cmd->add_option("--out", a->out, "the component store directory (created; resumed if it holds this cube)")
       ->required();
   cmd->add_option("--max-error", a->max_error,
@@ -127,6 +135,7 @@ void add_extract_command(CLI::App& app, Context& context, Runner& run) {
       open.segy = a->segy;
       workflow::ParamValues values;
       values["iso"] = value_of("iso", "--iso", a->iso);
+      values["side"] = value_of("side", "--side", a->side);
       values["max_error"] = value_of("max_error", "--max-error", a->max_error);
       values["isotropy"] = value_of("isotropy", "--isotropy", a->isotropy);
       values["axis"] = value_of("axis", "--axis", a->axis);
@@ -140,6 +149,8 @@ void add_extract_command(CLI::App& app, Context& context, Runner& run) {
       } catch (const Error& e) {
         throw InvalidArgument("--block-size: " + e.message(), {}, e.hint());
       }
+      // Missing samples filled (--nan fill) must stay outside on the side below too.
+      if (s.below) open.fill_value = std::numeric_limits<float>::max();
       auto opening = context.progress(); // an irregular SEG-Y survey's pass over its headers
       open.progress = opening.get();
       auto cube = volume::open_volume(a->cube, open);
@@ -164,6 +175,11 @@ void add_extract_command(CLI::App& app, Context& context, Runner& run) {
       if (s.workers > 0) {
         s.volume_description =
             describe_cube_file(a->cube, a->nan, open.no_data, a->variable, a->segy, cube->reopen_hint());
+        if (s.below) {
+          auto d = nlohmann::json::parse(s.volume_description);
+          d["fill"] = "highest";
+          s.volume_description = d.dump();
+        }
         s.worker_command = worker_command(context);
       }
       s.parameters = {{"command", "geotandem extract"}, {"cube", a->cube}};

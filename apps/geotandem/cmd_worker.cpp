@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <filesystem>
+#include <limits>
 #include <optional>
 
 #include "command.hpp"
@@ -57,6 +58,8 @@ std::shared_ptr<const volume::Volume> open_described_volume(const std::string& d
         open.segy.crossline_byte = d["segy"].at("crossline_byte").get<int>();
       }
       open.reopen_hint = d.value("reopen_hint", "");
+      // Missing samples filled for an extraction of the side below stay outside (cmd_extract.cpp).
+      if (d.value("fill", "") == "highest") open.fill_value = std::numeric_limits<float>::max();
       return volume::open_volume(d.at("path").get<std::string>(), open);
     }
     if (kind == "analytic") {

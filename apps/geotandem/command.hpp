@@ -36,6 +36,8 @@ void add_synth_command(CLI::App& app, Context& context, Runner& run);
 void add_info_command(CLI::App& app, Context& context, Runner& run);
 void add_extract_command(CLI::App& app, Context& context, Runner& run);
 void add_store_command(CLI::App& app, Context& context, Runner& run);
+// cmd_store_labels.cpp: `store labels`, added by add_store_command.
+void add_store_labels(CLI::App* parent, Context& context, Runner& run);
 void add_plugins_command(CLI::App& app, Context& context, Runner& run);
 void add_validate_command(CLI::App& app, Context& context, Runner& run);
 void add_workflow_command(CLI::App& app, Context& context, Runner& run);

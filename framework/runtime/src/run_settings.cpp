@@ -8,7 +8,7 @@
 namespace geotandem::runtime {
 
 std::string RunSettings::to_json() const {
-  const nlohmann::json j = {{"version", kProtocolVersion},
+  nlohmann::json j = {{"version", kProtocolVersion},
                             {"volume", volume},
                             {"store", store},
                             {"block_size", block_size},
@@ -21,6 +21,7 @@ std::string RunSettings::to_json() const {
                             {"brute", brute},
                             {"run", run},
                             {"chunk_bytes", chunk_bytes}};
+  if (below) j["side"] = "below";
   return j.dump();
 }
 
@@ -34,6 +35,11 @@ RunSettings RunSettings::from_json(const std::string& text) {
     s.store = j.at("store").get<std::string>();
     s.block_size = j.at("block_size").get<std::int64_t>();
     s.iso = j.at("iso").get<float>();
+    if (j.contains("side")) {
+      const auto side = j.at("side").get<std::string>();
+      if (side != "above" && side != "below") throw ProtocolError("run settings: side '" + side + "'");
+      s.below = side == "below";
+    }
     s.axis = j.at("axis").get<int>();
     s.max_error = j.at("max_error").get<double>();
     s.isotropy = j.at("isotropy").get<double>();
@@ -53,6 +59,7 @@ RunSettings RunSettings::from_json(const std::string& text) {
 tandem::TandemOptions RunSettings::tandem_options() const {
   tandem::TandemOptions o;
   o.iso = iso;
+  o.below = below;
   o.axis = axis;
   o.simplify.max_error = max_error;
   o.simplify.isotropy = isotropy;

@@ -42,6 +42,12 @@ int parse_axis(const std::string& text) {
   throw InvalidArgument("unknown axis '" + text + "'", {}, "use i (inline), j (crossline) or k (sample)");
 }
 
+bool parse_side(const std::string& text) {
+  if (text == "above") return false;
+  if (text == "below") return true;
+  throw InvalidArgument("unknown side '" + text + "'", {}, "use above (value >= iso) or below (value <= iso)");
+}
+
 namespace {
 
 // The isovalue is compared with float samples: a value beyond the float range is refused, not inf.
@@ -54,7 +60,12 @@ std::vector<ParamSpec> make_extract_params() {
   const ExtractSettings d;
   return {
       single_precision(
-          detail::param_spec("iso", ParamType::real, std::nullopt, "isovalue: samples >= iso are inside a body")),
+          detail::param_spec("iso", ParamType::real, std::nullopt,
+                             "isovalue: samples >= iso (side above) or <= iso (side below) are inside a body")),
+      detail::param_spec("side", ParamType::choice, side_text(d.below),
+                         "which side of iso is inside a body: above (value >= iso) or below (value <= iso: low "
+                         "coherence, low impedance)",
+                         {}, {}, {"above", "below"}),
       detail::param_spec("max_error", ParamType::real, number_text(d.max_error),
                          "E0, in voxels: the simplified surface stays within E0 of the full-resolution one", 1e-6,
                          100.0),
@@ -95,6 +106,8 @@ ExtractSettings extract_settings(const ParamValues& values) {
   check_extract_params(values);
   ExtractSettings e;
   e.iso = static_cast<float>(values.at("iso").real);
+  // Absent from values made before the parameter existed (a chain described by an older run).
+  if (auto side = values.find("side"); side != values.end()) e.below = parse_side(side->second.text);
   e.max_error = values.at("max_error").real;
   e.isotropy = values.at("isotropy").real;
   e.axis = parse_axis(values.at("axis").text);
@@ -115,6 +128,7 @@ std::int64_t peak_rss_kb() {
 nlohmann::json extract_run_parameters(const volume::Volume& volume, const ExtractSettings& settings) {
   nlohmann::json parameters = settings.parameters;
   parameters["iso"] = settings.iso;
+  parameters["side"] = side_text(settings.below);
   parameters["max_error"] = settings.max_error;
   parameters["isotropy"] = settings.isotropy;
   parameters["axis"] = std::string(1, "ijk"[settings.axis]);
@@ -136,6 +150,9 @@ nlohmann::json extract_run_parameters(const volume::Volume& volume, const Extrac
                                                               : volume::input_fingerprint(volume.source())},
       {"chain", settings.parameters.is_object() && settings.parameters.contains("chain") ? settings.parameters["chain"]
                                                                                          : nlohmann::json::object()}};
+  // Recorded in the identity only for the low side: stores made before sides existed (all above)
+  // keep resuming.
+  if (settings.below) parameters["identity"]["side"] = "below";
   // How a command reads its file (a recipe's chain records it): recorded only when given, so that
   // stores made before these keys existed still resume.
   for (const char* key : {"no_data", "variable", "segy"})
@@ -217,6 +234,7 @@ ExtractResult extract_to_store(const volume::Volume& volume, store::ComponentSto
   auto start = std::chrono::steady_clock::now();
   tandem::TandemOptions options;
   options.iso = settings.iso;
+  options.below = settings.below;
   options.axis = settings.axis;
   options.simplify.max_error = settings.max_error;
   options.simplify.isotropy = settings.isotropy;

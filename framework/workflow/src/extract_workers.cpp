@@ -93,6 +93,7 @@ ExtractResult extract_with_workers(const volume::Volume& volume, store::Componen
   r.store = std::filesystem::absolute(store.directory()).string();
   r.block_size = settings.block_size > 0 ? settings.block_size : 64;
   r.iso = settings.iso;
+  r.below = settings.below;
   r.axis = settings.axis;
   r.max_error = settings.max_error;
   r.isotropy = settings.isotropy;

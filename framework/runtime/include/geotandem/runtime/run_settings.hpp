@@ -22,6 +22,7 @@ struct RunSettings {
   std::string store;            // the store's directory; each worker writes shards/<token>.gts
   std::int64_t block_size = 64; // leaf edge of the block tree, in cells (at least 8)
   float iso = 0.0f;
+  bool below = false; // side below: inside means value <= iso (sent only when true)
   int axis = 0;
   double max_error = 0.5;
   double isotropy = 0.4;

@@ -35,6 +35,9 @@ inline constexpr std::int64_t min_block_size = 8;
 // simplification defaults come from tandem::SimplifyOptions.
 struct ExtractSettings {
   float iso = 0.0f;
+  // Which side of iso is inside a body (issue 54): above (value >= iso, the default) or below
+  // (value <= iso; tandem::McOptions::below).
+  bool below = false;
   double max_error = tandem::SimplifyOptions{}.max_error; // E0, voxels
   double isotropy = tandem::SimplifyOptions{}.isotropy;   // alpha
   int axis = 0;                                           // 0 = i (inline), 1 = j, 2 = k
@@ -77,6 +80,10 @@ struct ExtractResult {
   std::int64_t peak_rss_kb = 0;
   nlohmann::json statistics; // what was recorded in the store's run table
 };
+
+// Parses "above" or "below" (true for below); throws InvalidArgument otherwise.
+bool parse_side(const std::string& text);
+inline const char* side_text(bool below) { return below ? "below" : "above"; }
 
 // Parses "i", "j", "k" (or 0, 1, 2); throws InvalidArgument otherwise.
 int parse_axis(const std::string& text);

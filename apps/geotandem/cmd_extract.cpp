@@ -65,8 +65,8 @@ workflow::ParamValue value_of(const std::string& name, const std::string& option
 void add_extract_command(CLI::App& app, Context& context, Runner& run) {
   struct Args {
     std::string cube, out, nan = "error", variable;
-    std::string iso, side = default_of("side"), max_error = default_of("max_error"), isotropy = default_of("isotropy"), axis = default_of("axis"),
-                     block_size = default_of("block_size"), mode = default_of("mode");
+    std::string iso, side = default_of("side"), max_error = default_of("max_error"), isotropy = default_of("isotropy"),
+                     axis = default_of("axis"), block_size = default_of("block_size"), mode = default_of("mode");
     bool no_extended_time_lag = false;
     std::optional<std::size_t> workers;
     std::optional<double> no_data;
@@ -74,10 +74,10 @@ void add_extract_command(CLI::App& app, Context& context, Runner& run) {
     volume::SegyOptions segy;
   };
   auto a = std::make_shared<Args>();
-  auto* cmd =
-      app.add_subcommand("extract", "Extract the isosurface value >= ISO (or <= ISO) of a cube with the extended tandem algorithm "
-                                    "(marching cubes interleaved with edge-collapse simplification) into a component "
-                                    "store. Finished components are written as they are found.");
+  auto* cmd = app.add_subcommand(
+      "extract", "Extract the isosurface value >= ISO (or <= ISO) of a cube with the extended tandem algorithm "
+                 "(marching cubes interleaved with edge-collapse simplification) into a component "
+                 "store. Finished components are written as they are found.");
   cmd->add_option("cube", a->cube, "the cube (any format 'geotandem info' reads)")->required();
   cmd->add_option("--iso", a->iso, "isovalue: samples >= ISO (--side above) or <= ISO (--side below) are inside a body")
       ->required()

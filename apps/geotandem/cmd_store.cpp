@@ -80,8 +80,7 @@ void print_table(const std::vector<store::ComponentRow>& rows, std::uint64_t tot
     const std::string samples = r.samples_counted ? std::to_string(s.samples) : "-";
     std::snprintf(line, sizeof line, "%20llu %14s %12s %8.2f %6.2f %10llu %10llu  %s\n",
                   static_cast<unsigned long long>(r.key), format_number(s.volume).c_str(), samples.c_str(), s.azimuth,
-                  s.dip,
-                  static_cast<unsigned long long>(r.location.vertex_count),
+                  s.dip, static_cast<unsigned long long>(r.location.vertex_count),
                   static_cast<unsigned long long>(r.location.triangle_count), kind.c_str());
     o << line;
   }

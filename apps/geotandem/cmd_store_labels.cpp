@@ -42,8 +42,8 @@ std::shared_ptr<const volume::Volume> field_of(const nlohmann::json& parameters,
   }
   const std::string path = !a.cube.empty() ? a.cube : parameters.value("cube", "");
   if (path.empty())
-    throw InvalidArgument("the store's run does not say which cube it read (an array extracted from Python?)", {a.store},
-                          "name the cube with --cube FILE");
+    throw InvalidArgument("the store's run does not say which cube it read (an array extracted from Python?)",
+                          {a.store}, "name the cube with --cube FILE");
   volume::OpenOptions open;
   open.nan_policy = volume::parse_nan_policy(a.nan);
   if (below) open.fill_value = std::numeric_limits<float>::max(); // filled samples stay outside

@@ -304,7 +304,12 @@ TEST(LabelFiles, KeysOfAnotherCubeAreRefused) {
   EXPECT_THROW(LabelCube(cube, settings, keys), DataError);
   settings = LabelSettings{};
   settings.iso = 0.5f;
-  EXPECT_THROW(LabelCube(cube, settings, {1}), DataError); // edge 1 (axis j at the corner) is not crossed
+  // An edge along k between two outside samples is not crossed: no surface has that key.
+  const auto& v = cube->samples();
+  std::uint64_t outside = 0;
+  while (!(v[outside] < 0.5f && v[outside + 1] < 0.5f && (outside + 1) % 36 != 0))
+    ++outside;
+  EXPECT_THROW(LabelCube(cube, settings, {3 * outside + 2}), DataError);
 }
 
 } // namespace

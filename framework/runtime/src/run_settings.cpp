@@ -9,18 +9,18 @@ namespace geotandem::runtime {
 
 std::string RunSettings::to_json() const {
   nlohmann::json j = {{"version", kProtocolVersion},
-                            {"volume", volume},
-                            {"store", store},
-                            {"block_size", block_size},
-                            {"iso", iso},
-                            {"axis", axis},
-                            {"max_error", max_error},
-                            {"isotropy", isotropy},
-                            {"extended_time_lag", extended_time_lag},
-                            {"dump", dump},
-                            {"brute", brute},
-                            {"run", run},
-                            {"chunk_bytes", chunk_bytes}};
+                      {"volume", volume},
+                      {"store", store},
+                      {"block_size", block_size},
+                      {"iso", iso},
+                      {"axis", axis},
+                      {"max_error", max_error},
+                      {"isotropy", isotropy},
+                      {"extended_time_lag", extended_time_lag},
+                      {"dump", dump},
+                      {"brute", brute},
+                      {"run", run},
+                      {"chunk_bytes", chunk_bytes}};
   if (below) j["side"] = "below";
   return j.dump();
 }

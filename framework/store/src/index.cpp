@@ -290,8 +290,8 @@ std::uint64_t ComponentStore::indexed_end(const std::string& shard) const {
 std::vector<ComponentRow> ComponentStore::query(const Query& q) const {
   check_selection_exists(*impl_->db, q.selection, impl_->dir);
   auto filter = build_filter(q);
-  std::string sql = "SELECT " + select_columns(impl_->cap_columns, impl_->row_checksums, impl_->samples_column) + " FROM components" +
-                    filter.where + order_by(q);
+  std::string sql = "SELECT " + select_columns(impl_->cap_columns, impl_->row_checksums, impl_->samples_column) +
+                    " FROM components" + filter.where + order_by(q);
   if (q.limit) sql += " LIMIT " + std::to_string(std::min<std::uint64_t>(*q.limit, INT64_MAX));
   auto s = impl_->db->prepare(sql);
   bind_values(s, filter.values);
@@ -312,7 +312,8 @@ std::uint64_t ComponentStore::count(const Query& q) const {
 
 std::optional<ComponentRow> ComponentStore::find(std::uint64_t key) const {
   detail::Statement& s = impl_->cached(impl_->row_lookup, [this] {
-    return "SELECT " + select_columns(impl_->cap_columns, impl_->row_checksums, impl_->samples_column) + " FROM components WHERE key = ?";
+    return "SELECT " + select_columns(impl_->cap_columns, impl_->row_checksums, impl_->samples_column) +
+           " FROM components WHERE key = ?";
   });
   s.bind(1, to_sql(key));
   std::optional<ComponentRow> row;

@@ -21,8 +21,8 @@ struct ComponentStore::Impl {
   std::string info_json;
   bool writable = false;
   bool samples_column = true; // the index has the samples column (stores from before issue 54 may not)
-  bool cap_columns = true;   // the index has cut_faces and cap_area (stores from before caps may not)
-  bool row_checksums = true; // the index has row_checksum (stores from before row checksums may not)
+  bool cap_columns = true;    // the index has cut_faces and cap_area (stores from before caps may not)
+  bool row_checksums = true;  // the index has row_checksum (stores from before row checksums may not)
   std::unique_ptr<detail::Database> db;
   // The statements of contains() and find(), prepared once and reset after each use (so that they
   // hold no read snapshot): preparing one for every key cost hundreds of allocations in SQLite's

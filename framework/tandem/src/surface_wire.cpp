@@ -282,8 +282,8 @@ std::vector<std::byte> record_of(const detail::SurfaceState& state) {
     w.put(static_cast<std::uint8_t>(c));
   w.put(kSurfaceWireVersion);
   w.put(kFlagComponentSamples); // flags
-  w.put(std::uint64_t{0}); // payload length, filled in below
-  w.put(std::uint64_t{0}); // checksum, filled in below
+  w.put(std::uint64_t{0});      // payload length, filled in below
+  w.put(std::uint64_t{0});      // checksum, filled in below
   encode(w, state);
   std::vector<std::byte>& out = w.bytes();
   const std::uint64_t length = out.size() - kSurfaceWireHeaderSize;

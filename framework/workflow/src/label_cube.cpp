@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <atomic>
+#include <cctype>
 #include <chrono>
 #include <cmath>
 #include <filesystem>
@@ -168,7 +169,8 @@ void LabelCube::Impl::first_pass(std::vector<std::uint64_t> keys, Progress& prog
     }
     const std::uint64_t start = key / 3u;
     const int axis = static_cast<int>(key % 3u);
-    const std::int64_t along = static_cast<std::int64_t>(start / static_cast<std::uint64_t>(stride[axis])) % shape[axis];
+    const std::int64_t along =
+        static_cast<std::int64_t>(start / static_cast<std::uint64_t>(stride[axis])) % shape[axis];
     if (along + 1 >= shape[axis])
       throw DataError("store key " + key_text(key) + " names a lattice edge that leaves the cube", {},
                       "the store was made for another cube");
@@ -178,8 +180,8 @@ void LabelCube::Impl::first_pass(std::vector<std::uint64_t> keys, Progress& prog
   std::sort(candidates.begin(), candidates.end(),
             [](const Candidate& a, const Candidate& b) { return a.sample < b.sample; });
 
-  std::vector<std::uint32_t> parent;  // global union-find over provisional labels
-  std::vector<std::uint64_t> count;   // samples, summed at roots
+  std::vector<std::uint32_t> parent; // global union-find over provisional labels
+  std::vector<std::uint64_t> count;  // samples, summed at roots
   std::vector<std::uint32_t> seed(keys.size(), kNone);
   std::vector<std::uint8_t> hits(keys.size(), 0);
   auto find = [&parent](std::uint32_t x) {
@@ -329,7 +331,8 @@ namespace {
 
 std::string lower_extension(const fs::path& path) {
   std::string ext = path.extension().string();
-  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  std::transform(ext.begin(), ext.end(), ext.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
   return ext;
 }
 

@@ -15,8 +15,8 @@
 //
 // Thread safety: as the input's; each thread has its own fetched box.
 
-#include <map>
 #include <limits>
+#include <map>
 #include <memory>
 #include <mutex>
 #include <thread>

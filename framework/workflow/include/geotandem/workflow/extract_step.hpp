@@ -83,7 +83,9 @@ struct ExtractResult {
 
 // Parses "above" or "below" (true for below); throws InvalidArgument otherwise.
 bool parse_side(const std::string& text);
-inline const char* side_text(bool below) { return below ? "below" : "above"; }
+inline const char* side_text(bool below) {
+  return below ? "below" : "above";
+}
 
 // Parses "i", "j", "k" (or 0, 1, 2); throws InvalidArgument otherwise.
 int parse_axis(const std::string& text);

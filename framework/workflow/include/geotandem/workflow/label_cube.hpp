@@ -44,10 +44,10 @@ struct LabelSettings {
 };
 
 struct LabelledBody {
-  std::uint32_t id = 0;             // the label, 1..N in increasing key order
-  std::uint64_t key = 0;            // the smallest kept store key on its boundary
-  std::vector<std::uint64_t> keys;  // every kept key on its boundary (sorted; keys.front() == key)
-  std::uint64_t samples = 0;        // its labelled samples
+  std::uint32_t id = 0;            // the label, 1..N in increasing key order
+  std::uint64_t key = 0;           // the smallest kept store key on its boundary
+  std::vector<std::uint64_t> keys; // every kept key on its boundary (sorted; keys.front() == key)
+  std::uint64_t samples = 0;       // its labelled samples
 };
 
 // The label cube of `field` as a lazy volume: the constructor runs pass 1, reads run pass 2.
@@ -58,8 +58,8 @@ struct LabelledBody {
 // reads throw.
 class LabelCube final : public volume::Volume {
 public:
-  LabelCube(std::shared_ptr<const volume::Volume> field, const LabelSettings& settings,
-            std::vector<std::uint64_t> keys, Progress* progress = nullptr, const CancelToken& cancel = {});
+  LabelCube(std::shared_ptr<const volume::Volume> field, const LabelSettings& settings, std::vector<std::uint64_t> keys,
+            Progress* progress = nullptr, const CancelToken& cancel = {});
   ~LabelCube() override;
 
   const volume::Geometry& geometry() const override;

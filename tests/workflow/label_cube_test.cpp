@@ -298,10 +298,10 @@ TEST(LabelFiles, KeysOfAnotherCubeAreRefused) {
   LabelSettings settings;
   settings.iso = 0.5f;
   auto keys = keys_of(store);
-  EXPECT_NO_THROW(LabelCube(cube, settings, keys));
+  EXPECT_NO_THROW((LabelCube{cube, settings, keys}));
   settings.below = true; // the other side: the keys' edges are crossed, but seed the other side
   settings.iso = 0.95f;
-  EXPECT_THROW(LabelCube(cube, settings, keys), DataError);
+  EXPECT_THROW((LabelCube{cube, settings, keys}), DataError);
   settings = LabelSettings{};
   settings.iso = 0.5f;
   // An edge along k between two outside samples is not crossed: no surface has that key.
@@ -309,7 +309,7 @@ TEST(LabelFiles, KeysOfAnotherCubeAreRefused) {
   std::uint64_t outside = 0;
   while (!(v[outside] < 0.5f && v[outside + 1] < 0.5f && (outside + 1) % 36 != 0))
     ++outside;
-  EXPECT_THROW(LabelCube(cube, settings, {3 * outside + 2}), DataError);
+  EXPECT_THROW((LabelCube{cube, settings, {3 * outside + 2}}), DataError);
 }
 
 } // namespace

@@ -110,8 +110,8 @@ void add_store_labels(CLI::App* parent, Context& context, Runner& run) {
       if (!(field->geometry() == store.geometry()))
         throw InvalidArgument("the cube's geometry is not the store's", {field->source()},
                               "label the cube the store was extracted from");
-      const nlohmann::json description = {{"store", a->store},
-                                          {"selection", selection.empty() ? nlohmann::json(nullptr) : selection}};
+      const nlohmann::json description = {
+          {"store", a->store}, {"selection", selection.empty() ? nlohmann::json(nullptr) : nlohmann::json(selection)}};
       auto progress = context.progress();
       const auto out = workflow::write_label_cube(field, settings, keys, a->out, a->overwrite, description,
                                                   "geotandem body labels (0 outside), table in .bodies.csv",

@@ -305,9 +305,10 @@ private:
     // Replace only a label cube this recipe's runs wrote (or with --fresh).
     const bool ours = state_.fingerprint_of("labels") != "" && state_.get("labels").value("path", "") == path.string();
     auto progress = progress_of(settings_);
-    const nlohmann::json description = {{"store", recipe_.output.store},
-                                        {"selection", selection_.empty() ? nlohmann::json(nullptr) : selection_},
-                                        {"recipe", recipe_.path}};
+    const nlohmann::json description = {
+        {"store", recipe_.output.store},
+        {"selection", selection_.empty() ? nlohmann::json(nullptr) : nlohmann::json(selection_)},
+        {"recipe", recipe_.path}};
     LabelOutput out =
         write_label_cube(volumes_.result, labels, keys, path.string(), ours || settings_.fresh, description,
                          "geotandem body labels (0 outside), table in .bodies.csv", progress.get(), cancel_);

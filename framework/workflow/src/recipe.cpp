@@ -275,6 +275,14 @@ void parse_output(MapReader& m, Recipe& r, const std::string& recipe_stem, const
       throw error_at(m.source(), m.node("attribute"), "output.attribute: " + e.message(), e.hint());
     }
   }
+  out.labels_file = v.count("labels") ? v.at("labels").text : "";
+  if (!out.labels_file.empty()) {
+    try {
+      volume::check_output_format(out.labels_file);
+    } catch (const InvalidArgument& e) {
+      throw error_at(m.source(), m.node("labels"), "output.labels: " + e.message(), e.hint());
+    }
+  }
   // A synthetic input's shape is known now: an attribute cube the disk cannot hold is refused here.
   if (!out.attribute_file.empty() && r.input.synthetic) {
     try {
@@ -363,6 +371,7 @@ nlohmann::json to_json(const Recipe& r) {
     j["steps"].push_back(step);
   }
   j["output"] = {{"directory", r.output.directory}, {"store", r.output.store}, {"report", r.output.report}};
+  if (!r.output.labels_file.empty()) j["output"]["labels"] = r.output.labels_file;
   for (const auto& e : r.output.exports)
     j["output"]["exports"].push_back({{"format", e.format},
                                       {"selection", e.selection},

@@ -74,6 +74,9 @@ struct WriteOptions {
   int chunk = 64;
   std::string variable = "amplitude";
   bool overwrite = false;
+  // A line saying what the cube holds, kept where the format has room for it: a card of the SEG-Y
+  // textual header (upper-cased, at most 75 characters). Empty: nothing.
+  std::string note;
 };
 
 // Throws InvalidArgument (listing the known extensions) when write_volume could not tell the

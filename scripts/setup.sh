@@ -27,7 +27,7 @@ packages=(
   libjs-three chromium
   python3-dev pybind11-dev python3-numpy python3-pandas python3-xarray python3-pytest python3-matplotlib
   python3-nbconvert jupyter-nbconvert python3-ipykernel python3-venv python3-setuptools python3-wheel
-  python3-segyio python3-gdal
+  python3-gdal
 )
 
 as_root() {

@@ -27,9 +27,10 @@ struct LabelArgs {
   bool all = false, overwrite = false;
 };
 
-// The volume the run extracted from, kept alive with the registry whose plugins compute it.
+// The volume the run extracted from, kept alive with the registry whose plugins compute it, and
+// the input file the label cube follows (its format family, its SEG-Y headers).
 std::shared_ptr<const volume::Volume> field_of(const nlohmann::json& parameters, const LabelArgs& a, bool below,
-                                               Context& context) {
+                                               Context& context, workflow::LabelLike& like) {
   const nlohmann::json chain = parameters.value("chain", nlohmann::json::object());
   if (a.cube.empty() && chain.is_object() && chain.contains("steps")) {
     struct Held {
@@ -37,7 +38,9 @@ std::shared_ptr<const volume::Volume> field_of(const nlohmann::json& parameters,
       std::shared_ptr<const volume::Volume> volume;
     };
     auto held = std::make_shared<Held>(Held{make_plugin_registry(context.log), nullptr});
-    held->volume = workflow::open_chain(workflow::ChainDescription::from_json(chain), held->registry).result;
+    const auto description = workflow::ChainDescription::from_json(chain);
+    held->volume = workflow::open_chain(description, held->registry).result;
+    like = workflow::label_like_of_input(description.input);
     return std::shared_ptr<const volume::Volume>(held, held->volume.get());
   }
   const std::string path = !a.cube.empty() ? a.cube : parameters.value("cube", "");
@@ -52,7 +55,9 @@ std::shared_ptr<const volume::Volume> field_of(const nlohmann::json& parameters,
   open.variable = !a.variable.empty() ? a.variable : parameters.value("variable", "");
   open.segy = a.segy;
   if (a.segy == volume::SegyOptions{} && parameters.contains("segy"))
-    open.segy = {parameters["segy"].value("inline_byte", 189), parameters["segy"].value("crossline_byte", 193)};
+    open.segy = volume::segy_options_from_json(parameters["segy"]);
+  like.file = path;
+  like.options = open;
   return volume::open_volume(path, open);
 }
 
@@ -62,8 +67,8 @@ void add_store_labels(CLI::App* parent, Context& context, Runner& run) {
   auto a = std::make_shared<LabelArgs>();
   auto* cmd = parent->add_subcommand(
       "labels", "Write the label cube of the store's bodies: every sample's body ID (0 outside any body) on the "
-                "extracted cube's grid, in the format of PATH's extension (.segy, .nc, .zarr, .raw, .tif: take the "
-                "input's), with the table of IDs and store keys beside it (PATH.bodies.csv, PATH.bodies.json).");
+                "extracted cube's grid, in the input's format family (a SEG-Y input: a copy of its file, every header "
+                "kept; netCDF .nc, Zarr .zarr, raw .raw, GeoTIFF/ENVI .tif), with the table of IDs and store keys beside it (PATH.bodies.csv, PATH.bodies.json).");
   cmd->add_option("store", a->store, "the store directory")->required();
   cmd->add_option("--out", a->out, "the label cube to write")->required();
   cmd->add_option("--selection", a->selection,
@@ -106,14 +111,15 @@ void add_store_labels(CLI::App* parent, Context& context, Runner& run) {
         for (const auto& row : store.query())
           keys.push_back(row.key);
 
-      auto field = field_of(parameters, *a, settings.below, context);
+      workflow::LabelLike like;
+      auto field = field_of(parameters, *a, settings.below, context, like);
       if (!(field->geometry() == store.geometry()))
         throw InvalidArgument("the cube's geometry is not the store's", {field->source()},
                               "label the cube the store was extracted from");
       const nlohmann::json description = {
           {"store", a->store}, {"selection", selection.empty() ? nlohmann::json(nullptr) : nlohmann::json(selection)}};
       auto progress = context.progress();
-      const auto out = workflow::write_label_cube(field, settings, keys, a->out, a->overwrite, description,
+      const auto out = workflow::write_label_cube(field, settings, keys, like, a->out, a->overwrite, description,
                                                   "geotandem body labels (0 outside), table in .bodies.csv",
                                                   progress.get(), context.cancel);
       std::cout << "labelled " << out.bodies.size() << " bodies (" << keys.size() << " store keys"

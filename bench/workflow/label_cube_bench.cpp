@@ -60,11 +60,11 @@ int run(int argc, char** argv) {
   reset_peak();
   const long base = peak_kib();
   auto store = store::ComponentStore::create((dir / "store").string(), cube->geometry());
-  workflow::ExtractSettings s;
+  workflow::ExtractionOptions s;
   s.iso = static_cast<float>(synth::analytic_iso);
   s.block_size = block;
   auto t = Clock::now();
-  const auto r = workflow::extract_to_store(*cube, store, s, log, progress, cancel);
+  const auto r = workflow::extract_to_store(*cube, store, s, workflow::ExecutionContext{}, log, progress, cancel);
   const double extract_s = seconds_since(t);
   const long extract_peak = peak_kib();
   std::vector<std::uint64_t> keys;
@@ -76,7 +76,7 @@ int run(int argc, char** argv) {
   ls.iso = s.iso;
   t = Clock::now();
   const auto out =
-      workflow::write_label_cube(cube, ls, keys, (dir / "labels.raw").string(), false, {}, "bench", nullptr, cancel);
+      workflow::write_label_cube(cube, ls, keys, {}, (dir / "labels.raw").string(), false, {}, "bench", nullptr, cancel);
   const double label_s = seconds_since(t);
   const long label_peak = peak_kib();
   std::printf("analytic %lld^3, %llu components, blocks of %lld cells, one process\n", static_cast<long long>(n),

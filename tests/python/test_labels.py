@@ -90,6 +90,78 @@ def test_segy_labels_read_by_segyio(scratch_root, side, iso):
         assert int(r["key"]) in keys
 
 
+def test_segy_labels_keep_headers_at_any_byte(scratch_root):
+    """An input made by segyio the way other programs lay files out: inline/crossline at bytes
+    221/225, CDP X/Y with a scalar of -100, IBM floats, crossline-sorted, and fields geotandem does
+    not read (offset, source X/Y, trace numbers). The label cube keeps every trace header byte for
+    byte, in the file's order, and its labels are the flood fill's of segyio's own reading."""
+    ni, nj, ns = 28, 24, 30
+    rng = np.random.default_rng(11)
+    i, j, k = np.meshgrid(np.arange(ni), np.arange(nj), np.arange(ns), indexing="ij")
+    values = (np.sin(i / 3.1) * np.cos(j / 2.7) * np.sin(k / 4.3 + 0.4) + 0.2 * rng.standard_normal((ni, nj, ns)))
+    values = values.astype(np.float32)
+    cube = scratch_root / "labels-in-221.sgy"
+    spec = segyio.spec()
+    spec.format = 1  # IBM floats
+    spec.samples = list(range(ns))
+    spec.tracecount = ni * nj
+    order = [(a, b) for b in range(nj) for a in range(ni)]  # crossline-sorted
+    with segyio.create(str(cube), spec) as f:
+        f.bin.update({segyio.BinField.Interval: 4000, segyio.BinField.Samples: ns})
+        for t, (a, b) in enumerate(order):
+            h = {segyio.TraceField.TRACE_SEQUENCE_LINE: t + 1, segyio.TraceField.offset: 7 + t % 5,
+                 segyio.TraceField.SourceX: 1000 + t, segyio.TraceField.SourceY: 2000 - t,
+                 segyio.TraceField.SourceGroupScalar: -100,
+                 segyio.TraceField.CDP_X: int((500000 + 25 * a + 3 * b) * 100),
+                 segyio.TraceField.CDP_Y: int((6000000 + 2 * a + 25 * b) * 100),
+                 segyio.TraceField.TRACE_SAMPLE_COUNT: ns, segyio.TraceField.TRACE_SAMPLE_INTERVAL: 4000}
+            f.header[t] = h
+            f.trace[t] = values[a, b]
+    # segyio names no field at 221/225: write the line numbers into the file's bytes directly.
+    data = bytearray(cube.read_bytes())
+    stride = 240 + 4 * ns
+    for t, (a, b) in enumerate(order):
+        at = 3600 + t * stride
+        data[at + 220:at + 224] = int(300 + 2 * a).to_bytes(4, "big", signed=True)
+        data[at + 224:at + 228] = int(1000 + b).to_bytes(4, "big", signed=True)
+    cube.write_bytes(bytes(data))
+    with segyio.open(cube, ignore_geometry=True) as f:  # the samples as segyio reads them
+        read = np.stack([f.trace[t] for t in range(f.tracecount)])
+    grid = np.zeros((ni, nj, ns), dtype=np.float32)
+    for t, (a, b) in enumerate(order):
+        grid[a, b] = read[t]
+
+    iso = float(np.quantile(grid, 0.9))
+    store = scratch_root / "labels-store-221"
+    cli("-q", "extract", cube, "--iso", repr(iso), "--inline-byte", "221", "--crossline-byte", "225",
+        "--block-size", "8", "--workers", "0", "--out", store)
+    keys = [r["key"] for r in ls_json(store)]
+    assert len(keys) > 3
+    out = scratch_root / "labels-221.sgy"
+    cli("-q", "store", "labels", store, "--all", "--out", out)
+    expected, sizes = expected_labels(grid, np.float32(iso), False, keys)
+    with segyio.open(out, ignore_geometry=True) as f, segyio.open(cube, ignore_geometry=True) as g:
+        assert f.tracecount == g.tracecount
+        assert f.format == 5 and g.format == 1
+        assert f.bin[segyio.BinField.Interval] == g.bin[segyio.BinField.Interval]
+        for t in range(f.tracecount):
+            assert f.header[t].buf == g.header[t].buf, f"trace {t}"
+            a, b = order[t]
+            np.testing.assert_array_equal(f.trace[t], expected[a, b])
+        text_in, text_out = segyio.tools.wrap(g.text[0]), segyio.tools.wrap(f.text[0])
+        assert "GEOTANDEM BODY LABELS" in text_out
+        assert "GEOTANDEM BODY LABELS" not in text_in
+    # Byte for byte, the trace headers (240 bytes each, at the same places).
+    a_bytes, b_bytes = out.read_bytes(), cube.read_bytes()
+    assert len(a_bytes) == len(b_bytes)
+    for t in range(ni * nj):
+        at = 3600 + t * stride
+        assert a_bytes[at:at + 240] == b_bytes[at:at + 240], f"trace {t}"
+    with open(str(out) + ".bodies.csv") as table:
+        rows = list(csv.DictReader(table))
+    assert {int(r["id"]): int(r["samples"]) for r in rows} == sizes
+
+
 def test_netcdf_labels_read_by_gdal(scratch_root):
     cube = scratch_root / "labels-in.nc"
     cli("synth", "--kind", "analytic", "--shape", "36", "40", "32", "--seed", "6", "--out", cube)

@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <map>
@@ -69,14 +70,14 @@ std::vector<std::uint64_t> keys_of(const store::ComponentStore& store) {
 store::ComponentStore extract(const volume::Volume& cube, float iso, bool below, const std::string& dir,
                               std::int64_t block_size = 16) {
   auto store = store::ComponentStore::create(dir, cube.geometry());
-  ExtractSettings s;
-  s.iso = iso;
-  s.below = below;
-  s.block_size = block_size;
+  ExtractionOptions o;
+  o.iso = iso;
+  o.side = below ? tandem::Side::below : tandem::Side::above;
+  o.block_size = block_size;
   NullProgress progress;
   std::ostringstream text;
   Logger log{text, LogLevel::warning};
-  extract_to_store(cube, store, s, log, progress, CancelToken{});
+  extract_to_store(cube, store, o, ExecutionContext{}, log, progress, CancelToken{});
   return store;
 }
 
@@ -271,7 +272,7 @@ TEST(LabelFiles, EveryFormatReadsBackAsTheLabels) {
   for (const char* name : {"labels.raw", "labels.nc", "labels.segy", "labels.zarr"}) {
     const std::string path = dir.file(name);
     const auto out =
-        write_label_cube(cube, settings, keys, path, false, {{"store", "store"}}, "body labels", nullptr, {});
+        write_label_cube(cube, settings, keys, {}, path, false, {{"store", "store"}}, "body labels", nullptr, {});
     auto back = volume::open_volume(path);
     EXPECT_EQ(back->geometry().shape, cube->geometry().shape) << name;
     EXPECT_EQ(back->read(Box::of_shape(cube->geometry().shape)), expected) << name;
@@ -286,9 +287,101 @@ TEST(LabelFiles, EveryFormatReadsBackAsTheLabels) {
     // No temporary left beside it; a second write is refused without overwrite, done with it.
     for (const auto& entry : std::filesystem::directory_iterator(dir.path()))
       EXPECT_EQ(entry.path().filename().string().find(".labels-"), std::string::npos) << entry.path();
-    EXPECT_THROW(write_label_cube(cube, settings, keys, path, false, {}, "", nullptr, {}), IoError);
-    EXPECT_NO_THROW(write_label_cube(cube, settings, keys, path, true, {}, "", nullptr, {}));
+    EXPECT_THROW(write_label_cube(cube, settings, keys, {}, path, false, {}, "", nullptr, {}), IoError);
+    EXPECT_NO_THROW(write_label_cube(cube, settings, keys, {}, path, true, {}, "", nullptr, {}));
   }
+}
+
+std::string file_bytes(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
+void put_bytes(const std::string& path, const std::string& bytes) {
+  std::ofstream out(path, std::ios::binary | std::ios::trunc);
+  out.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
+}
+
+std::int32_t big_endian_int32(const char* p) {
+  std::uint32_t v = 0;
+  for (int n = 0; n < 4; ++n)
+    v = (v << 8) | static_cast<unsigned char>(p[n]);
+  return static_cast<std::int32_t>(v);
+}
+
+float big_endian_float(const char* p) {
+  const auto bits = static_cast<std::uint32_t>(big_endian_int32(p));
+  float f;
+  std::memcpy(&f, &bits, 4);
+  return f;
+}
+
+// A SEG-Y input gives a SEG-Y label cube that is its file trace for trace: the same textual header
+// but for the note's card, the same binary header (IEEE floats both), every trace header byte for
+// byte in the file's own order (here a shuffled, unsorted file read through its trace index), and
+// each trace's samples the labels of its bin. Another family's extension is refused.
+TEST(LabelFiles, SegyLabelsKeepTheInputsHeadersTraceForTrace) {
+  auto cube = cube_of(true);
+  const auto& shape = cube->geometry().shape;
+  geotandem::testing::ScratchDir dir;
+  const std::string sorted = dir.file("sorted.segy"), input = dir.file("input.segy");
+  volume::write_volume(*cube, sorted);
+  // Shuffle the traces (a fixed permutation): the reader needs its trace index for this file.
+  std::string bytes = file_bytes(sorted);
+  const std::size_t trace_bytes = 240 + 4 * static_cast<std::size_t>(shape[2]);
+  const std::size_t traces = static_cast<std::size_t>(shape[0] * shape[1]);
+  ASSERT_EQ(bytes.size(), 3600 + traces * trace_bytes);
+  std::string shuffled = bytes.substr(0, 3600);
+  for (std::size_t t = 0; t < traces; ++t) {
+    const std::size_t from = (t * 7919) % traces; // 7919 is prime, coprime with the trace count
+    shuffled += bytes.substr(3600 + from * trace_bytes, trace_bytes);
+  }
+  put_bytes(input, shuffled);
+  auto in = std::shared_ptr<const volume::Volume>(volume::open_volume(input));
+  ASSERT_EQ(in->geometry().shape, shape);
+  bool unsorted = false;
+  for (const auto& d : in->format_details())
+    if (d.key == "sorting") unsorted = d.value.find("unsorted") != std::string::npos;
+  ASSERT_TRUE(unsorted) << "the file must be read through its trace index";
+
+  const float iso = iso_of(cube->samples(), true, false);
+  auto store = extract(*in, iso, false, dir.file("store"));
+  const auto keys = keys_of(store);
+  LabelSettings settings;
+  settings.iso = iso;
+  const std::vector<float> labels = LabelCube(in, settings, keys).read(Box::of_shape(shape));
+  LabelLike like;
+  like.file = input;
+  EXPECT_THROW(write_label_cube(in, settings, keys, like, dir.file("labels.nc"), false, {}, "", nullptr, {}),
+               InvalidArgument);
+  const std::string path = dir.file("labels.sgy");
+  write_label_cube(in, settings, keys, like, path, false, {}, "geotandem body labels", nullptr, {});
+
+  const std::string out = file_bytes(path);
+  ASSERT_EQ(out.size(), shuffled.size());
+  std::size_t cards_changed = 0;
+  for (std::size_t card = 0; card < 40; ++card)
+    cards_changed += out.compare(card * 80, 80, shuffled, card * 80, 80) != 0;
+  EXPECT_EQ(cards_changed, 1u) << "one card holds the note";
+  EXPECT_EQ(out.compare(3200, 400, shuffled, 3200, 400), 0) << "the binary header";
+  std::size_t headers_differ = 0, samples_differ = 0;
+  for (std::size_t t = 0; t < traces; ++t) {
+    const std::size_t at = 3600 + t * trace_bytes;
+    headers_differ += out.compare(at, 240, shuffled, at, 240) != 0;
+    const std::int64_t i = big_endian_int32(out.data() + at + 188) - static_cast<std::int64_t>(in->geometry().inline0);
+    const std::int64_t j =
+        big_endian_int32(out.data() + at + 192) - static_cast<std::int64_t>(in->geometry().crossline0);
+    ASSERT_TRUE(i >= 0 && i < shape[0] && j >= 0 && j < shape[1]) << "trace " << t;
+    for (std::int64_t k = 0; k < shape[2]; ++k)
+      samples_differ += big_endian_float(out.data() + at + 240 + 4 * static_cast<std::size_t>(k)) !=
+                        labels[static_cast<std::size_t>((i * shape[1] + j) * shape[2] + k)];
+  }
+  EXPECT_EQ(headers_differ, 0u);
+  EXPECT_EQ(samples_differ, 0u);
+  // And geotandem reads it back as the labels, on the input's grid.
+  auto back = volume::open_volume(path);
+  EXPECT_EQ(back->geometry(), in->geometry());
+  EXPECT_EQ(back->read(Box::of_shape(shape)), labels);
 }
 
 TEST(LabelFiles, KeysOfAnotherCubeAreRefused) {

@@ -343,12 +343,42 @@ void remove_quietly(const fs::path& path) {
 
 } // namespace
 
-LabelOutput write_label_cube(std::shared_ptr<const volume::Volume> field, const LabelSettings& settings,
-                             const std::vector<std::uint64_t>& keys, const std::string& path, bool overwrite,
-                             const nlohmann::json& description, const std::string& note, Progress* progress,
-                             const CancelToken& cancel) {
-  using Clock = std::chrono::steady_clock;
+LabelLike label_like_of_input(const nlohmann::json& in) {
+  LabelLike like;
+  if (!in.is_object() || !in.contains("file")) return like;
+  like.file = in.at("file").get<std::string>();
+  like.options.nan_policy = volume::parse_nan_policy(in.value("nan", "error"));
+  if (in.contains("segy")) like.options.segy = volume::segy_options_from_json(in["segy"]);
+  return like;
+}
+
+std::vector<std::string> label_extensions(const LabelLike& like) {
+  if (like.file.empty()) return {};
+  const std::string format = volume::detect_format(like.file);
+  if (format == "SEG-Y") return {".segy", ".sgy"};
+  if (format == "netCDF-4" || format == "HDF5") return {".nc"};
+  if (format == "Zarr") return {".zarr"};
+  if (format == "raw") return {".raw"};
+  return {".tif"}; // GeoTIFF, ENVI: the classic raster family
+}
+
+void check_label_format(const LabelLike& like, const std::string& path) {
   volume::check_output_format(path);
+  const std::vector<std::string> family = label_extensions(like);
+  const std::string ext = lower_extension(path);
+  if (family.empty() || std::find(family.begin(), family.end(), ext) != family.end()) return;
+  throw InvalidArgument("the label cube is written in the input's format family (" +
+                            volume::detect_format(like.file) + "), but '" + path + "' names another",
+                        {like.file}, "name it " + fs::path(path).replace_extension(family.front()).string());
+}
+
+LabelOutput write_label_cube(std::shared_ptr<const volume::Volume> field, const LabelSettings& settings,
+                             const std::vector<std::uint64_t>& keys, const LabelLike& like, const std::string& path,
+                             bool overwrite, const nlohmann::json& description, const std::string& note,
+                             Progress* progress, const CancelToken& cancel) {
+  using Clock = std::chrono::steady_clock;
+  check_label_format(like, path);
+  const bool segy_like = !like.file.empty() && volume::detect_format(like.file) == "SEG-Y";
   const fs::path target = fs::absolute(path).lexically_normal();
   const std::string ext = lower_extension(target);
   const fs::path csv = target.string() + ".bodies.csv", json = target.string() + ".bodies.json";
@@ -376,7 +406,10 @@ LabelOutput write_label_cube(std::shared_ptr<const volume::Volume> field, const 
     volume::WriteOptions w;
     w.variable = "body_id";
     w.note = note;
-    volume::write_volume(*cube, temporary.string(), w, progress, cancel);
+    if (segy_like)
+      volume::write_segy_like(*cube, like.file, like.options, temporary.string(), w, progress, cancel);
+    else
+      volume::write_volume(*cube, temporary.string(), w, progress, cancel);
     if (fs::exists(fs::symlink_status(target, ec))) remove_quietly(target);
     if (raw) {
       fs::rename(temporary.string() + ".json", target.string() + ".json");

@@ -32,6 +32,7 @@
 
 #include "geotandem/core/cancel.hpp"
 #include "geotandem/core/progress.hpp"
+#include "geotandem/volume/io.hpp"
 #include "geotandem/volume/volume.hpp"
 
 namespace geotandem::workflow {
@@ -77,6 +78,26 @@ private:
   std::unique_ptr<Impl> impl_;
 };
 
+// The input file a label cube follows: its format family, and for SEG-Y its headers (every trace
+// header is copied). `file` empty: no file (a synthetic cube, an array): any format goes.
+struct LabelLike {
+  std::string file;
+  // How the file was read: the SEG-Y header bytes that place its traces (and its missing bins,
+  // under nan_policy fill), as the extraction read it.
+  volume::OpenOptions options;
+};
+
+// The input of a chain (a recipe's run, or a store's run that recorded its chain) as a LabelLike.
+LabelLike label_like_of_input(const nlohmann::json& chain_input);
+
+// The extensions of the input's format family, the first being the usual one: SEG-Y .segy/.sgy,
+// netCDF-4 and HDF5 .nc, Zarr .zarr, raw .raw, GeoTIFF and ENVI .tif; empty for no file (any
+// format). Throws what detect_format throws.
+std::vector<std::string> label_extensions(const LabelLike& like);
+// Throws InvalidArgument, naming the extension to use, unless `path`'s extension is of the family
+// of `like`'s file (any writable format when there is no file).
+void check_label_format(const LabelLike& like, const std::string& path);
+
 struct LabelOutput {
   std::string cube;  // the label cube's path
   std::string table; // PATH.bodies.csv: id,key,samples,keys
@@ -86,15 +107,17 @@ struct LabelOutput {
   double seconds_write = 0.0; // pass 2 and the writing
 };
 
-// Writes the label cube of `field` to `path` (the format from its extension, as write_volume:
-// .segy/.sgy, .nc, .zarr, .raw, .tif; the caller picks the input's family), whole or not at all (a
-// temporary beside it, renamed into place), then its table beside it: PATH.bodies.csv and
-// PATH.bodies.json. `description` (a JSON object: store, selection, ...) goes into the JSON table;
-// `note` into the file where its format keeps one (a SEG-Y textual header card). An existing
-// output is refused unless `overwrite`. Throws what LabelCube and write_volume throw.
+// Writes the label cube of `field` to `path`, in the format family of `like`'s file
+// (check_label_format; the extension picks among write_volume's formats): a SEG-Y input gives a
+// copy of its file with the labels as samples (volume::write_segy_like: every header kept, `note`
+// on a textual header card); netCDF, Zarr, GeoTIFF and raw inputs the same format with the grid's
+// coordinates (the raw sidecar). Whole or not at all (a temporary beside it, renamed into place),
+// then its table beside it: PATH.bodies.csv and PATH.bodies.json. `description` (a JSON object:
+// store, selection, ...) goes into the JSON table. An existing output is refused unless
+// `overwrite`. Throws what LabelCube and the writers throw.
 LabelOutput write_label_cube(std::shared_ptr<const volume::Volume> field, const LabelSettings& settings,
-                             const std::vector<std::uint64_t>& keys, const std::string& path, bool overwrite,
-                             const nlohmann::json& description, const std::string& note, Progress* progress,
-                             const CancelToken& cancel);
+                             const std::vector<std::uint64_t>& keys, const LabelLike& like, const std::string& path,
+                             bool overwrite, const nlohmann::json& description, const std::string& note,
+                             Progress* progress, const CancelToken& cancel);
 
 } // namespace geotandem::workflow

@@ -68,7 +68,8 @@ void add_store_labels(CLI::App* parent, Context& context, Runner& run) {
   auto* cmd = parent->add_subcommand(
       "labels", "Write the label cube of the store's bodies: every sample's body ID (0 outside any body) on the "
                 "extracted cube's grid, in the input's format family (a SEG-Y input: a copy of its file, every header "
-                "kept; netCDF .nc, Zarr .zarr, raw .raw, GeoTIFF/ENVI .tif), with the table of IDs and store keys beside it (PATH.bodies.csv, PATH.bodies.json).");
+                "kept; netCDF .nc, Zarr .zarr, raw .raw, GeoTIFF/ENVI .tif), with the table of IDs and store keys "
+                "beside it (PATH.bodies.csv, PATH.bodies.json).");
   cmd->add_option("store", a->store, "the store directory")->required();
   cmd->add_option("--out", a->out, "the label cube to write")->required();
   cmd->add_option("--selection", a->selection,

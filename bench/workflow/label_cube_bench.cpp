@@ -75,8 +75,8 @@ int run(int argc, char** argv) {
   workflow::LabelSettings ls;
   ls.iso = s.iso;
   t = Clock::now();
-  const auto out =
-      workflow::write_label_cube(cube, ls, keys, {}, (dir / "labels.raw").string(), false, {}, "bench", nullptr, cancel);
+  const auto out = workflow::write_label_cube(cube, ls, keys, {}, (dir / "labels.raw").string(), false, {}, "bench",
+                                              nullptr, cancel);
   const double label_s = seconds_since(t);
   const long label_peak = peak_kib();
   std::printf("analytic %lld^3, %llu components, blocks of %lld cells, one process\n", static_cast<long long>(n),

@@ -9,8 +9,8 @@
 
 #include <algorithm>
 #include <array>
-#include <cerrno>
 #include <cctype>
+#include <cerrno>
 #include <cstdint>
 #include <cstring>
 #include <filesystem>
@@ -135,9 +135,8 @@ void encode_samples(const float* in, std::size_t count, char* out, bool little_e
 
 } // namespace
 
-void write_segy_like(const Volume& volume, const std::string& like, const OpenOptions& options,
-                     const std::string& path, const WriteOptions& write, Progress& progress,
-                     const CancelToken& cancel) {
+void write_segy_like(const Volume& volume, const std::string& like, const OpenOptions& options, const std::string& path,
+                     const WriteOptions& write, Progress& progress, const CancelToken& cancel) {
   segy::Handle file(segy_open(like.c_str(), "rb"));
   if (!file)
     throw IoError(std::string("cannot open the SEG-Y file: ") + std::strerror(errno), {like}, "check its permissions");
@@ -154,9 +153,11 @@ void write_segy_like(const Volume& volume, const std::string& like, const OpenOp
 
   const Geometry& g = volume.geometry();
   if (g.shape != Index3{grid.ni, grid.nj, layout.samples})
-    throw InvalidArgument("the cube is " + Box::of_shape(g.shape).to_string() + ", but the SEG-Y file it is written "
-                              "like holds " + std::to_string(grid.ni) + " x " + std::to_string(grid.nj) +
-                              " traces of " + std::to_string(layout.samples) + " samples",
+    throw InvalidArgument("the cube is " + Box::of_shape(g.shape).to_string() +
+                              ", but the SEG-Y file it is written "
+                              "like holds " +
+                              std::to_string(grid.ni) + " x " + std::to_string(grid.nj) + " traces of " +
+                              std::to_string(layout.samples) + " samples",
                           {like}, "write it like the file it was computed from");
 
   // Every header of the file up to its first trace: textual, binary, extended textual headers.
@@ -171,7 +172,8 @@ void write_segy_like(const Volume& volume, const std::string& like, const OpenOp
   put_note(head.data(), write.note);
   set_binary_int16(head.data() + SEGY_TEXT_HEADER_SIZE, 3225, SEGY_IEEE_FLOAT_4_BYTE, layout.little_endian);
 
-  const std::size_t header_bytes = static_cast<std::size_t>(SEGY_TRACE_HEADER_SIZE) * (1u + static_cast<unsigned>(layout.header_extensions));
+  const std::size_t header_bytes =
+      static_cast<std::size_t>(SEGY_TRACE_HEADER_SIZE) * (1u + static_cast<unsigned>(layout.header_extensions));
   const auto ns = static_cast<std::size_t>(layout.samples);
   const std::size_t out_stride = header_bytes + 4 * ns;
   const auto out_offset = [&](int trace) {
@@ -187,7 +189,8 @@ void write_segy_like(const Volume& volume, const std::string& like, const OpenOp
     // Traces in slabs of whole inlines (reads of a lazy cube are fastest in inline order), each
     // written at its own place in the file: an unsorted file's order is kept as it is.
     const std::int64_t ni = g.shape[0], nj = g.shape[1];
-    const std::int64_t per_slab = std::max<std::int64_t>(1, (std::int64_t{1} << 22) / std::max<std::int64_t>(1, nj * g.shape[2]));
+    const std::int64_t per_slab =
+        std::max<std::int64_t>(1, (std::int64_t{1} << 22) / std::max<std::int64_t>(1, nj * g.shape[2]));
     std::vector<float> slab;
     std::vector<char> trace(out_stride);
     std::vector<bool> written(static_cast<std::size_t>(layout.traces), false);

@@ -367,8 +367,8 @@ void check_label_format(const LabelLike& like, const std::string& path) {
   const std::vector<std::string> family = label_extensions(like);
   const std::string ext = lower_extension(path);
   if (family.empty() || std::find(family.begin(), family.end(), ext) != family.end()) return;
-  throw InvalidArgument("the label cube is written in the input's format family (" +
-                            volume::detect_format(like.file) + "), but '" + path + "' names another",
+  throw InvalidArgument("the label cube is written in the input's format family (" + volume::detect_format(like.file) +
+                            "), but '" + path + "' names another",
                         {like.file}, "name it " + fs::path(path).replace_extension(family.front()).string());
 }
 

@@ -142,7 +142,8 @@ std::vector<RecipeSection> make_sections() {
                "store: `validate` refuses it at its line). An export whose selection holds no component writes no "
                "file, removes the one an earlier run wrote in the output directory, and warns"),
   };
-  output.absent = {{"directory", "`<recipe name>-out`"}, {"attribute", "none"}, {"labels", "none"}, {"exports", "none"}};
+  output.absent = {
+      {"directory", "`<recipe name>-out`"}, {"attribute", "none"}, {"labels", "none"}, {"exports", "none"}};
   s.push_back(output);
 
   std::string backends;

@@ -127,7 +127,7 @@ void add_extract_command(CLI::App& app, Context& context, Runner& run) {
   };
   auto a = std::make_shared<Args>();
   auto* cmd =
-      app.add_subcommand("extract", "Extract the isosurface value >= ISO (or value <= ISO with --side below) of a "
+      app.add_subcommand("extract", "Extract the isosurface value >= ISO (or value <= ISO with --side=below) of a "
                                     "cube with the extended tandem algorithm (marching cubes interleaved with "
                                     "edge-collapse simplification) into a component store. Finished components are "
                                     "written as they are found.");

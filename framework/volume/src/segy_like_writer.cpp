@@ -11,6 +11,7 @@
 #include <array>
 #include <cctype>
 #include <cerrno>
+#include <cstddef>
 #include <cstdint>
 #include <cstring>
 #include <filesystem>
@@ -95,7 +96,7 @@ void put_note(char* text, const std::string& note) {
   }
   const bool is_ebcdic = ebcdic >= ascii;
   const auto blank = [&](int card) {
-    const char* c = text + card * 80;
+    const char* c = text + static_cast<std::ptrdiff_t>(card) * 80;
     for (int n = 4; n < 80; ++n)
       if (is_ebcdic ? static_cast<unsigned char>(c[n]) != 0x40 : (c[n] != ' ' && c[n] != '\0')) return false;
     return true;
@@ -108,7 +109,7 @@ void put_note(char* text, const std::string& note) {
     }
   std::string line = note.substr(0, 76);
   line.resize(76, ' ');
-  char* c = text + card * 80 + 4;
+  char* c = text + static_cast<std::ptrdiff_t>(card) * 80 + 4;
   for (std::size_t n = 0; n < line.size(); ++n)
     c[n] = is_ebcdic ? static_cast<char>(to_ebcdic(line[n]))
                      : static_cast<char>(std::toupper(static_cast<unsigned char>(line[n])));

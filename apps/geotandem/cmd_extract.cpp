@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
+#include <limits>
 #include <map>
 #include <optional>
 #include <string>
@@ -126,9 +127,10 @@ void add_extract_command(CLI::App& app, Context& context, Runner& run) {
   };
   auto a = std::make_shared<Args>();
   auto* cmd =
-      app.add_subcommand("extract", "Extract the isosurface value >= ISO of a cube with the extended tandem algorithm "
-                                    "(marching cubes interleaved with edge-collapse simplification) into a component "
-                                    "store. Finished components are written as they are found.");
+      app.add_subcommand("extract", "Extract the isosurface value >= ISO (or value <= ISO with --side=below) of a "
+                                    "cube with the extended tandem algorithm (marching cubes interleaved with "
+                                    "edge-collapse simplification) into a component store. Finished components are "
+                                    "written as they are found.");
   cmd->add_option("cube", a->cube, "the cube (any format 'geotandem info' reads)")->required();
   cmd->add_option("--out", a->out, "the component store directory (created; resumed if it holds this cube)")
       ->required();
@@ -159,6 +161,10 @@ void add_extract_command(CLI::App& app, Context& context, Runner& run) {
       open.variable = a->variable;
       open.segy = a->segy;
       const tandem::ExtractionOptions options = extraction_options_of(a->extraction);
+      // Filled missing samples (--nan fill) are outside on either side: the lowest float above,
+      // the highest below.
+      const bool below = options.side == tandem::Side::below;
+      if (below) open.fill_value = std::numeric_limits<float>::max();
       workflow::ExecutionContext s;
       auto opening = context.progress(); // an irregular SEG-Y survey's pass over its headers
       open.progress = opening.get();
@@ -184,7 +190,8 @@ void add_extract_command(CLI::App& app, Context& context, Runner& run) {
       }
       if (s.workers > 0) {
         s.volume_description =
-            describe_cube_file(a->cube, a->nan, open.no_data, a->variable, a->segy, a->crs, cube->reopen_hint());
+            describe_cube_file(a->cube, a->nan, open.no_data, a->variable, a->segy, a->crs, cube->reopen_hint(),
+                               below);
         s.worker_command = worker_command(context);
       }
       s.record = {{"command", "geotandem extract"}, {"cube", a->cube}};

@@ -39,6 +39,7 @@ nlohmann::json row_json(const store::ComponentRow& r) {
           {"vertex_count", r.location.vertex_count},
           {"triangle_count", r.location.triangle_count},
           {"volume", s.volume},
+          {"samples", r.samples_counted ? nlohmann::json(s.samples) : nlohmann::json(nullptr)},
           {"area", s.area},
           {"centroid", s.centroid},
           {"box_min", s.box_min},
@@ -67,8 +68,8 @@ std::string format_number(double value, const char* format = "%.6g") {
 void print_table(const std::vector<store::ComponentRow>& rows, std::uint64_t total, const std::string& unit) {
   auto& o = std::cout;
   char line[256];
-  std::snprintf(line, sizeof line, "%20s %14s %8s %6s %10s %10s  %s\n", "key", ("volume " + unit).c_str(), "azimuth",
-                "dip", "vertices", "triangles", "surface");
+  std::snprintf(line, sizeof line, "%20s %14s %12s %8s %6s %10s %10s  %s\n", "key", ("volume " + unit).c_str(),
+                "samples", "azimuth", "dip", "vertices", "triangles", "surface");
   o << line;
   for (const auto& r : rows) {
     const auto& s = r.stats;
@@ -76,9 +77,11 @@ void print_table(const std::vector<store::ComponentRow>& rows, std::uint64_t tot
     const std::string kind = s.cut_by_border ? "cut " + (faces.empty() ? std::string("by border") : faces)
                              : s.closed      ? "closed"
                                              : "open";
-    std::snprintf(line, sizeof line, "%20llu %14s %8.2f %6.2f %10llu %10llu  %s\n",
-                  static_cast<unsigned long long>(r.key), format_number(s.volume).c_str(), s.azimuth, s.dip,
-                  static_cast<unsigned long long>(r.location.vertex_count),
+    // Rows from before volumes in samples: "-".
+    const std::string samples = r.samples_counted ? std::to_string(s.samples) : "-";
+    std::snprintf(line, sizeof line, "%20llu %14s %12s %8.2f %6.2f %10llu %10llu  %s\n",
+                  static_cast<unsigned long long>(r.key), format_number(s.volume).c_str(), samples.c_str(), s.azimuth,
+                  s.dip, static_cast<unsigned long long>(r.location.vertex_count),
                   static_cast<unsigned long long>(r.location.triangle_count), kind.c_str());
     o << line;
   }
@@ -111,6 +114,8 @@ void print_show(const store::ComponentRow& r, const volume::Geometry& g) {
   }
   o << "\n";
   o << "volume:         " << format_number(s.volume) << " " << volume_unit_text(g) << "\n";
+  o << "samples:        " << (r.samples_counted ? std::to_string(s.samples) : std::string("- (not counted)"))
+    << " (samples enclosed: the volume in voxels)\n";
   o << "area:           " << format_number(s.area) << "\n";
   const std::string xy = g.crs.empty() ? std::string("m") : g.crs.unit;
   o << "centroid:       " << triple(s.centroid) << "  (x " << xy << ", y " << xy << ", z " << z << ")\n";
@@ -374,6 +379,7 @@ void add_store_command(CLI::App& app, Context& context, Runner& run) {
   add_runs(cmd, run);
   add_selections(cmd, run);
   add_check(cmd, context, run);
+  add_store_labels(cmd, context, run);
 }
 
 } // namespace geotandem::app

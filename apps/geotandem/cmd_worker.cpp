@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <filesystem>
+#include <limits>
 #include <optional>
 
 #include "command.hpp"
@@ -33,7 +34,7 @@ std::vector<std::string> worker_command(const Context& context) {
 
 std::string describe_cube_file(const std::string& path, const std::string& nan, std::optional<float> no_data,
                                const std::string& variable, const volume::SegyOptions& segy, const std::string& crs,
-                               const std::string& hint) {
+                               const std::string& hint, bool fill_highest) {
   nlohmann::json d{{"kind", "file"},
                    {"path", std::filesystem::absolute(path).string()},
                    {"nan", nan},
@@ -42,6 +43,7 @@ std::string describe_cube_file(const std::string& path, const std::string& nan, 
   if (no_data) d["no_data"] = *no_data;
   if (!crs.empty()) d["crs"] = crs; // --crs as given: the workers' volume says the manager's CRS
   if (!hint.empty()) d["reopen_hint"] = hint;
+  if (fill_highest) d["fill"] = "highest";
   return d.dump();
 }
 
@@ -58,6 +60,8 @@ std::shared_ptr<const volume::Volume> open_described_volume(const std::string& d
       if (d.contains("segy")) open.segy = volume::segy_options_from_json(d["segy"]);
       open.reopen_hint = d.value("reopen_hint", "");
       if (d.contains("crs")) open.crs = volume::parse_crs(d.at("crs").get<std::string>());
+      // Missing samples filled for an extraction of the side below stay outside (cmd_extract.cpp).
+      if (d.value("fill", "") == "highest") open.fill_value = std::numeric_limits<float>::max();
       return volume::open_volume(d.at("path").get<std::string>(), open);
     }
     if (kind == "analytic") {

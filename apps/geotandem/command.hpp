@@ -36,6 +36,8 @@ void add_synth_command(CLI::App& app, Context& context, Runner& run);
 void add_info_command(CLI::App& app, Context& context, Runner& run);
 void add_extract_command(CLI::App& app, Context& context, Runner& run);
 void add_store_command(CLI::App& app, Context& context, Runner& run);
+// cmd_store_labels.cpp: `store labels`, added by add_store_command.
+void add_store_labels(CLI::App* parent, Context& context, Runner& run);
 void add_plugins_command(CLI::App& app, Context& context, Runner& run);
 void add_validate_command(CLI::App& app, Context& context, Runner& run);
 void add_workflow_command(CLI::App& app, Context& context, Runner& run);
@@ -65,9 +67,10 @@ std::optional<volume::Crs> crs_option(const std::string& text);
 // cmd_worker.cpp: how workers rebuild the input volume. The description of a cube file (JSON
 // text), and the volume a description names (the runtime's VolumeFactory).
 // `hint`: what opening the file found, for the workers (volume::Volume::reopen_hint).
+// `fill_highest`: filled missing samples are the highest float (an extraction of the side below).
 std::string describe_cube_file(const std::string& path, const std::string& nan, std::optional<float> no_data,
                                const std::string& variable, const volume::SegyOptions& segy, const std::string& crs,
-                               const std::string& hint = {});
+                               const std::string& hint = {}, bool fill_highest = false);
 std::shared_ptr<const volume::Volume> open_described_volume(const std::string& description, Logger& log);
 // This executable's path, for the command line of local workers.
 std::string self_executable();

@@ -17,7 +17,7 @@ def extract(volume: Any, iso: float, *, out: PathLike, workers: Optional[int] = 
             nan: str = ..., no_data: Optional[float] = ..., spacing: Optional[Sequence[float]] = ...,
             origin: Optional[Sequence[float]] = ..., z_unit: Optional[str] = ...,
             geometry: Optional[Mapping[str, Any]] = ..., progress: ProgressArg = ...,
-            max_error: float = ..., isotropy: float = ..., axis: str = ..., block_size: int = ...,
+            side: str = ..., max_error: float = ..., isotropy: float = ..., axis: str = ..., block_size: int = ...,
             mode: str = ..., extended_time_lag: bool = ...) -> Store: ...
 def run_workflow(recipe: PathLike, overrides: Optional[Mapping[str, Any]] = ..., *, fresh: bool = ...,
                  dry_run: bool = ..., progress: ProgressArg = ...) -> Dict[str, Any]: ...

@@ -70,7 +70,8 @@ class Store:
 
         Columns: ``key`` (uint64, never negative), ``vertex_count``, ``triangle_count``, ``volume``
         (world units: m3, or m2.ms for time cubes), ``area``, ``centroid_x/y/z``, ``box_min_x/y/z``,
-        ``box_max_x/y/z``, ``obb_center_x/y/z``, ``obb_axis0_x/y/z`` to ``obb_axis2_x/y/z`` (unit
+        ``box_max_x/y/z``, ``samples`` (the volume in samples: voxels enclosed; nullable integer,
+        NA in stores written before samples were counted), ``obb_center_x/y/z``, ``obb_axis0_x/y/z`` to ``obb_axis2_x/y/z`` (unit
         vectors, longest first), ``obb_half_extent0..2``, ``azimuth`` (degrees from north, axial),
         ``dip``, ``elongation``, ``closed``, ``cut_by_border``, ``cut_faces`` ("i-,k+"),
         ``cap_area``, ``run`` (nullable integer), ``shard``, ``offset``, ``length``, ``checksum``
@@ -87,7 +88,10 @@ class Store:
         run = pd.array(cols.pop("run"), dtype="Int64")
         known = cols.pop("run_known")
         run[~known] = pd.NA
+        samples = pd.array(cols.pop("samples"), dtype="Int64")
+        samples[~cols.pop("samples_known")] = pd.NA
         df = pd.DataFrame(cols)
+        df.insert(df.columns.get_loc("volume") + 1, "samples", samples)
         df.insert(df.columns.get_loc("cap_area") + 1, "run", run)
         for column in ("cut_faces", "shard", "checksum"):
             df[column] = df[column].astype(object)

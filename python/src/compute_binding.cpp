@@ -7,6 +7,7 @@
 #include <pybind11/stl.h>
 
 #include <filesystem>
+#include <limits>
 #include <nlohmann/json.hpp>
 
 #include "array_volume.hpp"
@@ -135,6 +136,8 @@ py::dict extract_impl(const ExtractCall& c, ReportMode mode, py::object sink) {
   volume::OpenOptions open;
   open.nan_policy = volume::parse_nan_policy(c.nan);
   open.no_data = c.no_data;
+  const bool below = options.side == tandem::Side::below;
+  if (below) open.fill_value = std::numeric_limits<float>::max(); // filled samples stay outside
   run_cancellable(
       [&] {
         std::unique_ptr<volume::Volume> cube;
@@ -158,6 +161,7 @@ py::dict extract_impl(const ExtractCall& c, ReportMode mode, py::object sink) {
                            {"variable", ""},
                            {"segy", {{"inline_byte", 189}, {"crossline_byte", 193}}}};
           if (c.no_data) d["no_data"] = *c.no_data;
+          if (below) d["fill"] = "highest";
           s.volume_description = d.dump();
           s.worker_command = c.worker_command;
         }

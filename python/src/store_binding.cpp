@@ -28,8 +28,8 @@ py::dict index_columns(const std::vector<store::ComponentRow>& rows) {
   py::array_t<std::uint64_t> key(n), vertex_count(n), triangle_count(n), offset(n), length(n);
   py::array_t<double> volume(n), area(n), azimuth(n), dip(n), elongation(n), cap_area(n);
   py::array_t<bool> closed(n), cut_by_border(n);
-  py::array_t<std::int64_t> run(n);
-  py::array_t<bool> run_known(n);
+  py::array_t<std::int64_t> run(n), samples(n);
+  py::array_t<bool> run_known(n), samples_known(n);
   const char* axes = "xyz";
   std::vector<py::array_t<double>> triples; // centroid, box_min, box_max, obb_center, 3 axes, half extents
   for (int t = 0; t < 8 * 3; ++t)
@@ -53,6 +53,8 @@ py::dict index_columns(const std::vector<store::ComponentRow>& rows) {
     cut_by_border.mutable_data()[r] = s.cut_by_border;
     run.mutable_data()[r] = row.run.value_or(0);
     run_known.mutable_data()[r] = row.run.has_value();
+    samples.mutable_data()[r] = s.samples;
+    samples_known.mutable_data()[r] = row.samples_counted;
     const std::array<const std::array<double, 3>*, 8> sources{&s.centroid,    &s.box_min,         &s.box_max,
                                                               &s.obb_center,  &s.obb_axes[0],     &s.obb_axes[1],
                                                               &s.obb_axes[2], &s.obb_half_extents};
@@ -70,6 +72,8 @@ py::dict index_columns(const std::vector<store::ComponentRow>& rows) {
   c["vertex_count"] = vertex_count;
   c["triangle_count"] = triangle_count;
   c["volume"] = volume;
+  c["samples"] = samples;
+  c["samples_known"] = samples_known;
   c["area"] = area;
   const char* names[8] = {"centroid", "box_min", "box_max", "obb_center", "obb_axis0", "obb_axis1", "obb_axis2", ""};
   for (std::size_t t = 0; t < 7; ++t)

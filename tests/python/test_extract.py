@@ -123,7 +123,7 @@ def test_with_two_worker_processes(analytic_cube, scratch_root, reference, kind)
 def test_parameters_come_from_the_cpp_declarations():
     declared = geotandem.extract_parameters()
     help_text = cli("extract", "--help").stdout
-    for name in ("max_error", "isotropy", "block_size", "mode", "axis"):
+    for name in ("max_error", "isotropy", "block_size", "mode", "axis", "side"):
         default = declared[name]["default"]
         assert f"--{name.replace('_', '-')}" in help_text
         assert default in help_text  # the command line shows the same default
@@ -131,6 +131,28 @@ def test_parameters_come_from_the_cpp_declarations():
         shown = inspect.signature(geotandem.extract).parameters[name].default
         assert shown == (type(shown)(default) if not isinstance(shown, str) else default)
         assert name in geotandem.extract.__doc__
+
+
+def test_side_below_is_the_negated_cube_and_the_command_lines(analytic_cube, scratch_root):
+    """side="below" (issue 54): the components of the negated array above the negated iso, and those
+    of `geotandem extract --side below` on the file; the store says which side."""
+    samples, sidecar = read_raw(analytic_cube)
+    below = geotandem.extract(samples, 0.3, out=scratch_root / "py-below", side="below", block_size=32,
+                              geometry=sidecar["geometry"], progress=False)
+    negated = geotandem.extract(-samples, -0.3, out=scratch_root / "py-negated", block_size=32,
+                                geometry=sidecar["geometry"], progress=False)
+    a, b = below.components(), negated.components()
+    assert len(a) > 0
+    assert list(a["key"]) == list(b["key"])
+    assert list(a["volume"]) == list(b["volume"])
+    assert list(a["samples"]) == list(b["samples"])
+    out = scratch_root / "cli-below"
+    cli("-q", "extract", analytic_cube, "--iso", "0.3", "--side", "below", "--block-size", "32", "--workers", "0",
+        "--out", out)
+    assert keys_and_volumes(ls_json(out)) == dict(zip(map(int, a["key"]), a["volume"]))
+    runs = json.loads(cli("store", "runs", out, "--json").stdout)
+    assert runs[-1]["parameters"]["side"] == "below"
+    assert runs[-1]["parameters"]["identity"]["side"] == "below"
 
 
 def test_a_bad_parameter_names_it(analytic_cube, scratch_root):

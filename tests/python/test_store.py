@@ -33,6 +33,8 @@ def assert_frame_equals_ls(df, rows):
             assert row[field] == r[field], field
         assert (None if row["run"] is None or row["run"] is np.nan or str(row["run"]) == "<NA>" else int(row["run"])) \
             == r["run"]
+        # The volume in samples (issue 54): a nullable integer, as `store ls --json` gives it.
+        assert (None if str(row["samples"]) == "<NA>" else int(row["samples"])) == r["samples"]
         for name in TRIPLES:
             assert [row[f"{name}_{a}"] for a in "xyz"] == r[name], name
         assert [row[f"obb_center_{a}"] for a in "xyz"] == r["obb"]["center"]

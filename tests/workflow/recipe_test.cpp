@@ -2,7 +2,10 @@
 
 #include <gtest/gtest.h>
 
+#include <filesystem>
+
 #include "geotandem/core/error.hpp"
+#include "geotandem/volume/io.hpp"
 #include "geotandem/workflow/builtin_steps.hpp"
 #include "geotandem/workflow/recipe.hpp"
 #include "test_paths.hpp"
@@ -320,4 +323,43 @@ TEST_F(Recipes, AttributeFileOfUnknownFormatIsRefusedAtValidation) {
   EXPECT_NE(e.find(".nc (netCDF-4)"), std::string::npos) << e;
   parse_recipe(replaced("  directory: out\n", "  directory: out\n  attribute: smooth.nc\n"), "dir/recipe.yaml",
                registry);
+}
+
+// output.labels (issue 54): the label cube is written in the input's format family, and a recipe
+// naming another is refused at validation, at the line of `labels:`, naming the extension to use; a
+// synthetic input takes any writable format. side: below is a choice of the extract step.
+TEST_F(Recipes, LabelsFollowTheInputsFormatFamily) {
+  const std::filesystem::path dir = std::filesystem::path(::testing::TempDir()) / "recipe-labels";
+  std::filesystem::create_directories(dir);
+  volume::Geometry g;
+  g.shape = {4, 4, 4};
+  volume::MemoryVolume cube(g, std::vector<float>(64, 0.0f));
+  volume::WriteOptions overwrite;
+  overwrite.overwrite = true;
+  volume::write_volume(cube, (dir / "cube.segy").string(), overwrite);
+  const auto recipe = [](const std::string& labels) {
+    return "input: {file: cube.segy}\nsteps:\n  - {step: extract, iso: 0.5, side: below}\noutput:\n  labels: " +
+           labels + "\n";
+  };
+  const std::string path = (dir / "recipe.yaml").string();
+  try {
+    parse_recipe(recipe("labels.nc"), path, registry);
+    ADD_FAILURE() << "a netCDF label cube of a SEG-Y input was accepted";
+  } catch (const InvalidArgument& e) {
+    const std::string m = e.what();
+    EXPECT_NE(m.find("output.labels"), std::string::npos) << m;
+    EXPECT_NE(m.find("SEG-Y"), std::string::npos) << m;
+    EXPECT_NE(m.find("labels.segy"), std::string::npos) << m;
+    EXPECT_NE(m.find(":5:"), std::string::npos) << m;
+  }
+  const Recipe r = parse_recipe(recipe("labels.sgy"), path, registry);
+  EXPECT_EQ(r.output.labels_file, "labels.sgy");
+  EXPECT_EQ(r.steps.at(0).params.at("side").text, "below");
+  EXPECT_NE(error_of(replaced("    mode: tandem", "    mode: tandem\n    side: low")).find("side"), std::string::npos);
+  EXPECT_EQ(
+      parse_recipe(replaced("  directory: out", "  directory: out\n  labels: ids.tif"), "dir/recipe.yaml", registry)
+          .output.labels_file,
+      "ids.tif");
+  EXPECT_NE(error_of(replaced("  directory: out", "  directory: out\n  labels: ids.xyz")).find("output.labels"),
+            std::string::npos);
 }

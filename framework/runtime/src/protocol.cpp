@@ -62,6 +62,7 @@ void put_entry(ByteWriter& w, const store::IndexEntry& e) {
   w.put(s.cap_area);
   w.put(static_cast<std::uint8_t>(e.run.has_value()));
   w.put(e.run.value_or(0));
+  w.put(s.samples); // protocol 4
 }
 
 store::IndexEntry get_entry(ByteReader& r) {
@@ -96,11 +97,12 @@ store::IndexEntry get_entry(ByteReader& r) {
   const bool has_run = r.get<std::uint8_t>() != 0;
   const auto run = r.get<std::int64_t>();
   if (has_run) e.run = run;
+  s.samples = r.get<std::int64_t>();
   return e;
 }
 
 // The smallest encoded entry: every fixed field and an empty shard name.
-constexpr std::size_t kMinEntryBytes = 8 + 8 + 5 * 8 + 2 * 8 + 2 + 2 * 8 + 18 * 8 + 3 * 8 + 8 + 1 + 8;
+constexpr std::size_t kMinEntryBytes = 8 + 8 + 5 * 8 + 2 * 8 + 2 + 2 * 8 + 18 * 8 + 3 * 8 + 8 + 1 + 8 + 8;
 
 } // namespace
 

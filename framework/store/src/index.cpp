@@ -21,17 +21,20 @@ constexpr const char* columns =
     " obb_center_x, obb_center_y, obb_center_z, obb_axis0_x, obb_axis0_y, obb_axis0_z,"
     " obb_axis1_x, obb_axis1_y, obb_axis1_z, obb_axis2_x, obb_axis2_y, obb_axis2_z,"
     " obb_half0, obb_half1, obb_half2, azimuth, dip, elongation, closed, cut_by_border, run, cut_faces, cap_area,"
-    " row_checksum";
-constexpr int column_count = 42;
+    " row_checksum, samples";
+constexpr int column_count = 43;
 
 // The columns to select: an index written before caps has no cut_faces and cap_area, one written
 // before row checksums no row_checksum (read-only stores are not upgraded; see
 // detail::upgrade_cap_columns), so those read as their defaults (NULL: no checksum to verify).
-std::string select_columns(bool cap_columns, bool row_checksums) {
-  if (cap_columns && row_checksums) return columns;
+// An index written before volumes in samples has no samples column (NULL: not counted).
+std::string select_columns(bool cap_columns, bool row_checksums, bool samples) {
+  if (cap_columns && row_checksums && samples) return columns;
   std::string text = columns;
-  if (!cap_columns) return text.substr(0, text.rfind(", cut_faces")) + ", '', 0.0, NULL";
-  return text.substr(0, text.rfind(",")) + ", NULL";
+  text = text.substr(0, text.rfind(", samples"));
+  if (!cap_columns) return text.substr(0, text.rfind(", cut_faces")) + ", '', 0.0, NULL, NULL";
+  if (!row_checksums) text = text.substr(0, text.rfind(",")) + ", NULL";
+  return text + (samples ? ", samples" : ", NULL");
 }
 
 void bind_entry(Statement& s, const IndexEntry& e) {
@@ -69,7 +72,8 @@ void bind_entry(Statement& s, const IndexEntry& e) {
   put(e.run);
   put(mesh::cut_faces_text(st.cut_faces));
   put(st.cap_area);
-  put(to_sql(row_checksum(e.key, l, st, e.run)));
+  put(to_sql(row_checksum(e.key, l, st, e.run, true)));
+  put(st.samples);
 }
 
 ComponentRow read_row(const Statement& s) {
@@ -111,6 +115,9 @@ ComponentRow read_row(const Statement& s) {
   st.cut_faces = mesh::parse_cut_faces(s.column_text(i++));
   st.cap_area = s.column_double(i++);
   if (!s.column_is_null(i)) row.row_checksum = from_sql(s.column_int(i));
+  ++i;
+  row.samples_counted = !s.column_is_null(i);
+  if (row.samples_counted) st.samples = s.column_int(i);
   return row;
 }
 
@@ -283,8 +290,8 @@ std::uint64_t ComponentStore::indexed_end(const std::string& shard) const {
 std::vector<ComponentRow> ComponentStore::query(const Query& q) const {
   check_selection_exists(*impl_->db, q.selection, impl_->dir);
   auto filter = build_filter(q);
-  std::string sql = "SELECT " + select_columns(impl_->cap_columns, impl_->row_checksums) + " FROM components" +
-                    filter.where + order_by(q);
+  std::string sql = "SELECT " + select_columns(impl_->cap_columns, impl_->row_checksums, impl_->samples_column) +
+                    " FROM components" + filter.where + order_by(q);
   if (q.limit) sql += " LIMIT " + std::to_string(std::min<std::uint64_t>(*q.limit, INT64_MAX));
   auto s = impl_->db->prepare(sql);
   bind_values(s, filter.values);
@@ -305,7 +312,8 @@ std::uint64_t ComponentStore::count(const Query& q) const {
 
 std::optional<ComponentRow> ComponentStore::find(std::uint64_t key) const {
   detail::Statement& s = impl_->cached(impl_->row_lookup, [this] {
-    return "SELECT " + select_columns(impl_->cap_columns, impl_->row_checksums) + " FROM components WHERE key = ?";
+    return "SELECT " + select_columns(impl_->cap_columns, impl_->row_checksums, impl_->samples_column) +
+           " FROM components WHERE key = ?";
   });
   s.bind(1, to_sql(key));
   std::optional<ComponentRow> row;
@@ -324,7 +332,8 @@ mesh::SurfaceMesh ComponentStore::read(std::uint64_t key) const {
 
 mesh::SurfaceMesh ComponentStore::read(const ComponentRow& row) const {
   // The row first: a measure changed in the index is as damaged as a changed record.
-  if (row.row_checksum && *row.row_checksum != row_checksum(row.key, row.location, row.stats, row.run))
+  if (row.row_checksum &&
+      *row.row_checksum != row_checksum(row.key, row.location, row.stats, row.run, row.samples_counted))
     throw FormatError("component " + std::to_string(row.key) +
                           ": its index row does not match the row's checksum (a measure, its record's place or its "
                           "run was changed in the index)",

@@ -39,7 +39,7 @@ private:
 } // namespace
 
 std::uint64_t row_checksum(std::uint64_t key, const RecordLocation& l, const mesh::ComponentStats& st,
-                           const std::optional<std::int64_t>& run) {
+                           const std::optional<std::int64_t>& run, bool samples) {
   RowBytes b;
   b.integer(key);
   b.text(l.shard);
@@ -72,6 +72,8 @@ std::uint64_t row_checksum(std::uint64_t key, const RecordLocation& l, const mes
   if (run) b.integer(static_cast<std::uint64_t>(*run));
   b.text(mesh::cut_faces_text(st.cut_faces));
   b.real(st.cap_area);
+  // Rows with a samples column value (issue 54) checksum it too; rows from before keep theirs.
+  if (samples) b.integer(static_cast<std::uint64_t>(st.samples));
   return b.hash();
 }
 

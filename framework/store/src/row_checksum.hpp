@@ -16,6 +16,6 @@ namespace geotandem::store::detail {
 
 // The vertex and triangle counts are the location's (those of `stats` are not stored).
 std::uint64_t row_checksum(std::uint64_t key, const RecordLocation& location, const mesh::ComponentStats& stats,
-                           const std::optional<std::int64_t>& run);
+                           const std::optional<std::int64_t>& run, bool samples = false);
 
 } // namespace geotandem::store::detail

@@ -42,7 +42,7 @@ CREATE TABLE components(
   closed INTEGER NOT NULL, cut_by_border INTEGER NOT NULL,
   run INTEGER REFERENCES runs(id),
   cut_faces TEXT NOT NULL DEFAULT '', cap_area REAL NOT NULL DEFAULT 0,
-  row_checksum INTEGER);
+  row_checksum INTEGER, samples INTEGER);
 CREATE INDEX components_volume ON components(volume);
 CREATE INDEX components_azimuth ON components(azimuth);
 CREATE INDEX components_shard ON components(shard, byte_offset);
@@ -90,6 +90,15 @@ bool upgrade_row_checksum_column(Database& db, bool writable) {
   // NULL in the rows already there: they were never checksummed, and a checksum made now would
   // vouch for whatever they hold.
   db.exec("ALTER TABLE components ADD COLUMN row_checksum INTEGER");
+  return true;
+}
+
+bool upgrade_samples_column(Database& db, bool writable) {
+  auto columns = db.prepare("SELECT count(*) FROM pragma_table_info('components') WHERE name = 'samples'");
+  if (columns.step() && columns.column_int(0) == 1) return true;
+  if (!writable) return false;
+  // NULL in the rows already there: their samples were not counted (issue 54).
+  db.exec("ALTER TABLE components ADD COLUMN samples INTEGER");
   return true;
 }
 

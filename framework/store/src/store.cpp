@@ -174,6 +174,7 @@ ComponentStore ComponentStore::open(const std::filesystem::path& dir, OpenMode m
   check_schema(*impl->db);
   impl->cap_columns = upgrade_cap_columns(*impl->db, impl->writable);
   impl->row_checksums = upgrade_row_checksum_column(*impl->db, impl->writable);
+  impl->samples_column = upgrade_samples_column(*impl->db, impl->writable);
   return ComponentStore(std::move(impl));
 }
 

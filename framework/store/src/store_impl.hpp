@@ -20,8 +20,9 @@ struct ComponentStore::Impl {
   volume::Geometry geometry;
   std::string info_json;
   bool writable = false;
-  bool cap_columns = true;   // the index has cut_faces and cap_area (stores from before caps may not)
-  bool row_checksums = true; // the index has row_checksum (stores from before row checksums may not)
+  bool samples_column = true; // the index has the samples column (stores from before issue 54 may not)
+  bool cap_columns = true;    // the index has cut_faces and cap_area (stores from before caps may not)
+  bool row_checksums = true;  // the index has row_checksum (stores from before row checksums may not)
   std::unique_ptr<detail::Database> db;
   // The statements of contains() and find(), prepared once and reset after each use (so that they
   // hold no read snapshot): preparing one for every key cost hundreds of allocations in SQLite's
@@ -57,6 +58,8 @@ bool upgrade_cap_columns(Database& db, bool writable);
 // Whether the components table has the row_checksum column; an index from before row checksums
 // gets it (NULL in the rows already there) when it is open for writing.
 bool upgrade_row_checksum_column(Database& db, bool writable);
+// The samples column (volume in samples, issue 54), added the same way; false when absent.
+bool upgrade_samples_column(Database& db, bool writable);
 // Per-connection settings (WAL is persistent; synchronous and foreign keys are not).
 void configure_connection(Database& db, bool writable);
 

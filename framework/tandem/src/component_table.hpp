@@ -14,6 +14,8 @@ namespace geotandem::tandem::detail {
 struct ComponentRecord {
   std::int32_t parent = -1;
   std::uint64_t key = 0;
+  // The samples the component encloses, summed over its vertices (Layer::vertex_samples).
+  std::int64_t samples = 0;
   std::int64_t waiting = 0; // edges in W with both endpoints in the component
   std::int32_t member = -1; // a live vertex of the component
   bool alive = false;
@@ -22,11 +24,12 @@ struct ComponentRecord {
 
 class ComponentTable {
 public:
-  std::int32_t create(std::uint64_t key, std::int32_t member) {
+  std::int32_t create(std::uint64_t key, std::int32_t member, std::int64_t samples = 0) {
     const auto id = static_cast<std::int32_t>(records_.size());
     ComponentRecord r;
     r.parent = id;
     r.key = key;
+    r.samples = samples;
     r.member = member;
     r.alive = true;
     records_.push_back(r);
@@ -55,6 +58,7 @@ public:
     rb.alive = false;
     ra.key = ra.key < rb.key ? ra.key : rb.key;
     ra.waiting += rb.waiting;
+    ra.samples += rb.samples;
     --alive_;
     return a;
   }

@@ -26,9 +26,15 @@ ParamSpec declare(std::string name, ParamType type, std::string help, std::strin
 std::vector<ExtractionField> make_fields() {
   using O = ExtractionOptions;
   std::vector<ExtractionField> fields;
-  ParamSpec iso = declare("iso", ParamType::real, "isovalue: samples >= iso are inside a body");
+  ParamSpec iso =
+      declare("iso", ParamType::real, "isovalue: samples >= iso (side above) or <= iso (side below) are inside a body");
   iso.single_precision = true; // compared with float samples: beyond the float range is refused, not inf
   fields.push_back(member_param(std::move(iso), &O::iso));
+  fields.push_back(choice_param(declare("side", ParamType::choice,
+                                        "which side of iso is inside a body: above (value >= iso) or below (value <= "
+                                        "iso: low coherence, low impedance)",
+                                        {}, {}, {}, {"above", "below"}),
+                                &O::side));
   fields.push_back(
       member_param(declare("max_error", ParamType::real,
                            "E0: the simplified surface stays within E0 of the full-resolution one (guaranteed)",
@@ -184,6 +190,16 @@ ExtractMode parse_extract_mode(const std::string& text) {
   throw InvalidArgument("unknown extraction mode '" + text + "'", {}, "use tandem-dump, tandem or brute");
 }
 
+const char* to_string(Side side) {
+  return side == Side::below ? "below" : "above";
+}
+
+Side parse_side(const std::string& text) {
+  if (text == "above") return Side::above;
+  if (text == "below") return Side::below;
+  throw InvalidArgument("unknown side '" + text + "'", {}, "use above (value >= iso) or below (value <= iso)");
+}
+
 int parse_axis(const std::string& text) {
   if (text == "i" || text == "0") return 0;
   if (text == "j" || text == "1") return 1;
@@ -194,6 +210,7 @@ int parse_axis(const std::string& text) {
 TandemOptions loop_options(const ExtractionOptions& options) {
   TandemOptions o;
   o.iso = options.iso;
+  o.below = options.side == Side::below;
   o.axis = options.axis;
   o.simplify.max_error = options.max_error;
   o.simplify.isotropy = options.isotropy;

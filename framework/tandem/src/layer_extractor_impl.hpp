@@ -44,6 +44,7 @@ struct LayerExtractor::Impl {
   // The vertices of cross-section B of the last layer, which are cross-section A's of the next.
   std::vector<std::uint64_t> kept_ids;
   std::vector<std::array<double, 3>> kept_positions;
+  std::vector<std::int64_t> kept_samples;
   bool have_kept = false;
   EdgeSlot edge_slot[detail::kCellEdges]{};
   std::uint8_t local_to_case[256]{};

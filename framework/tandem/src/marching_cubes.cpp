@@ -105,7 +105,9 @@ LayerExtractor::Impl::Impl(const volume::Volume& vol, const Box& cells, const Mc
 
 void LayerExtractor::Impl::read(int which, std::int64_t section) {
   slabs->read(section, values[which]);
-  const float iso = options.iso;
+  // The low side compares the negated value with the negated iso: the same decisions as v <= iso.
+  const float iso = options.below ? -options.iso : options.iso;
+  const float sign = options.below ? -1.0f : 1.0f;
   for (std::int64_t iu = 0; iu < su; ++iu) {
     const float* row = values[which].data() + iu * sv;
     std::uint64_t* bits = signs[which].data() + iu * words;
@@ -113,7 +115,7 @@ void LayerExtractor::Impl::read(int which, std::int64_t section) {
       const std::int64_t begin = 64 * w, n = std::min<std::int64_t>(64, sv - begin);
       std::uint64_t word = 0;
       for (std::int64_t b = 0; b < n; ++b)
-        word |= static_cast<std::uint64_t>(row[begin + b] >= iso) << b;
+        word |= static_cast<std::uint64_t>(sign * row[begin + b] >= iso) << b;
       bits[w] = word;
     }
   }
@@ -131,6 +133,13 @@ std::uint32_t LayerExtractor::Impl::add_vertex(Layer& out, Index3 p0, int axis, 
   const auto index = static_cast<std::uint32_t>(out.positions.size());
   out.positions.push_back(p);
   out.vertex_ids.push_back(lattice.id(p0[0], p0[1], p0[2], axis));
+  // Along the sample axis: the run of inside samples ends (p0 inside) or starts (p0 + 1 inside).
+  std::int64_t samples = 0;
+  if (axis == 2) {
+    const bool first_inside = options.below ? -v0 >= -options.iso : v0 >= options.iso;
+    samples = first_inside ? p0[2] + 1 : -(p0[2] + 1);
+  }
+  out.vertex_samples.push_back(samples);
   return index;
 }
 
@@ -245,6 +254,7 @@ bool LayerExtractor::next(Layer& out) {
   if (m.have_kept) {
     out.vertex_ids = m.kept_ids;
     out.positions = m.kept_positions;
+    out.vertex_samples = m.kept_samples;
   } else {
     m.emit_plane(0, out);
   }
@@ -252,6 +262,7 @@ bool LayerExtractor::next(Layer& out) {
   m.emit_plane(1, out);
   m.kept_ids.assign(out.vertex_ids.begin() + b_first, out.vertex_ids.end());
   m.kept_positions.assign(out.positions.begin() + b_first, out.positions.end());
+  m.kept_samples.assign(out.vertex_samples.begin() + b_first, out.vertex_samples.end());
   m.have_kept = true;
   const auto across_first = static_cast<std::uint32_t>(out.positions.size());
   m.emit_across(out);

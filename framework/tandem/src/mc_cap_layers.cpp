@@ -20,6 +20,7 @@ void LayerExtractor::Impl::emit_samples(int which, Layer& out, std::uint32_t fir
     slot[iu * sv + iv] = static_cast<std::uint32_t>(out.positions.size()) - first;
     out.positions.push_back({static_cast<double>(g[0]), static_cast<double>(g[1]), static_cast<double>(g[2])});
     out.vertex_ids.push_back(lattice.sample_id(g[0], g[1], g[2]));
+    out.vertex_samples.push_back(g[2] == n[2] - 1 ? n[2] : 0); // a run of inside samples ends at the last plane
   };
   for (std::int64_t iu = 0; iu < su; ++iu) {
     const std::int64_t gu = box.lo[u] + iu;

@@ -87,6 +87,8 @@ private:
     if (nv_ > kMaxElements || s_.triangles.size() > kMaxElements / 3 || s_.edges.size() > kMaxElements ||
         s_.component_keys.size() > kMaxElements)
       refuse("more elements than a working surface can number");
+    if (!s_.component_samples.empty() && s_.component_samples.size() != s_.component_keys.size())
+      refuse(num(s_.component_keys.size()) + " components but " + num(s_.component_samples.size()) + " sample counts");
     // Positions: within the cube grown by E0 and a cell (a simplified vertex stays within E0 of the
     // marching-cubes surface, which lies inside the cube).
     const volume::Box cells = s_.region.cube();

@@ -35,6 +35,7 @@ void WorkingSurface::Engine::dump_component(std::int32_t root) {
 
   if (sink_) {
     component.stats = mesh::measure_component(component.surface, cube_);
+    component.stats.samples = record.samples;
     sink_->commit(component);
   }
 

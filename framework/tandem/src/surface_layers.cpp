@@ -66,6 +66,30 @@ void WorkingSurface::Engine::drop_isolated_vertices() {
   isolated_.clear();
 }
 
+namespace {
+
+// A vertex's share of its component's samples (Layer::vertex_samples), counted by one block only:
+// a sample plane between two blocks is extracted by both, and their vertices there are welded at
+// the merge. A sample coordinate x belongs to the block with lo <= x < hi, or x == hi on the
+// cube's far face. Weighted vertices lie on edges along the sample axis (x = the edge's start)
+// or on samples, so their positions' integer parts are their samples.
+std::int64_t counted_samples(const Layer& layer, std::size_t i, const Region& region) {
+  if (layer.vertex_samples.size() != layer.vertex_ids.size() || layer.vertex_samples[i] == 0) return 0;
+  const auto& p = layer.positions[i];
+  const std::int64_t x[3] = {static_cast<std::int64_t>(p[0]), static_cast<std::int64_t>(p[1]),
+                             static_cast<std::int64_t>(p[2])};
+  const volume::Box& cube = region.cube();
+  for (const volume::Box& b : region.blocks()) {
+    bool mine = true;
+    for (int a = 0; a < 3 && mine; ++a)
+      mine = b.lo[a] <= x[a] && (x[a] < b.hi[a] || (x[a] == b.hi[a] && b.hi[a] == cube.hi[a]));
+    if (mine) return layer.vertex_samples[i];
+  }
+  return 0;
+}
+
+} // namespace
+
 void WorkingSurface::Engine::add_layer(const Layer& layer) {
   if (layer.axis != axis_)
     throw InvalidArgument(layer_where(layer.rank) + " is along axis " + std::to_string(layer.axis) +
@@ -107,7 +131,7 @@ void WorkingSurface::Engine::add_layer(const Layer& layer) {
     r.rad = 1.0;
     r.border = border_bits(p);
     r.lattice_id = layer.vertex_ids[i];
-    r.component = components_.create(r.lattice_id, v.idx());
+    r.component = components_.create(r.lattice_id, v.idx(), counted_samples(layer, i, region_));
     r.alive = true;
     ++live_vertices_;
   }

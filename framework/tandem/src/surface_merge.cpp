@@ -191,7 +191,8 @@ void WorkingSurface::Engine::absorb_state(detail::SurfaceState&& t) {
   // The other side's components join the table; those the seam touches are united below.
   std::vector<std::int32_t> component(t.component_keys.size());
   for (std::size_t c = 0; c < component.size(); ++c)
-    component[c] = components_.create(t.component_keys[c], -1);
+    component[c] =
+        components_.create(t.component_keys[c], -1, c < t.component_samples.size() ? t.component_samples[c] : 0);
   // Exactly the room the merge may need: the larger surface does not double its storage for it.
   // Edges and faces are appended as the triangles go in: the room they do not use is not touched.
   mesh_->reserve(next, edges_before + 3 * nt, faces_before + nt);

@@ -43,6 +43,7 @@ detail::SurfaceState WorkingSurface::Engine::export_state() const {
     if (c < 0) {
       c = static_cast<std::int32_t>(s.component_keys.size());
       s.component_keys.push_back(components_.at(root).key);
+      s.component_samples.push_back(components_.at(root).samples);
     }
     s.points.push_back(detail::to_vec(points_[i]));
     s.vertices.push_back(detail::state_vertex(r, c));
@@ -108,8 +109,8 @@ void WorkingSurface::Engine::import_state(detail::SurfaceState&& s) {
 
   // Components first: vertices refer to them by index, which is also their id in the table.
   components_ = detail::ComponentTable{};
-  for (std::uint64_t key : s.component_keys)
-    components_.create(key, -1);
+  for (std::size_t c = 0; c < s.component_keys.size(); ++c)
+    components_.create(s.component_keys[c], -1, c < s.component_samples.size() ? s.component_samples[c] : 0);
 
   // Room for at most three edges and one face per triangle; they are appended as the triangles go
   // in, so only the room they use is touched.

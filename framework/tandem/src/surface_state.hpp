@@ -84,6 +84,9 @@ struct SurfaceState {
   std::vector<StateEdge> edges;
   // The key (smallest lattice id ever born in it) of every live component.
   std::vector<std::uint64_t> component_keys;
+  // The samples each encloses so far (ComponentRecord::samples); empty in records written before
+  // they were counted (all 0).
+  std::vector<std::int64_t> component_samples;
   // Lattice id -> vertex for the last layer (the next layer may repeat them), and vertices of the
   // last layer that no triangle uses yet. Both empty after the sweep.
   std::vector<std::pair<std::uint64_t, std::uint32_t>> previous_ids;

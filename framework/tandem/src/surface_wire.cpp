@@ -151,9 +151,14 @@ void encode(Writer& w, const detail::SurfaceState& s) {
   w.count(s.isolated.size());
   for (std::uint32_t v : s.isolated)
     w.put(v);
+  // Flag kFlagComponentSamples: the samples each component encloses so far (issue 54), last, so
+  // that the sections before keep their offsets.
+  w.count(s.component_samples.size());
+  for (std::int64_t n : s.component_samples)
+    w.put(n);
 }
 
-detail::SurfaceState decode(Reader& r) {
+detail::SurfaceState decode(Reader& r, std::uint32_t record_flags) {
   detail::SurfaceState s;
   volume::Geometry& g = s.cube;
   for (int a = 0; a < 3; ++a)
@@ -247,6 +252,11 @@ detail::SurfaceState decode(Reader& r) {
   s.isolated.resize(r.count(4, "isolated vertices"));
   for (std::uint32_t& v : s.isolated)
     v = r.get<std::uint32_t>();
+  if (record_flags & kFlagComponentSamples) {
+    s.component_samples.resize(r.count(8, "component samples"));
+    for (std::int64_t& n : s.component_samples)
+      n = r.get<std::int64_t>();
+  }
   if (!r.done())
     throw DataError("working-surface record: " + std::to_string(r.offset()) +
                     " payload bytes decoded but the header announces more");
@@ -271,9 +281,9 @@ std::vector<std::byte> record_of(const detail::SurfaceState& state) {
   for (char c : kMagic)
     w.put(static_cast<std::uint8_t>(c));
   w.put(kSurfaceWireVersion);
-  w.put(std::uint32_t{0}); // flags, none defined
-  w.put(std::uint64_t{0}); // payload length, filled in below
-  w.put(std::uint64_t{0}); // checksum, filled in below
+  w.put(kFlagComponentSamples); // flags
+  w.put(std::uint64_t{0});      // payload length, filled in below
+  w.put(std::uint64_t{0});      // checksum, filled in below
   encode(w, state);
   std::vector<std::byte>& out = w.bytes();
   const std::uint64_t length = out.size() - kSurfaceWireHeaderSize;
@@ -314,7 +324,8 @@ detail::SurfaceState decode_record(std::span<const std::byte> record) {
     throw DataError("working-surface record: format version " + std::to_string(version) + ", this build reads " +
                         std::to_string(kSurfaceWireVersion),
                     {}, "run the same geotandem version on the manager and every worker");
-  if (flags != 0) throw DataError("working-surface record: unknown flags " + std::to_string(flags));
+  if ((flags & ~kFlagComponentSamples) != 0)
+    throw DataError("working-surface record: unknown flags " + std::to_string(flags));
   const std::size_t present = record.size() - kSurfaceWireHeaderSize;
   if (length != present)
     throw DataError("working-surface record: the header announces " + std::to_string(length) + " payload bytes but " +
@@ -327,7 +338,7 @@ detail::SurfaceState decode_record(std::span<const std::byte> record) {
                         "): the record is corrupt",
                     {}, "the record was damaged in transit or in storage: ship it again");
   Reader r(payload);
-  detail::SurfaceState state = decode(r);
+  detail::SurfaceState state = decode(r, flags);
   detail::check_state(state); // the checksum says the bytes arrived; this, that they make a surface
   return state;
 }

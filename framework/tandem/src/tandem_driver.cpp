@@ -106,7 +106,8 @@ TandemStats run_brute(LayerSource& source, WorkingSurface& surface, const Tandem
 
 std::unique_ptr<LayerSource> marching_cubes_source(const volume::Volume& volume, const volume::Box& cells,
                                                    const TandemOptions& options) {
-  return std::make_unique<McSource>(volume, cells, McOptions{options.iso, options.axis, kMcSlabSamples, options.caps});
+  return std::make_unique<McSource>(volume, cells,
+                                    McOptions{options.iso, options.axis, kMcSlabSamples, options.caps, options.below});
 }
 
 TandemStats extract_block(const volume::Volume& volume, const volume::Box& cells, const TandemOptions& options,

@@ -37,6 +37,10 @@ std::unique_ptr<Volume> open_segy(const std::string& path, const OpenOptions& op
 void write_segy(const Volume& volume, const std::string& path, const WriteOptions& options, Progress& progress,
                 const CancelToken& cancel);
 
+// write_segy_like (io.hpp). (segy_like_writer.cpp)
+void write_segy_like(const Volume& volume, const std::string& like, const OpenOptions& options, const std::string& path,
+                     const WriteOptions& write, Progress& progress, const CancelToken& cancel);
+
 // Raw little-endian float32, C order [inline][crossline][sample], with FILE.json sidecar. (raw.cpp)
 std::unique_ptr<Volume> open_raw(const std::string& path, const OpenOptions& options);
 void write_raw(const Volume& volume, const std::string& path, const WriteOptions& options, Progress& progress,

@@ -247,6 +247,14 @@ void write_volume(const Volume& volume, const std::string& path, const WriteOpti
   writer(volume, path, options, report, cancel);
 }
 
+void write_segy_like(const Volume& volume, const std::string& like, const OpenOptions& like_options,
+                     const std::string& path, const WriteOptions& options, Progress* progress,
+                     const CancelToken& cancel) {
+  NullProgress silent;
+  check_disk_fits(volume.geometry().shape, path, "the cube");
+  detail::write_segy_like(volume, like, like_options, path, options, progress ? *progress : silent, cancel);
+}
+
 std::unique_ptr<Volume> apply_nan_policy(std::unique_ptr<Volume> volume, const OpenOptions& options) {
   return detail::guard_nan(std::move(volume), options);
 }

@@ -7,6 +7,7 @@
 #include <unistd.h>
 
 #include <array>
+#include <cctype>
 #include <cerrno>
 #include <cmath>
 #include <cstdint>
@@ -118,7 +119,7 @@ std::string number(double value) {
 }
 
 // 40 cards of 80 characters; segyio turns them into EBCDIC.
-std::string textual_header(const Geometry& g, const Encoding& e) {
+std::string textual_header(const Geometry& g, const Encoding& e, const std::string& note) {
   const auto& s = g.shape;
   const bool depth = g.z_unit == SampleUnit::metres;
   std::vector<std::string> cards = {
@@ -136,6 +137,12 @@ std::string textual_header(const Geometry& g, const Encoding& e) {
       "Y = " + number(g.affine.y0) + " + " + number(g.affine.yi) + " * I + " + number(g.affine.yj) + " * J",
       "I, J: INLINE AND CROSSLINE INDICES FROM 0",
   };
+  if (!note.empty()) { // what the cube holds (a label cube says so), upper-case as the other cards
+    std::string card = note.substr(0, 75);
+    for (char& c : card)
+      c = static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
+    cards.push_back(card);
+  }
   std::string text;
   for (std::size_t n = 0; n < 40; ++n) {
     std::array<char, 8> prefix{};
@@ -248,7 +255,7 @@ void write_traces(int fd, const Volume& volume, const Encoding& e, const std::st
 
 } // namespace
 
-void write_segy(const Volume& volume, const std::string& path, const WriteOptions&, Progress& progress,
+void write_segy(const Volume& volume, const std::string& path, const WriteOptions& options, Progress& progress,
                 const CancelToken& cancel) {
   const Geometry& g = volume.geometry();
   g.validate();
@@ -260,7 +267,7 @@ void write_segy(const Volume& volume, const std::string& path, const WriteOption
                   "check that the directory exists and is writable");
   int fd = -1;
   try {
-    const std::string text = textual_header(g, e);
+    const std::string text = textual_header(g, e, options.note);
     check(segy_write_textheader(file.get(), 0, text.c_str()), "textual header", path);
     const auto bin = binary_header(g, e);
     check(segy_write_binheader(file.get(), bin.data()), "binary header", path);

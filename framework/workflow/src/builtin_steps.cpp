@@ -80,6 +80,10 @@ public:
                                 "keep components at or above this percentile of volumes", 0.0, 100.0),
                      param_spec("min_triangles", ParamType::integer, "0",
                                 "keep components of at least this many triangles", 0.0, 1e12),
+                     param_spec("min_samples", ParamType::integer, "0",
+                                "keep components enclosing at least this many samples (voxels): the volume "
+                                "without units",
+                                0.0, 1e15),
                      param_spec("closed_only", ParamType::boolean, "false", "drop components cut by the cube's border"),
                      param_spec("selection", ParamType::text, "kept", "name of the selection this step writes")}) {}
   ComponentOutcome select(store::ComponentStore& store, const ParamValues& p, const std::string& from,
@@ -89,6 +93,7 @@ public:
     rules.min_volume_fraction = p.at("min_volume_fraction").real;
     rules.min_volume_percentile = p.at("min_volume_percentile").real;
     rules.min_triangles = static_cast<std::uint64_t>(p.at("min_triangles").integer);
+    rules.min_samples = p.at("min_samples").integer;
     rules.closed_only = p.at("closed_only").boolean;
     rules.from = from;
     rules.selection = p.at("selection").text;

@@ -25,7 +25,10 @@ volume::Crs crs_of(const nlohmann::json& in) {
 
 // `missing_as_nan`: under `nan: fill`, the missing samples read as NaN rather than the lowest float
 // (the attributes then see them as dead samples and the result masks them: open_chain).
-std::shared_ptr<const volume::Volume> open_input(const nlohmann::json& in, bool missing_as_nan, Progress* progress) {
+// `below`: the extraction takes the low side, so a filled sample must be the highest float to
+// stay outside every body.
+std::shared_ptr<const volume::Volume> open_input(const nlohmann::json& in, bool missing_as_nan, bool below,
+                                                 Progress* progress) {
   if (in.contains("synthetic")) {
     const auto& s = in.at("synthetic");
     const auto shape = s.at("shape").get<std::vector<std::int64_t>>();
@@ -47,7 +50,10 @@ std::shared_ptr<const volume::Volume> open_input(const nlohmann::json& in, bool 
   }
   volume::OpenOptions options;
   options.nan_policy = volume::parse_nan_policy(in.value("nan", "error"));
-  if (missing_as_nan) options.fill_value = std::numeric_limits<float>::quiet_NaN();
+  if (missing_as_nan)
+    options.fill_value = std::numeric_limits<float>::quiet_NaN();
+  else if (below)
+    options.fill_value = std::numeric_limits<float>::max();
   if (in.contains("no_data")) options.no_data = static_cast<float>(in.at("no_data").get<double>());
   options.variable = in.value("variable", "");
   if (in.contains("segy")) options.segy = volume::segy_options_from_json(in["segy"]);
@@ -147,6 +153,10 @@ ChainDescription describe_chain(const Recipe& recipe, const PluginRegistry& plug
     ChainStep step{s.name, plugins.get(s.name).version(), s.as, s.inputs, {}};
     for (const auto& [k, v] : s.params)
       step.params[k] = v.text;
+    // The extraction's side (issue 54) is said only when it is not the default: the chains of
+    // recipes written before it keep their text, so their fingerprints, states and stores.
+    if (s.kind == StepKind::extract && step.params.count("side") && step.params["side"] == "above")
+      step.params.erase("side");
     d.steps.push_back(std::move(step));
     if (s.kind == StepKind::extract) break;
   }
@@ -215,7 +225,9 @@ ChainVolumes open_chain(const ChainDescription& description, const PluginRegistr
   // the result is the lowest float wherever the input is missing (shared_input.hpp, DeadSamples).
   // Read directly by the extraction, they are the lowest float from the input itself.
   const bool dead = dead_samples(description);
-  out.input = open_input(description.input, dead, progress);
+  const ParamValues& extract = resolved.back().second;
+  const bool below = extract.count("side") && extract.at("side").text == "below";
+  out.input = open_input(description.input, dead, below, progress);
   // The attributes read the input through one shared fetch per read of the result (shared_input.hpp).
   auto shared = std::make_shared<const detail::SharedInput>(out.input);
   std::shared_ptr<const volume::Volume> seen = shared;
@@ -229,7 +241,9 @@ ChainVolumes open_chain(const ChainDescription& description, const PluginRegistr
     if (n + 1 == description.steps.size())
       out.result = inputs.front() == seen
                        ? out.input
-                       : std::make_shared<const detail::PrefetchingResult>(inputs.front(), shared, dead);
+                       : std::make_shared<const detail::PrefetchingResult>(
+                             inputs.front(), shared, dead,
+                             below ? std::numeric_limits<float>::max() : std::numeric_limits<float>::lowest());
     else
       volumes[step.as] = resolved[n].first->make_attribute(std::move(inputs), resolved[n].second);
   }

@@ -34,7 +34,15 @@ BubbleResult remove_bubbles(store::ComponentStore& store, const BubbleRemoval& r
       rules.min_volume_percentile < 0 || rules.min_volume_percentile > 100)
     throw InvalidArgument("remove_bubbles: a rule is out of range", {store.directory().string()},
                           "min_volume >= 0, min_volume_fraction in [0, 1], min_volume_percentile in [0, 100]");
+  if (rules.min_samples < 0)
+    throw InvalidArgument("remove_bubbles: min_samples is negative", {store.directory().string()});
   auto rows = rows_of(store, rules.from);
+  if (rules.min_samples > 0)
+    for (const auto& r : rows)
+      if (!r.samples_counted)
+        throw InvalidArgument("remove_bubbles: component " + std::to_string(r.key) +
+                                  " has no volume in samples (the store was written before samples were counted)",
+                              {store.directory().string()}, "use min_volume, or extract again into a new store");
   BubbleResult result;
   result.before = rows.size();
   std::vector<double> volumes;
@@ -57,6 +65,7 @@ BubbleResult remove_bubbles(store::ComponentStore& store, const BubbleRemoval& r
   std::vector<const store::ComponentRow*> kept;
   for (const auto& r : rows) {
     if (r.stats.triangle_count < rules.min_triangles) continue;
+    if (rules.min_samples > 0 && r.stats.samples < rules.min_samples) continue;
     // Cut bodies are closed by caps and measured like any other, unless closed_only drops them.
     if (rules.closed_only && r.stats.cut_by_border) continue;
     const bool big = !by_volume || (r.stats.closed ? r.stats.volume >= threshold
@@ -74,6 +83,7 @@ BubbleResult remove_bubbles(store::ComponentStore& store, const BubbleRemoval& r
                            {"min_volume_fraction", rules.min_volume_fraction},
                            {"min_volume_percentile", rules.min_volume_percentile},
                            {"min_triangles", rules.min_triangles},
+                           {"min_samples", rules.min_samples},
                            {"closed_only", rules.closed_only},
                            {"from", rules.from},
                            {"threshold", threshold},

@@ -45,6 +45,9 @@ nlohmann::json extract_run_parameters(const volume::Volume& volume, const Extrac
   // What decides the components. The store refuses a run of another identity (it would mix
   // two extractions); a rerun of the same one resumes.
   parameters["identity"] = codec;
+  // The side is part of the identity only when it is below: stores made before sides existed (all
+  // above) keep their identity and resume.
+  if (options.side == tandem::Side::above) parameters["identity"].erase("side");
   parameters["identity"]["input"] =
       parameters.contains("input_content") ? record["input_content"] : volume::input_fingerprint(volume.source());
   parameters["identity"]["chain"] = parameters.contains("chain") ? record["chain"] : nlohmann::json::object();

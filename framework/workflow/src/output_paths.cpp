@@ -45,6 +45,8 @@ std::optional<std::string> run_file_at(const OutputSpec& out, bool synthetic, co
   if (!out.attribute_file.empty())
     own.push_back(
         {"attribute", resolved(dir / out.attribute_file), false, "the attribute cube (" + out.attribute_file + ")"});
+  if (!out.labels_file.empty())
+    own.push_back({"labels", resolved(dir / out.labels_file), false, "the label cube (" + out.labels_file + ")"});
   for (const Own& o : own) {
     if (o.name == target_is) continue;
     if (o.directory ? within(target, o.path) : target == o.path) return o.label;

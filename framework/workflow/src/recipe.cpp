@@ -11,6 +11,7 @@
 #include "geotandem/volume/crs.hpp"
 #include "geotandem/volume/io.hpp"
 #include "geotandem/volume/size_guard.hpp"
+#include "geotandem/workflow/label_cube.hpp"
 #include "geotandem/workflow/suggest.hpp"
 #include "output_paths.hpp"
 #include "recipe_execution.hpp"
@@ -274,6 +275,20 @@ void parse_output(MapReader& m, Recipe& r, const std::string& recipe_stem, const
       throw error_at(m.source(), m.node("attribute"), "output.attribute: " + e.message(), e.hint());
     }
   }
+  out.labels_file = v.count("labels") ? v.at("labels").text : "";
+  if (!out.labels_file.empty()) {
+    // In the input's format family (label_cube.hpp), known here when the input file is there.
+    LabelLike like;
+    std::error_code ec;
+    const fs::path input = fs::path(r.base_dir) / r.input.file;
+    if (!r.input.synthetic && !r.input.file.empty() && fs::exists(input, ec)) like.file = input.string();
+    try {
+      check_label_format(like, out.labels_file);
+    } catch (const InvalidArgument& e) {
+      throw error_at(m.source(), m.node("labels"), "output.labels: " + e.message(), e.hint());
+    } catch (const Error&) { // an input that cannot be read is reported as the input's error
+    }
+  }
   // A synthetic input's shape is known now: an attribute cube the disk cannot hold is refused here.
   if (!out.attribute_file.empty() && r.input.synthetic) {
     try {
@@ -363,6 +378,7 @@ nlohmann::json to_json(const Recipe& r) {
     j["steps"].push_back(step);
   }
   j["output"] = {{"directory", r.output.directory}, {"store", r.output.store}, {"report", r.output.report}};
+  if (!r.output.labels_file.empty()) j["output"]["labels"] = r.output.labels_file;
   for (const auto& e : r.output.exports)
     j["output"]["exports"].push_back({{"format", e.format},
                                       {"selection", e.selection},

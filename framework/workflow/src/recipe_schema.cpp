@@ -147,6 +147,13 @@ std::vector<RecipeSection> make_sections() {
           "also write the final attribute cube there (format from the extension: .nc, .zarr, .raw); an existing file "
           "there is replaced only when a previous run of the recipe wrote it (or with `--fresh`, never the input "
           "cube)"),
+      param_spec("labels", ParamType::text, std::nullopt,
+                 "also write the label cube there, after the component steps (docs/label-cube.md): each sample's body "
+                 "ID (0 outside every kept body of the last selection) on the input's grid, in the input's format "
+                 "family (a SEG-Y input: SEG-Y with its trace headers; netCDF, Zarr: the same with its coordinates; "
+                 "raw: raw with its sidecar; the extension must say that family), with a table of IDs to store keys "
+                 "beside it (PATH.bodies.csv, PATH.bodies.json). Replaced only when a previous run of the recipe wrote "
+                 "it (or with `--fresh`)"),
       list_key("exports", std::nullopt,
                "a list of exports, each with the parameters of the `export` step (below): selection defaults to the "
                "last one written (a named one must be written by a component step of the recipe), path to "
@@ -156,7 +163,8 @@ std::vector<RecipeSection> make_sections() {
                "file, removes the one an earlier run wrote in the output directory, and warns"),
   };
   output.keys.back().table_items = true;
-  output.absent = {{"directory", "`<recipe name>-out`"}, {"attribute", "none"}, {"exports", "none"}};
+  output.absent = {
+      {"directory", "`<recipe name>-out`"}, {"attribute", "none"}, {"labels", "none"}, {"exports", "none"}};
   s.push_back(output);
 
   std::string backends;

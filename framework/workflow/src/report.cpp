@@ -129,6 +129,15 @@ std::string render_report(const ReportData& d) {
   if (std::string input = describe_input(d.recipe); !input.empty()) h << "<dt>input</dt><dd>" << input << "</dd>";
   h << "<dt>components</dt><dd>" << d.components.size() << " components extracted, <span class=\"kept\">" << kept
     << " kept</span> after the component steps</dd>";
+  // Which side of iso the bodies are (issue 54): the extract step's parameters in the recipe.
+  if (d.recipe.is_object() && d.recipe.contains("steps"))
+    for (const auto& step : d.recipe["steps"])
+      if (step.value("step", "") == "extract" && step.contains("params") && step["params"].contains("iso")) {
+        const auto& p = step["params"];
+        const bool below = p.value("side", "above") == "below";
+        h << "<dt>inside</dt><dd>samples " << (below ? "&le; " : "&ge; ") << escape(p["iso"].get<std::string>())
+          << " (side " << (below ? "below" : "above") << ")</dd>";
+      }
   if (d.bubble_threshold > 0)
     h << "<dt>bubble threshold</dt><dd>" << sci(d.bubble_threshold) << " " << escape(unit)
       << " (components below it were removed)</dd>";

@@ -18,6 +18,7 @@
 #include "geotandem/volume/io.hpp"
 #include "geotandem/workflow/chain.hpp"
 #include "geotandem/workflow/extract_step.hpp"
+#include "geotandem/workflow/label_cube.hpp"
 #include "geotandem/workflow/report.hpp"
 #include "geotandem/workflow/report_views.hpp"
 #include "output_paths.hpp"
@@ -138,6 +139,8 @@ public:
     outcome_.store_dir = store_dir_.string();
     for (const StepSpec& step : recipe_.steps)
       run_step(step);
+    cancel_.throw_if_cancelled();
+    write_labels();
     for (const StepSpec& step : recipe_.finish)
       run_step(step);
     remove_input_copy(input_copy_, log_); // kept when the run stops early: a rerun takes it again
@@ -279,6 +282,45 @@ private:
     volume::write_volume(*volumes_.result, path.string(), w, progress.get(), cancel_);
     state_.set("attribute_file", {{"fingerprint", print_}, {"done", true}, {"path", path.string()}});
     report_.steps.push_back({"write attribute", since(t), 0, 0, path.filename().string()});
+    report_.outputs.push_back(path.filename().string());
+  }
+
+  // Optional: the label cube of the last selection (an option of the output, not a step), from the
+  // volume the extraction read, with its iso and side.
+  void write_labels() {
+    if (recipe_.output.labels_file.empty() || !store_) return;
+    refuse_run_file(recipe_.output.labels_file, "labels");
+    const fs::path path = out_dir_ / recipe_.output.labels_file;
+    const auto t = Clock::now();
+    std::vector<std::uint64_t> keys;
+    if (!selection_.empty())
+      keys = store_->load_selection(selection_).keys;
+    else
+      for (const auto& row : store_->query())
+        keys.push_back(row.key);
+    LabelSettings labels;
+    for (const StepSpec& step : recipe_.steps)
+      if (step.kind == StepKind::extract) {
+        labels.iso = static_cast<float>(step.params.at("iso").real);
+        labels.below = step.params.count("side") && step.params.at("side").text == "below";
+      }
+    // Replace only a label cube this recipe's runs wrote (or with --fresh).
+    const bool ours = state_.fingerprint_of("labels") != "" && state_.get("labels").value("path", "") == path.string();
+    auto progress = progress_of(settings_);
+    const nlohmann::json description = {
+        {"store", recipe_.output.store},
+        {"selection", selection_.empty() ? nlohmann::json(nullptr) : nlohmann::json(selection_)},
+        {"recipe", recipe_.path}};
+    LabelOutput out =
+        write_label_cube(volumes_.result, labels, keys, label_like_of_input(chain_.input), path.string(),
+                         ours || settings_.fresh, description,
+                         "geotandem body labels (0 outside), table in .bodies.csv", progress.get(), cancel_);
+    state_.set("labels",
+               {{"fingerprint", print_}, {"done", true}, {"path", path.string()}, {"bodies", out.bodies.size()}});
+    log_.info("labels: " + std::to_string(out.bodies.size()) + " bodies in " + path.string() + " (table " +
+              fs::path(out.table).filename().string() + ")");
+    report_.steps.push_back({"write labels", since(t), keys.size(), out.bodies.size(),
+                             path.filename().string() + " (" + std::to_string(out.bodies.size()) + " bodies)"});
     report_.outputs.push_back(path.filename().string());
   }
 

@@ -53,8 +53,8 @@ void DeadSamples::read_box(const volume::Box& box, std::span<float> out) const {
 }
 
 PrefetchingResult::PrefetchingResult(std::shared_ptr<const volume::Volume> result,
-                                     std::shared_ptr<const SharedInput> input, bool mask_missing)
-    : result_(std::move(result)), input_(std::move(input)), mask_missing_(mask_missing) {}
+                                     std::shared_ptr<const SharedInput> input, bool mask_missing, float mask)
+    : result_(std::move(result)), input_(std::move(input)), mask_missing_(mask_missing), mask_(mask) {}
 
 void PrefetchingResult::read_box(const volume::Box& box, std::span<float> out) const {
   const volume::Box wanted = box.grown(result_->source_halo()).intersection(geometry().bounds());
@@ -66,7 +66,7 @@ void PrefetchingResult::read_box(const volume::Box& box, std::span<float> out) c
       in.resize(static_cast<std::size_t>(box.count()));
       input_->read(box, in); // inside the fetched box: a copy
       for (std::size_t n = 0; n < in.size(); ++n)
-        if (!std::isfinite(in[n])) out[n] = std::numeric_limits<float>::lowest();
+        if (!std::isfinite(in[n])) out[n] = mask_;
     }
   } catch (...) {
     input_->release();

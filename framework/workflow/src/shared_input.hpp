@@ -15,6 +15,7 @@
 //
 // Thread safety: as the input's; each thread has its own fetched box.
 
+#include <limits>
 #include <map>
 #include <memory>
 #include <mutex>
@@ -86,10 +87,11 @@ private:
 class PrefetchingResult final : public volume::Volume {
 public:
   // `result` is computed from `input` (through the attributes). With `mask_missing`, a sample whose
-  // input is missing (not finite: see DeadSamples) reads as the lowest float, outside every body,
-  // whatever the attributes made of the dead samples there.
+  // input is missing (not finite: see DeadSamples) reads as `mask` (the lowest float; the highest
+  // for an extraction of the side below), outside every body, whatever the attributes made of the
+  // dead samples there.
   PrefetchingResult(std::shared_ptr<const volume::Volume> result, std::shared_ptr<const SharedInput> input,
-                    bool mask_missing = false);
+                    bool mask_missing = false, float mask = std::numeric_limits<float>::lowest());
 
   const volume::Geometry& geometry() const override { return result_->geometry(); }
   std::string format() const override { return result_->format(); }
@@ -104,6 +106,7 @@ private:
   std::shared_ptr<const volume::Volume> result_;
   std::shared_ptr<const SharedInput> input_;
   bool mask_missing_;
+  float mask_;
 };
 
 } // namespace geotandem::workflow::detail

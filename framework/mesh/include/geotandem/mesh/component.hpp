@@ -24,6 +24,12 @@ struct ComponentStats {
   std::uint8_t cut_faces = 0;
   double cap_area = 0.0;
   double volume = 0.0; // enclosed volume by the divergence theorem; 0 when not closed
+  // The volume in samples (issue 54): the samples on the body's side of iso that the full-resolution
+  // marching-cubes surface encloses, counted exactly along the traces as the surface is extracted
+  // (tandem::Layer::vertex_samples). Like `volume` a cavity's surface counts negative; a body's
+  // outer surface counts its cavities' samples too. 0 for sources that do not count (caps off: an
+  // open body's count is meaningless).
+  std::int64_t samples = 0;
   double area = 0.0;
   std::array<double, 3> centroid{}; // area-weighted centroid of the surface, world x, y, z
   std::array<double, 3> box_min{};  // axis-aligned bounds in world coordinates

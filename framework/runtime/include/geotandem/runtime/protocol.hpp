@@ -27,7 +27,8 @@ namespace geotandem::runtime {
 
 // 3: RETIRE (a worker near its walltime hands back its surface). 4: SETUP carries the extraction
 // options as one object in their own codec (tandem::to_json), block_size 0 included.
-inline constexpr std::uint16_t kProtocolVersion = 4;
+// 5: COMMIT entries end with the samples each component encloses (issue 54).
+inline constexpr std::uint16_t kProtocolVersion = 5;
 inline constexpr std::size_t kHeaderSize = 16;
 // Largest message either side accepts. Also set as ZMQ_MAXMSGSIZE on both sockets.
 inline constexpr std::size_t kDefaultMaxMessage = std::size_t{1} << 30;

@@ -34,6 +34,8 @@ struct ComponentRow {
   // The row's checksum as stored (docs/store-format.md); none in rows written before row checksums.
   // read() verifies it.
   std::optional<std::uint64_t> row_checksum;
+  // Whether stats.samples was counted (rows written before volumes in samples hold none).
+  bool samples_counted = false;
 };
 
 // A row to commit: a record already written (and synced) by a ShardWriter, with its measures.

@@ -32,6 +32,11 @@ namespace geotandem::tandem {
 // of the block (the seed's plain tandem); brute: extract every layer, then simplify once.
 enum class ExtractMode { tandem_dump, tandem, brute };
 
+// Which side of iso is inside a body: above (value >= iso, the default) or below (value <= iso:
+// low coherence, low impedance; McOptions::below). A store's identity names the side only when it
+// is below, so stores made before sides existed keep theirs.
+enum class Side { above, below };
+
 // The smallest leaf edge of the block tree, in cells (0 means one block). The block tree and the
 // merges are correct down to 1 cell (leaves of 1 to 7 cells give the same component keys as one
 // block on a 48^3 analytic cube), so this bound is about cost, not correctness: every leaf and
@@ -40,6 +45,7 @@ inline constexpr std::int64_t min_block_size = 8;
 
 struct ExtractionOptions {
   float iso = 0.0f;                               // isovalue: samples >= iso are inside (required)
+  Side side = Side::above;                        // below: samples <= iso are inside
   double max_error = SimplifyOptions{}.max_error; // E0, voxels
   double isotropy = SimplifyOptions{}.isotropy;   // alpha
   int axis = 0;                                   // 0 = i (inline), 1 = j, 2 = k
@@ -79,6 +85,9 @@ nlohmann::json to_json(const ExtractionOptions& options);
 ExtractionOptions options_from_json(const nlohmann::json& json);
 
 const char* to_string(ExtractMode mode);
+const char* to_string(Side side);
+// "above" or "below"; throws InvalidArgument otherwise.
+Side parse_side(const std::string& text);
 // "tandem-dump", "tandem" or "brute"; throws InvalidArgument otherwise.
 ExtractMode parse_extract_mode(const std::string& text);
 // "i", "j", "k" (or 0, 1, 2); throws InvalidArgument otherwise.

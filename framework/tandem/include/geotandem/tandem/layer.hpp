@@ -49,8 +49,15 @@ struct Layer {
   std::vector<std::uint64_t> vertex_ids;               // lattice-edge id per vertex
   std::vector<std::array<double, 3>> positions;        // index coordinates (i, j, k) per vertex
   std::vector<std::array<std::uint32_t, 3>> triangles; // into vertex_ids/positions, oriented outward
+  // Per vertex, its share of the enclosed samples (issue 54): a vertex on a crossed edge along the
+  // sample axis (k, k + 1) counts k + 1 when sample k is inside (a run of inside samples ends) and
+  // -(k + 1) when sample k + 1 is (a run starts); a cap vertex on the last sample plane counts nk;
+  // every other vertex 0. Summed over a closed surface: the samples it encloses (discrete
+  // divergence theorem along the traces). Empty: all 0 (sources that do not count).
+  std::vector<std::int64_t> vertex_samples;
 
   void clear() {
+    vertex_samples.clear();
     vertex_ids.clear();
     positions.clear();
     triangles.clear();

@@ -7,8 +7,8 @@
 // See docs/marching-cubes.md for the rule and its consequences.
 //
 // Units: every coordinate is in index units (i, j, k) of the whole cube, spacing 1.
-// Inside means value >= iso (NaN samples are outside). Triangles are counter-clockwise seen from
-// outside, so a closed body has a positive enclosed volume.
+// Inside means value >= iso (McOptions::below: value <= iso; NaN samples are outside either way).
+// Triangles are counter-clockwise seen from outside, so a closed body has a positive enclosed volume.
 
 #include <cstdint>
 #include <memory>
@@ -42,6 +42,13 @@ struct McOptions {
   // of samples on an outer plane contributes the inside part of it, bounded by the same edge
   // vertices as the body, so the surface is a closed 2-manifold everywhere. Off: open borders.
   bool caps = true;
+  // The low side (issue 54): inside means value <= iso. Exactly the surface of the negated cube at
+  // -iso: the sign bits are those of -value >= -iso (ties inside), and a vertex's t is
+  // (iso - v0) / (v1 - v0) either way (negation is exact in IEEE arithmetic), so ids, positions,
+  // connectivity (6-adjacency of the inside) and orientation (normals out of the body, towards
+  // values above iso) are the negated cube's. Kept last so that aggregate initialisers of the
+  // fields above keep their meaning.
+  bool below = false;
 };
 
 // The cells of a whole cube of `shape` samples: [0, n - 1) per axis. A cell (i, j, k) spans the

@@ -22,6 +22,9 @@ namespace geotandem::tandem {
 // 4: vertices without W_v, the determinant sum and the normal sum (they follow from the others);
 // 5: vertices without their sums over their triangles (computed again from the triangles).
 inline constexpr std::uint32_t kSurfaceWireVersion = 5;
+// Header flag: the payload ends with the samples each component encloses so far (issue 54), one
+// int64 per component after a count. Records without it (older writers) read as 0 samples.
+inline constexpr std::uint32_t kFlagComponentSamples = 1;
 // Size of the fixed header in front of the payload: magic (8 bytes), version (4), flags (4),
 // payload length (8), XXH64 of the payload (8).
 inline constexpr std::size_t kSurfaceWireHeaderSize = 32;

@@ -30,6 +30,7 @@ public:
 
 struct TandemOptions {
   float iso = 0.0f;           // isovalue (inside means value >= iso); used when extracting from a volume
+  bool below = false;         // side: below, inside means value <= iso (McOptions::below)
   int axis = 0;               // extraction axis (0 = i, 1 = j, 2 = k)
   bool caps = true;           // close bodies cut by the cube's border (McOptions::caps)
   SimplifyOptions simplify{}; // E0, alpha, time lag, extended time lag

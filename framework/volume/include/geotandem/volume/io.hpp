@@ -79,6 +79,9 @@ struct WriteOptions {
   int chunk = 64;
   std::string variable = "amplitude";
   bool overwrite = false;
+  // A line saying what the cube holds, kept where the format has room for it: a card of the SEG-Y
+  // textual header (upper-cased, at most 75 characters). Empty: nothing.
+  std::string note;
 };
 
 // Throws InvalidArgument (listing the known extensions) when write_volume could not tell the
@@ -90,6 +93,19 @@ void check_output_format(const std::string& path);
 // known ones. An existing file is an error unless options.overwrite.
 void write_volume(const Volume& volume, const std::string& path, const WriteOptions& options = {},
                   Progress* progress = nullptr, const CancelToken& cancel = {});
+
+// Writes `volume` into a new SEG-Y file at `path` that is the SEG-Y file `like` trace for trace:
+// its textual header (with options.note on a blank card, in the header's own encoding), binary
+// header, extended textual headers, and every trace header with its extensions, in the file's
+// trace order and byte order; only the samples are `volume`'s, as IEEE floats (binary header
+// format code 5). `volume` must have the grid open_volume(like, like_options) reads (the bins of
+// missing traces are not written; placeholders outside the grid keep zero samples). Data after
+// the last trace (rev 2 trailer stanzas) is not copied. An existing file at `path` is refused; a
+// failed or cancelled write removes what it wrote. Throws IoError, FormatError (the file's own
+// reading), InvalidArgument (another grid).
+void write_segy_like(const Volume& volume, const std::string& like, const OpenOptions& like_options,
+                     const std::string& path, const WriteOptions& options = {}, Progress* progress = nullptr,
+                     const CancelToken& cancel = {});
 
 // For programs that hand over samples of their own (the Python binding's numpy arrays): the NaN
 // policy of `options` (nan_policy, fill_value, no_data) over any volume, as open_volume applies it

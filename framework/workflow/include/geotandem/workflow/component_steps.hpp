@@ -15,6 +15,10 @@ struct BubbleRemoval {
   double min_volume_fraction = 0.0;   // of the largest closed volume, [0, 1]
   double min_volume_percentile = 0.0; // of the closed volumes, [0, 100]
   std::uint64_t min_triangles = 0;
+  // Keep components enclosing at least this many samples (mesh::ComponentStats::samples): the
+  // unit-free alternative to min_volume (issue 54). 0: no rule. Refused on a store whose rows were
+  // written before samples were counted.
+  std::int64_t min_samples = 0;
   bool closed_only = false;       // drop components cut by the cube's border
   std::string from;               // selection to start from; empty: every component
   std::string selection = "kept"; // the selection written

@@ -69,6 +69,9 @@ struct OutputSpec {
   std::string store = "store"; // relative to directory
   std::string report = "report.html";
   std::string attribute_file; // when set, the final attribute cube is written there too
+  // When set, the label cube of the last selection (workflow/label_cube.hpp) is written there
+  // after the component steps, with its table beside it (PATH.bodies.csv, PATH.bodies.json).
+  std::string labels_file;
   std::vector<ExportSpec> exports;
 };
 

@@ -85,6 +85,8 @@ CASES = {
                        shuffle=True, duplicate=True),
     "revision_2": dict(il=(189, "int32"), xl=(193, "int32"), x=(181, "int32"), y=(185, "int32"), scalar=-100,
                        revision=2, ext_headers=2),
+    "feet": dict(il=(189, "int32"), xl=(193, "int32"), x=(181, "int32"), y=(185, "int32"), scalar=-100,
+                 measurement=2),
     "revision_2_extensions": dict(il=(221, "int32"), xl=(225, "int32"), x=(181, "int32"), y=(185, "int32"),
                                   scalar=-100, revision=2, ext_headers=1, extensions=2, shuffle=True),
 }
@@ -132,6 +134,8 @@ def write(case, path):
         f.bin.update(hns=NS, hdt=4000, format=5)
         if "revision" in c:
             f.bin[segyio.BinField.SEGYRevision] = c["revision"] << 8
+        if "measurement" in c:  # binary header bytes 3255-3256: 1 metres, 2 feet
+            f.bin[segyio.BinField.MeasurementSystem] = c["measurement"]
     ext = c.get("ext_headers", 0)
     trace_bytes = 240 + 4 * NS
     with open(path, "r+b") as out:
@@ -149,6 +153,7 @@ def read(case, path):
     traces = []
     with segyio.open(path, ignore_geometry=True) as f:
         revision = f.bin[segyio.BinField.SEGYRevision]
+        measurement = f.bin[segyio.BinField.MeasurementSystem]
         for t in range(f.tracecount):
             h = f.header[t]
             buf = h.buf
@@ -163,7 +168,7 @@ def read(case, path):
                 "samples": [float(v) for v in f.trace[t]],
             })
         samples = len(f.samples)
-    return {"case": case, "samples": samples, "revision": revision, "traces": traces,
+    return {"case": case, "samples": samples, "revision": revision, "measurement": measurement, "traces": traces,
             "il": list(c["il"]), "xl": list(c["xl"]), "x": list(c["x"]), "y": list(c["y"]),
             "scalar": c["scalar"]}
 

@@ -6,16 +6,20 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <fstream>
 #include <map>
+#include <memory>
 #include <set>
 #include <string>
+#include <vector>
 
 #include <nlohmann/json.hpp>
 
 #include "geotandem/core/error.hpp"
+#include "geotandem/volume/crs.hpp"
 #include "geotandem/volume/io.hpp"
 #include "io_fixtures.hpp"
 #include "scratch.hpp"
@@ -151,6 +155,42 @@ TEST(SegyDeliveredRevision, RevisionAndExtendedHeadersAreReported) {
   OpenOptions int16;
   int16.segy = options_of(delivered("lines_9_13_int16", rev1));
   EXPECT_EQ(detail(*open_volume(rev1, int16), "revision").rfind("0.0", 0), 0u);
+}
+
+// The measurement system (binary header bytes 3255-3256) is reported, and a file in feet without a
+// CRS is warned about: its x, y and volumes would otherwise be labelled metres without a word. A
+// CRS given (in US survey feet here) is the unit used, and the warning goes.
+TEST(SegyDeliveredUnits, FeetInTheBinaryHeaderAreReportedAndWarnedWithoutACrs) {
+  ScratchDir dir;
+  const std::string path = dir.file("feet.sgy");
+  const json oracle = delivered("feet", path);
+  EXPECT_EQ(oracle["measurement"], 2); // as segyio reads it
+  OpenOptions options;
+  options.segy = options_of(oracle);
+  auto volume = open_volume(path, options);
+  EXPECT_EQ(detail(*volume, "measurement_system"), "feet (binary header bytes 3255-3256 = 2)");
+  const std::vector<std::string> warnings = open_warnings(*volume);
+  ASSERT_EQ(
+      std::count_if(warnings.begin(), warnings.end(),
+                    [](const std::string& w) { return w.find("the binary header says feet") != std::string::npos; }),
+      1)
+      << ::testing::PrintToString(warnings);
+  Crs feet; // as parse_crs("EPSG:2227") gives it, without loading GDAL here
+  feet.name = "NAD83 / California zone 3 (ftUS)";
+  feet.code = "EPSG:2227";
+  feet.wkt = "PROJCRS[\"NAD83 / California zone 3 (ftUS)\"]";
+  feet.unit = "ftUS";
+  feet.metres_per_unit = 1200.0 / 3937.0;
+  std::shared_ptr<const Volume> given = with_crs(std::move(volume), feet);
+  EXPECT_EQ(given->geometry().crs.unit, "ftUS");
+  for (const auto& w : open_warnings(*given))
+    EXPECT_EQ(w.find("the binary header says feet"), std::string::npos) << w;
+  EXPECT_EQ(detail(*given, "measurement_system"), "feet (binary header bytes 3255-3256 = 2)");
+  // A file that says nothing says so.
+  const std::string plain = dir.file("plain.sgy");
+  OpenOptions o;
+  o.segy = options_of(delivered("unsorted", plain));
+  EXPECT_EQ(detail(*open_volume(plain, o), "measurement_system"), "not given (binary header bytes 3255-3256 = 0)");
 }
 
 // The scalar given for every trace replaces the one each header holds (0 here): 10 multiplies,

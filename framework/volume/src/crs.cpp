@@ -3,6 +3,8 @@
 
 #include "geotandem/volume/crs.hpp"
 
+#include <vector>
+
 namespace geotandem::volume {
 namespace {
 
@@ -19,6 +21,8 @@ public:
   std::string source() const override { return inner_->source(); }
   std::vector<FormatDetail> format_details() const override {
     auto details = inner_->format_details();
+    // The given CRS's unit is the one used: a file's warning about units without a CRS is moot.
+    std::erase_if(details, [](const FormatDetail& d) { return d.key == "units_warning"; });
     if (!file_crs_.empty() && !(file_crs_ == geometry_.crs))
       details.push_back({"crs_override", "the file says the CRS is " + file_crs_.label() + "; " +
                                              geometry_.crs.label() + " as given replaces it"});

@@ -82,6 +82,15 @@ public:
                                       {"sorting", sorting_text()},
                                       {"traces", traces_text()}};
     if (!coordinates_.empty()) details.push_back({"coordinates", coordinates_});
+    const int m = layout_.measurement_system;
+    const std::string bytes = " (binary header bytes 3255-3256 = " + std::to_string(m) + ")";
+    details.push_back({"measurement_system", (m == 1 ? "metres" : m == 2 ? "feet" : "not given") + bytes});
+    // Without a CRS x and y are taken as metres (volume::Crs); the file says otherwise. The
+    // warning goes when a CRS is given (volume::with_crs drops it): its unit is the one used.
+    if (m == 2 && geometry_.crs.empty())
+      details.push_back({"units_warning", "the binary header says feet" + bytes +
+                                              ", but without a CRS x, y and volumes are labelled in metres: give "
+                                              "the survey's CRS in feet (--crs, input.crs) to have them in feet"});
     return details;
   }
 

@@ -167,6 +167,9 @@ Layout read_layout(segy_file* file, const std::string& path) {
     throw FormatError("a variable number of extended textual headers (binary header byte 3505 = " +
                           std::to_string(extended) + ") is not supported",
                       {path}, "rewrite the file with a fixed number of extended headers");
+  std::int32_t measurement = 0;
+  segy_get_bfield(bin.data(), SEGY_BIN_MEASUREMENT_SYSTEM, &measurement);
+  layout.measurement_system = measurement;
   layout.trace0 = segy_trace0(bin.data());
   layout.extended_textual = extended;
   if (layout.revision_major >= 2) {

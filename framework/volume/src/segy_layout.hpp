@@ -21,6 +21,8 @@ struct Layout {
   int extended_textual = 0; // 3200-byte extended textual headers (byte 3505)
   // Rev 2: 240-byte trace header extensions after each standard trace header (bytes 3507-3510).
   int header_extensions = 0;
+  // Binary header bytes 3255-3256: 1 metres, 2 feet, anything else not given.
+  int measurement_system = 0;
 
   // Bytes from one trace's header to the next's.
   long long stride() const { return SEGY_TRACE_HEADER_SIZE * (1ll + header_extensions) + trace_bytes; }

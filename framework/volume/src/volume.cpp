@@ -49,7 +49,7 @@ std::vector<std::string> open_warnings(const Volume& volume) {
       out.push_back(volume.source() + ": not in the file, assumed: " + detail.value);
     else if (detail.key == "missing_lines")
       out.push_back(volume.source() + ": missing lines: " + detail.value);
-    else if (detail.key == "slow_reads" || detail.key == "crs_override")
+    else if (detail.key == "slow_reads" || detail.key == "crs_override" || detail.key == "units_warning")
       out.push_back(volume.source() + ": " + detail.value);
   }
   return out;

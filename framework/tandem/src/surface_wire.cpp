@@ -76,7 +76,7 @@ SimplifyCounters get_counters(Reader& r) {
 
 // Bytes per item, for the count checks.
 constexpr std::size_t kVertexBytes = std::size_t{16} * 8 + 8 + 4 + 1 + 4;
-constexpr std::size_t kFaceBytes = 3 * 4;
+constexpr std::size_t kFaceBytes = std::size_t{3} * 4;
 constexpr std::size_t kEdgeBytes = 4 + 4 + 1 + 1 + 4 + 8 + std::size_t{3} * 8;
 
 void encode(Writer& w, const detail::SurfaceState& s) {

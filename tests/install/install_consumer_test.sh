@@ -22,9 +22,9 @@ nm -D --defined-only "$library" | grep -q " geotandem_plugin_entry$" || fail "$l
 check_listing() { # check_listing OUTPUT ORIGIN
   expect_in "$1" "$plugin (attribute, $2, version 1.0)" "plugins $plugin"
   expect_in "$1" "half_window" "plugins $plugin"
-  expect_in "$1" "default 5, 0 to 500" "plugins $plugin"
+  expect_in "$1" "default 5; an integer in [0, 500]" "plugins $plugin"
   expect_in "$1" "half_traces" "plugins $plugin"
-  expect_in "$1" "default 0, 0 to 50" "plugins $plugin"
+  expect_in "$1" "default 0; an integer in [0, 50]" "plugins $plugin"
   expect_in "$1" "in samples" "plugins $plugin"
 }
 

@@ -8,6 +8,7 @@
 #include <sys/stat.h>
 
 #include <cstdio>
+#include <cstdlib>
 #include <fstream>
 #include <iostream>
 #include <sstream>
@@ -218,8 +219,15 @@ TEST_F(SlurmNodes, ANodeThatDiesMidRunLosesNothing) {
 }
 
 TEST_F(SlurmNodes, AJobThatStartsLateJoinsAndGetsWorkAtOnce) {
-  shape = "[128,128,80]";
+  // The run must outlast a job's start on a resumed node (seconds in slurmctld's scheduling
+  // cycle): one leaf per EXTRACT (no batches) on a cube whose run takes tens of seconds here, where
+  // batches and dropped empty surfaces (issue 55) finished 128x128x80 before the late job started.
+  shape = "[160,160,96]";
   make_reference();
+  struct NoBatches {
+    NoBatches() { setenv("GEOTANDEM_EXTRACT_BATCH", "1", 1); }
+    ~NoBatches() { unsetenv("GEOTANDEM_EXTRACT_BATCH"); }
+  } no_batches;
   struct Resume {
     ~Resume() { sh("scontrol update NodeName=node3 State=RESUME"); }
   } resume;

@@ -20,7 +20,7 @@ public:
       : size_(size), stride_(padded(count)),
         data_(static_cast<std::size_t>(banks) * static_cast<std::size_t>(size) * stride_) {}
   float* slot(int bank, std::int64_t p) {
-    return data_.data() + static_cast<std::size_t>(bank * size_ + p % size_) * stride_;
+    return data_.data() + static_cast<std::size_t>(std::int64_t{bank} * size_ + p % size_) * stride_;
   }
   // Pointers to planes first .. first + count - 1 of a bank, in order (count <= size).
   void window(int bank, std::int64_t first, int count, std::vector<const float*>& out) {

@@ -168,7 +168,7 @@ TEST(SegyDeliveredUnits, FeetInTheBinaryHeaderAreReportedAndWarnedWithoutACrs) {
   OpenOptions options;
   options.segy = options_of(oracle);
   auto volume = open_volume(path, options);
-  EXPECT_EQ(detail(*volume, "measurement_system"), "feet (binary header bytes 3255-3256 = 2)");
+  EXPECT_EQ(detail(*volume, "measurement"), "feet (binary header bytes 3255-3256 = 2)");
   const std::vector<std::string> warnings = open_warnings(*volume);
   ASSERT_EQ(
       std::count_if(warnings.begin(), warnings.end(),
@@ -185,12 +185,12 @@ TEST(SegyDeliveredUnits, FeetInTheBinaryHeaderAreReportedAndWarnedWithoutACrs) {
   EXPECT_EQ(given->geometry().crs.unit, "ftUS");
   for (const auto& w : open_warnings(*given))
     EXPECT_EQ(w.find("the binary header says feet"), std::string::npos) << w;
-  EXPECT_EQ(detail(*given, "measurement_system"), "feet (binary header bytes 3255-3256 = 2)");
+  EXPECT_EQ(detail(*given, "measurement"), "feet (binary header bytes 3255-3256 = 2)");
   // A file that says nothing says so.
   const std::string plain = dir.file("plain.sgy");
   OpenOptions o;
   o.segy = options_of(delivered("unsorted", plain));
-  EXPECT_EQ(detail(*open_volume(plain, o), "measurement_system"), "not given (binary header bytes 3255-3256 = 0)");
+  EXPECT_EQ(detail(*open_volume(plain, o), "measurement"), "not given (binary header bytes 3255-3256 = 0)");
 }
 
 // The scalar given for every trace replaces the one each header holds (0 here): 10 multiplies,

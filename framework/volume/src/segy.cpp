@@ -84,7 +84,7 @@ public:
     if (!coordinates_.empty()) details.push_back({"coordinates", coordinates_});
     const int m = layout_.measurement_system;
     const std::string bytes = " (binary header bytes 3255-3256 = " + std::to_string(m) + ")";
-    details.push_back({"measurement_system", (m == 1 ? "metres" : m == 2 ? "feet" : "not given") + bytes});
+    details.push_back({"measurement", (m == 1 ? "metres" : m == 2 ? "feet" : "not given") + bytes});
     // Without a CRS x and y are taken as metres (volume::Crs); the file says otherwise. The
     // warning goes when a CRS is given (volume::with_crs drops it): its unit is the one used.
     if (m == 2 && geometry_.crs.empty())

@@ -11,6 +11,7 @@
 #include <map>
 #include <numbers>
 #include <set>
+#include <utility>
 
 #include "base64_decode.hpp"
 #include "export_fixture.hpp"
@@ -134,6 +135,17 @@ protected:
     return export_components(*store_, rows, out, options, progress, CancelToken{});
   }
 
+  // b.ts, b.vtp, b.ply and b.gpkg of every row, in the scratch directory.
+  void export_all() {
+    ExportOptions options;
+    for (const auto& [format, name] :
+         {std::pair{ExportFormat::tsurf, "b.ts"}, std::pair{ExportFormat::vtp, "b.vtp"},
+          std::pair{ExportFormat::ply, "b.ply"}, std::pair{ExportFormat::gpkg, "b.gpkg"}}) {
+      options.format = format;
+      run(scratch_.path() / name, options, rows_);
+    }
+  }
+
   geotandem::testing::ScratchDir scratch_;
   std::optional<ComponentStore> store_;
   std::vector<ComponentRow> rows_;
@@ -141,15 +153,7 @@ protected:
 
 TEST_F(GisExportTest, TsurfVtpPlyAndGeoPackageSayTheSameCrs) {
   make_store(true);
-  ExportOptions options;
-  options.format = ExportFormat::tsurf;
-  run(scratch_.path() / "b.ts", options, rows_);
-  options.format = ExportFormat::vtp;
-  run(scratch_.path() / "b.vtp", options, rows_);
-  options.format = ExportFormat::ply;
-  run(scratch_.path() / "b.ply", options, rows_);
-  options.format = ExportFormat::gpkg;
-  run(scratch_.path() / "b.gpkg", options, rows_);
+  export_all();
 
   const std::string label = "ED50 / UTM zone 31N (EPSG:23031)";
   const std::string ts = slurp(scratch_.path() / "b.ts");
@@ -181,15 +185,7 @@ TEST_F(GisExportTest, TsurfVtpPlyAndGeoPackageSayTheSameCrs) {
 
 TEST_F(GisExportTest, WithoutACrsEveryExportSaysNoCrsGiven) {
   make_store(false);
-  ExportOptions options;
-  options.format = ExportFormat::tsurf;
-  run(scratch_.path() / "b.ts", options, rows_);
-  options.format = ExportFormat::vtp;
-  run(scratch_.path() / "b.vtp", options, rows_);
-  options.format = ExportFormat::ply;
-  run(scratch_.path() / "b.ply", options, rows_);
-  options.format = ExportFormat::gpkg;
-  run(scratch_.path() / "b.gpkg", options, rows_);
+  export_all();
   EXPECT_NE(slurp(scratch_.path() / "b.ts").find("GOCAD_ORIGINAL_COORDINATE_SYSTEM\n# no CRS given\nNAME Default\n"),
             std::string::npos);
   EXPECT_EQ(vtp_string(slurp(scratch_.path() / "b.vtp"), "crs"), "no CRS given");

@@ -75,7 +75,9 @@ TEST(Manager, ATaskHeldForeverByALivePeerIsTakenBackAfterTheBound) {
   EXPECT_EQ(tasks.load(), 1) << text.str();
   EXPECT_GE(finished.load(), 1) << "the peer whose task was taken back is told FINISHED";
   EXPECT_NE(text.str().find("worker " + token), std::string::npos) << text.str();
-  EXPECT_NE(text.str().find("has not finished its task within 2 s"), std::string::npos) << text.str();
+  // The bound is the larger of the 2 s set here and 10 times the longest task so far, which a slow
+  // machine or a sanitizer can take past 2 s (CI under tsan: 3 s).
+  EXPECT_NE(text.str().find("has not finished its task within "), std::string::npos) << text.str();
   EXPECT_GE(report->deaths, 1u);
   run.expect_reference_components(false);
 }

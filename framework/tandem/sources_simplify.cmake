@@ -8,6 +8,8 @@ set(TANDEM_SIMPLIFY_SOURCES
   src/region.cpp
   src/spare_meshes.cpp
   src/surface_engine.cpp
+  src/surface_storage.cpp
+  src/collapser.cpp
   src/edge_cost.cpp
   src/triangle_insert.cpp
   src/surface_layers.cpp

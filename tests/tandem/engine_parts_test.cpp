@@ -97,7 +97,6 @@ void build(const ClosedSurface& s, Built& out) {
 // Every face's terms into its corners' sums, relative to `origin`: what an engine holds after
 // appending the faces.
 void add_all_faces(detail::EdgeCost& cost, Built& b, const Vec3& origin) {
-  cost.refresh(b.mesh.vertex_records(), b.mesh.points());
   cost.set_origin(origin);
   for (FH f : b.faces)
     cost.add_face_terms(f);
@@ -182,7 +181,7 @@ TEST(EdgeCost, RunningSumsMatchARecomputationAfterFacesLeaveAndReturn) {
     cost.add_face_terms(b.faces[k]);
   const std::vector<detail::VertexRecord> running(b.mesh.vertex_records(),
                                                   b.mesh.vertex_records() + b.mesh.n_vertices());
-  cost.recompute_face_terms(b.mesh.face_records());
+  cost.recompute_face_terms();
   const detail::VertexRecord* fresh = b.mesh.vertex_records();
   for (std::size_t v = 2; v < running.size(); ++v) {
     for (std::size_t i = 0; i < 3; ++i) {

@@ -21,7 +21,7 @@ inline void remove_corner(VertexRecord& r, const Isotropy& isotropy, const Vec3&
 }
 } // namespace
 
-EdgeCost::EdgeCost(const HalfedgeMesh& mesh, const SimplifyOptions& options, const std::array<double, 3>& cube_hi)
+EdgeCost::EdgeCost(HalfedgeMesh& mesh, const SimplifyOptions& options, const std::array<double, 3>& cube_hi)
     : mesh_(mesh), attali_(options.max_error, options.isotropy), max_error_(options.max_error),
       preserve_volume_(options.preserve_volume), cube_hi_(cube_hi) {}
 
@@ -47,7 +47,7 @@ void EdgeCost::add_face_terms(FH f) {
   const Isotropy isotropy = face_isotropy(c);
   for (std::size_t k = 0; k < 3; ++k) {
     const Vec3 &p = c.p[(k + 1) % 3], &q = c.p[(k + 2) % 3];
-    add_corner(vrec_[c.v[k].idx()], isotropy, cross(p, q), q - p);
+    add_corner(vrec(c.v[k]), isotropy, cross(p, q), q - p);
   }
 }
 
@@ -59,18 +59,19 @@ void EdgeCost::remove_face_terms(FH f, VH skip_a, VH skip_b) {
   for (std::size_t k = 0; k < 3; ++k) {
     if (c.v[k] == skip_a || c.v[k] == skip_b) continue;
     const Vec3 &p = c.p[(k + 1) % 3], &q = c.p[(k + 2) % 3];
-    remove_corner(vrec_[c.v[k].idx()], isotropy, cross(p, q), q - p);
+    remove_corner(vrec(c.v[k]), isotropy, cross(p, q), q - p);
   }
 }
 
-void EdgeCost::recompute_face_terms(const FaceRecord* faces) {
+void EdgeCost::recompute_face_terms() {
   for (std::size_t i = 0; i < mesh_.n_vertices(); ++i) {
-    vrec_[i].isotropy = Isotropy{};
-    vrec_[i].cross_sum = {0.0, 0.0, 0.0};
-    vrec_[i].link_sum = {0.0, 0.0, 0.0};
+    VertexRecord& r = mesh_.vertex_records()[i];
+    r.isotropy = Isotropy{};
+    r.cross_sum = {0.0, 0.0, 0.0};
+    r.link_sum = {0.0, 0.0, 0.0};
   }
   for (std::size_t i = 0; i < mesh_.n_faces(); ++i)
-    if (faces[i].alive) add_face_terms(FH(static_cast<int>(i)));
+    if (mesh_.face_records()[i].alive) add_face_terms(FH(static_cast<int>(i)));
 }
 
 void EdgeCost::volume_plane(HH h, const FaceCorners* const faces[2], CostInputs& in) const {
@@ -85,8 +86,8 @@ void EdgeCost::volume_plane(HH h, const FaceCorners* const faces[2], CostInputs&
   // A vertex keeps the sums of p x q and q - p over its triangles (v, p, q); those of det_o and
   // n_t follow from them and v (relative to o): v.(p x q), and p x q - v x (q - p).
   const VH a = mesh_.from_vertex_handle(h), b = mesh_.to_vertex_handle(h);
-  const VertexRecord& ra = vrec_[a.idx()];
-  const VertexRecord& rb = vrec_[b.idx()];
+  const VertexRecord& ra = vrec(a);
+  const VertexRecord& rb = vrec(b);
   const Vec3 pa = in.a - origin_, pb = in.b - origin_;
   Vec3 cross_sum = ra.cross_sum + rb.cross_sum;
   Vec3 link_sum = ra.link_sum + rb.link_sum;
@@ -118,8 +119,8 @@ void EdgeCost::volume_plane(HH h, const FaceCorners* const faces[2], CostInputs&
 
 bool EdgeCost::inputs(HH h, CostInputs& in) const {
   const VH a = mesh_.from_vertex_handle(h), b = mesh_.to_vertex_handle(h);
-  const VertexRecord& ra = vrec_[a.idx()];
-  const VertexRecord& rb = vrec_[b.idx()];
+  const VertexRecord& ra = vrec(a);
+  const VertexRecord& rb = vrec(b);
   if (!border_allows_collapse(ra.border, rb.border)) return false;
   const unsigned border = ra.border | rb.border;
   in.shape = ra.shape + rb.shape;

@@ -4,7 +4,7 @@
 // VertexRecord), the inputs of an edge's cost read from them (quadrics, isotropy, volume plane,
 // the cube faces that hold c), and the evaluation by the Attali cost (attali_cost.hpp).
 //
-// The engine (surface_engine.hpp) tells it which triangles join or leave the surface; it owns the
+// The collapser (collapser.hpp) tells it which triangles join or leave the surface; it owns the
 // sums' bookkeeping and nothing else: no queue, no component, no collapse.
 
 #include <array>
@@ -19,13 +19,9 @@ class EdgeCost {
 public:
   // `mesh` outlives this object; `cube_hi` is the cube's last sample index on each axis (the faces
   // a border vertex stays on).
-  EdgeCost(const HalfedgeMesh& mesh, const SimplifyOptions& options, const std::array<double, 3>& cube_hi);
+  // The records are read through the mesh each time, so growth and compaction move nothing here.
+  EdgeCost(HalfedgeMesh& mesh, const SimplifyOptions& options, const std::array<double, 3>& cube_hi);
 
-  // The mesh's record and point arrays: again after the mesh grew or was compacted.
-  void refresh(VertexRecord* vertices, const HalfedgeMesh::Point* points) {
-    vrec_ = vertices;
-    points_ = points;
-  }
   // Volume terms are computed relative to the origin (the first block's corner, carried by a
   // surface's state), so that their sums keep their precision far from the cube's corner.
   const Vec3& origin() const { return origin_; }
@@ -35,9 +31,9 @@ public:
   // A triangle's terms into or out of its corners' sums (out of all but skip_a and skip_b).
   void add_face_terms(FH f);
   void remove_face_terms(FH f, VH skip_a, VH skip_b);
-  // Every vertex's sums from scratch over the live faces (`faces` flags them): the running sums
-  // drift by rounding over many collapses.
-  void recompute_face_terms(const FaceRecord* faces);
+  // Every vertex's sums from scratch over the live faces: the running sums drift by rounding over
+  // many collapses.
+  void recompute_face_terms();
 
   // The inputs of the cost of collapsing h; false when the cube faces forbid the collapse (its ends
   // carry both sides of one axis).
@@ -62,19 +58,18 @@ private:
   };
   FaceCorners corners(FH f) const;
   Isotropy face_isotropy(const FaceCorners& c) const;
-  Vec3 position(VH v) const { return to_vec(points_[v.idx()]); }
+  Vec3 position(VH v) const { return to_vec(mesh_.points()[v.idx()]); }
+  VertexRecord& vrec(VH v) const { return mesh_.vertex_records()[v.idx()]; }
   // The plane on which collapsing h keeps the enclosed volume; `faces`: the corners of the
   // triangles on both sides of h (null where there is none).
   void volume_plane(HH h, const FaceCorners* const faces[2], CostInputs& in) const;
 
-  const HalfedgeMesh& mesh_;
+  HalfedgeMesh& mesh_;
   AttaliCost attali_;
   double max_error_;
   bool preserve_volume_;
   std::array<double, 3> cube_hi_;
   Vec3 origin_{};
-  VertexRecord* vrec_ = nullptr;
-  const HalfedgeMesh::Point* points_ = nullptr;
 };
 
 } // namespace geotandem::tandem::detail

@@ -1,11 +1,11 @@
 #pragma once
-// The edges' queues and the state machine between them (the edge life cycle of surface_engine.hpp):
+// The edges' queues and the state machine between them (the edge life cycle of collapser.hpp):
 // Q, the candidates by cost, each with its Pending (position, stamp); W, the edges the front delays,
 // in unit buckets of their lag key; and the edges the open faces park. An edge is in one queue at
 // most. Its record (EdgeRecord) says which one and keeps its key; one slot array, shared by the
 // three queues, gives its place there, so that no queue searches for an edge.
 //
-// The engine decides where an edge goes (Engine::place); this object only moves it and keeps the
+// The collapser decides where an edge goes (Collapser::place); this object only moves it and keeps the
 // queues consistent with the records. move() is on the collapse loop's path: it is inline.
 
 #include <cstdint>

@@ -331,7 +331,7 @@ private:
       if (e.state == EdgeState::delayed && past_sweep()) refuse(who + " is delayed past the sweep");
       if (e.state == EdgeState::candidate && !near_cube(e.pending.target))
         refuse(who + " has a candidate position that is not finite or lies far outside the cube");
-      // Q holds only edges the front and the open faces let collapse (Engine::place): a candidate
+      // Q holds only edges the front and the open faces let collapse (Collapser::place): a candidate
       // they hold back would collapse a vertex a neighbour is to weld to (the record's region's
       // open faces include every open face of a merge's union near its edges).
       if (e.state == EdgeState::candidate) {

@@ -27,19 +27,6 @@ bool same_options(const SimplifyOptions& a, const SimplifyOptions& b) {
          a.guarantee_distance == b.guarantee_distance;
 }
 
-// The open face of `after` that still holds back a parked edge whose record names a face of
-// `before` and a square of it, or -1 when none does or either is not known. `kept`:
-// before.open_faces_kept_in(after).
-int face_after_merge(const detail::EdgeRecord& r, const std::vector<int>& kept, const Region& before,
-                     const Region& after) {
-  if (r.face == detail::kUnknownFace || r.face >= kept.size()) return -1;
-  if (kept[r.face] >= 0 || r.pending_or_square == detail::kUnknownSquare) return kept[r.face];
-  OpenFace square = before.open_faces()[r.face];
-  square.lo = detail::square_corner(r.pending_or_square);
-  square.hi = {square.lo[0] + 1.0, square.lo[1] + 1.0};
-  return after.open_face_holding(square);
-}
-
 std::string where(const Region& a, const Region& b) {
   return "merging {" + a.to_string() + "} with {" + b.to_string() + "}";
 }
@@ -52,7 +39,7 @@ std::string where(const Region& a, const Region& b) {
 Region WorkingSurface::Engine::merge_region(const Engine& b) const {
   if (!cube_.same_grid(b.cube_))
     throw InvalidArgument("merge: the two surfaces belong to different cubes", {.block = b.region_.to_string()});
-  return merge_region_of(b.region_, b.axis_, b.options_, b.front_);
+  return merge_region_of(b.region_, b.axis_, b.collapser_.options(), b.front());
 }
 
 Region WorkingSurface::Engine::merge_region_state(const detail::SurfaceState& b) const {
@@ -66,10 +53,10 @@ Region WorkingSurface::Engine::merge_region_of(const Region& region, int axis, c
   if (axis_ != axis)
     throw InvalidArgument("merge: the surfaces were extracted along axes " + std::to_string(axis_) + " and " +
                           std::to_string(axis));
-  if (!same_options(options_, options))
+  if (!same_options(collapser_.options(), options))
     throw InvalidArgument("merge: the surfaces were simplified with different options (E0, alpha, time lags)", {},
                           "extract every block with the same SimplifyOptions");
-  if (!std::isinf(front_) || !std::isinf(front) || front_ < 0.0 || front < 0.0)
+  if (!std::isinf(this->front()) || !std::isinf(front) || this->front() < 0.0 || front < 0.0)
     throw InvalidArgument("merge: both surfaces must be past their sweep", {.block = region.to_string()},
                           "run the last layer and activate(+inf) (run_tandem does) before merging");
   return region_.merged_with(region); // throws when the blocks overlap
@@ -77,42 +64,10 @@ Region WorkingSurface::Engine::merge_region_of(const Region& region, int axis, c
 
 std::size_t WorkingSurface::Engine::merge_state(detail::SurfaceState&& other, const CancelToken* cancel) {
   const Region before = region_;
-  absorb_state(std::move(other)); // gives the state's parts back before the simplification
-  place_parked_again(before);     // the region grew: edges parked by faces it closed are placed again
+  absorb_state(std::move(other));        // gives the state's parts back before the simplification
+  collapser_.place_parked_again(before); // the region grew: edges parked by faces it closed are placed again
   simplify(cancel);
   return dump();
-}
-
-void WorkingSurface::Engine::place_parked_again(const Region& before) {
-  // A parked edge's ball reaches the face its record names, at a point in the square it names.
-  // When the grown region still has that square open (inside one of its open faces: the whole
-  // face when it is kept, the usual case), the ball still reaches an open face and placing the
-  // edge again would only park it again with the same key: it is skipped, and its face
-  // renumbered. The others (and those not known: the other side's) are placed again in list
-  // order, as placing every parked edge would (the same queues, to the bit).
-  const std::vector<int> kept = before.open_faces_kept_in(region_);
-  std::vector<std::int32_t> again;
-  for (std::int32_t e : queues_.parked()) {
-    detail::EdgeRecord& r = erec_[static_cast<std::size_t>(e)];
-    const int face = face_after_merge(r, kept, before, region_);
-    if (face >= 0 && face < detail::kUnknownFace) {
-      r.face = static_cast<std::uint16_t>(face);
-    } else {
-      r.face = detail::kUnknownFace;
-      again.push_back(e);
-    }
-  }
-  for (std::int32_t e : again)
-    place(EH(e));
-}
-
-void WorkingSurface::Engine::find_parked_faces() {
-  for (std::int32_t e : queues_.parked()) {
-    detail::EdgeRecord& r = erec_[static_cast<std::size_t>(e)];
-    if (r.face != detail::kUnknownFace) continue;
-    const Region::NearestFace hold = face_rule_->holding_face(geometry_of(mesh_->halfedge_handle(EH(e), 0)), region_);
-    detail::EdgeQueues::hold_at(r, &hold);
-  }
 }
 
 void WorkingSurface::Engine::absorb_state(detail::SurfaceState&& t) {
@@ -132,11 +87,12 @@ void WorkingSurface::Engine::absorb_state(detail::SurfaceState&& t) {
       lo[a] = static_cast<double>(there.lo[a]) - 0.5;
       hi[a] = static_cast<double>(there.hi[a]) + 0.5;
     }
-    for (std::size_t i = 0; i < mesh_->n_vertices(); ++i) {
-      const auto& p = points_[i];
+    const detail::HalfedgeMesh& mesh = storage_.mesh();
+    for (std::size_t i = 0; i < mesh.n_vertices(); ++i) {
+      const auto& p = mesh.points()[i];
       if (p[0] < lo[0] || p[0] > hi[0] || p[1] < lo[1] || p[1] > hi[1] || p[2] < lo[2] || p[2] > hi[2]) continue;
-      if (vrec_[i].alive && vrec_[i].lattice_id != detail::kNoLatticeId)
-        ids.insert(vrec_[i].lattice_id, static_cast<std::int32_t>(i));
+      const detail::VertexRecord& r = mesh.vertex_records()[i];
+      if (r.alive && r.lattice_id != detail::kNoLatticeId) ids.insert(r.lattice_id, static_cast<std::int32_t>(i));
     }
   }
 
@@ -146,7 +102,8 @@ void WorkingSurface::Engine::absorb_state(detail::SurfaceState&& t) {
   // interpolate from the edge's lower end) and on this side's boundary, and no triangle of the
   // other side uses an edge between welded vertices in the direction this side's triangles do.
   std::vector<VH> vertex(nb);
-  const std::size_t first_new = mesh_->n_vertices(), edges_before = mesh_->n_edges(), faces_before = mesh_->n_faces();
+  detail::HalfedgeMesh& mesh = storage_.mesh();
+  const std::size_t first_new = mesh.n_vertices(), edges_before = mesh.n_edges(), faces_before = mesh.n_faces();
   std::size_t next = first_new;
   for (std::size_t i = 0; i < nb; ++i) {
     const detail::StateVertex& r = t.vertices[i];
@@ -158,12 +115,12 @@ void WorkingSurface::Engine::absorb_state(detail::SurfaceState&& t) {
       continue;
     }
     vertex[i] = VH(j);
-    const detail::Vec3 p = position(vertex[i]);
+    const detail::Vec3 p = storage_.position(vertex[i]);
     if (p != t.points[i]) // computed the same way on both sides: equal to the last bit
       throw DataError(
           where_text() + ": lattice edge " + std::to_string(r.lattice_id) + " has different positions on the two sides",
           {.block = detail::record_blocks(t.region)}, "both blocks must come from the same volume and isovalue");
-    if (!mesh_->is_boundary(vertex[i]) || mesh_->is_isolated(vertex[i]))
+    if (!mesh.is_boundary(vertex[i]) || mesh.is_isolated(vertex[i]))
       throw DataError(where_text() + ": lattice edge " + std::to_string(r.lattice_id) +
                           " is not on this side's boundary, where the other side would weld to it",
                       {.block = detail::record_blocks(t.region)},
@@ -174,8 +131,8 @@ void WorkingSurface::Engine::absorb_state(detail::SurfaceState&& t) {
     for (int c = 0; c < 3; ++c) {
       const VH a = vertex[tri[static_cast<std::size_t>(c)]], b = vertex[tri[static_cast<std::size_t>((c + 1) % 3)]];
       if (static_cast<std::size_t>(a.idx()) >= first_new || static_cast<std::size_t>(b.idx()) >= first_new) continue;
-      const HH h = detail::find_halfedge(*mesh_, a, b);
-      if (h.is_valid() && !mesh_->is_boundary(h))
+      const HH h = detail::find_halfedge(mesh, a, b);
+      if (h.is_valid() && !mesh.is_boundary(h))
         throw DataError(where_text() + ": triangle " + std::to_string(k) +
                             " of the other side uses a seam edge in the direction of this side's triangle",
                         {.block = detail::record_blocks(t.region)},
@@ -189,33 +146,30 @@ void WorkingSurface::Engine::absorb_state(detail::SurfaceState&& t) {
                     {.block = detail::record_blocks(t.region)}, "use smaller blocks");
 
   // The other side's components join the table; those the seam touches are united below.
+  detail::ComponentTable& components = storage_.components();
   std::vector<std::int32_t> component(t.component_keys.size());
   for (std::size_t c = 0; c < component.size(); ++c)
     component[c] =
-        components_.create(t.component_keys[c], -1, c < t.component_samples.size() ? t.component_samples[c] : 0);
+        components.create(t.component_keys[c], -1, c < t.component_samples.size() ? t.component_samples[c] : 0);
   // Exactly the room the merge may need: the larger surface does not double its storage for it.
-  // Edges and faces are appended as the triangles go in: the room they do not use is not touched.
-  mesh_->reserve(next, edges_before + 3 * nt, faces_before + nt);
-  mesh_->resize(next, edges_before, faces_before);
-  refresh();
+  storage_.begin_append(next - first_new, nt, true);
   for (std::size_t i = 0; i < nb; ++i) {
     const detail::StateVertex& r = t.vertices[i];
     const VH v = vertex[i];
     const std::int32_t c = component[static_cast<std::size_t>(r.component)];
-    detail::VertexRecord& w = vrec(v);
+    detail::VertexRecord& w = storage_.vertex(v);
     if (static_cast<std::size_t>(v.idx()) >= first_new) {
       w = detail::vertex_record(r, c); // its face sums are added from this side's origin below
-      points_[v.idx()] = detail::HalfedgeMesh::Point(t.points[i][0], t.points[i][1], t.points[i][2]);
-      ++live_vertices_;
+      storage_.set_position(v, t.points[i]);
     } else {
       // The same lattice edge seen from both sides: one vertex (positions compared above). Both
       // are original marching-cubes vertices (height = rank at birth, rad = 1).
       w.shape += r.shape;
       w.border |= r.border;
       w.version = std::max(w.version, r.version) + 1; // candidates computed on either side are stale
-      components_.unite(w.component, c);
+      components.unite(w.component, c);
     }
-    detail::ComponentRecord& cr = components_.at(c);
+    detail::ComponentRecord& cr = components.at(c);
     if (cr.member < 0) cr.member = v.idx();
   }
 
@@ -227,7 +181,7 @@ void WorkingSurface::Engine::absorb_state(detail::SurfaceState&& t) {
   faces.reserve(nt);
   for (std::size_t k = 0; k < nt; ++k) {
     const auto& tri = t.triangles[k];
-    const FH f = detail::insert_triangle(*mesh_, vertex[tri[0]], vertex[tri[1]], vertex[tri[2]]);
+    const FH f = storage_.add_triangle(vertex[tri[0]], vertex[tri[1]], vertex[tri[2]]);
     if (!f.is_valid())
       throw DataError(where_text() + ": triangle " + std::to_string(k) +
                           " of the other side would make the surface non-manifold",
@@ -236,28 +190,23 @@ void WorkingSurface::Engine::absorb_state(detail::SurfaceState&& t) {
     faces.push_back(f);
   }
   std::vector<std::array<std::uint32_t, 3>>().swap(t.triangles);
-  refresh();
-  for (std::size_t i = edges_before; i < mesh_->n_edges(); ++i) {
-    erec_[i] = detail::EdgeRecord{};
-    erec_[i].alive = true;
-  }
+  storage_.end_append();
+  collapser_.grown();
   // The other side's face terms were relative to its own origin: computed again from this one's,
   // which also completes the sums of the welded vertices.
-  for (FH f : faces)
-    costs_.add_face_terms(f);
-  live_faces_ += nt;
+  collapser_.add_faces(faces);
 
   // The other side's queue states (the seam's edges are parked on both sides).
   for (std::size_t i = 0; i < t.edges.size(); ++i)
-    restore_edge(vertex[t.edges[i].v0], vertex[t.edges[i].v1], t.edges[i], i);
+    collapser_.restore_edge(vertex[t.edges[i].v0], vertex[t.edges[i].v1], t.edges[i], i);
   std::vector<detail::StateEdge>().swap(t.edges);
 
-  counters_ += t.counters;
+  collapser_.counters() += t.counters;
   last_rank_ = std::max(last_rank_, t.last_rank);
   region_ = region;
   // Any component of the other side may be finished now (its waiting edges were re-counted).
   for (std::int32_t id : component)
-    components_.requeue(components_.find(id));
+    components.requeue(components.find(id));
 }
 
 } // namespace geotandem::tandem

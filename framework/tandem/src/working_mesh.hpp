@@ -3,8 +3,8 @@
 // halfedges 2e and 2e + 1, each with its target vertex, next and previous halfedge and face),
 // points, and our records per element, in arrays of our own. OpenMesh stays the mesh type at the
 // boundaries (measures, exports, tests) and lends its handle types; the hot loops read the arrays
-// through raw pointers refreshed after the mesh grows or is compacted
-// (WorkingSurface::Engine::refresh()).
+// through the mesh each time (surface_storage.hpp), so that growth and compaction move nothing
+// anyone holds.
 //
 // Why not OpenMesh's TriMesh, which this replaced: its containers are private, so its storage could
 // only be compacted into a second mesh (the whole surface held twice at each compaction) or grown

@@ -1,0 +1,470 @@
+// bench_flying_edges_meshopt (issue 57, part 3): side by side on one core, `geotandem extract
+// --workers 0` against the fastest general-purpose route, VTK's vtkFlyingEdges3D followed by
+// meshoptimizer's meshopt_simplify to the same triangle count.
+//   bench_flying_edges_meshopt GEOTANDEM [edge=512] [dir=/tmp/geotandem-fe-meshopt] [seed=1] [iso=0.5]
+//                              [spacing=0.5]
+// The cube is the bench's own (flying_edges/noisy_cube.hpp), written once as a geotandem raw cube
+// in `dir` and reused while its file is there. geotandem runs as a child process (wall time, and
+// user + system CPU from wait4); its surface is read back from `store export --format ply
+// --no-caps`. VTK runs in this process with its SMP backend set to Sequential. Both outputs are
+// measured against two full-resolution surfaces: FlyingEdges3D's, and geotandem's own marching
+// cubes (`extract --max-error 1e-6`, the smallest E0 it takes, at which nothing moves by more
+// than 1e-6 voxel), the surface its E0 guarantee is stated against. Distances are in voxels,
+// sampled every `spacing` voxels on both surfaces. Prints figures only: not a test.
+#include <fcntl.h>
+#include <spawn.h>
+#include <sys/resource.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <cstdio>
+#include <cstring>
+#include <ctime>
+#include <filesystem>
+#include <fstream>
+#include <regex>
+#include <sstream>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include <meshoptimizer.h>
+#include <vtkCellArray.h>
+#include <vtkFloatArray.h>
+#include <vtkFlyingEdges3D.h>
+#include <vtkImageData.h>
+#include <vtkNew.h>
+#include <vtkPointData.h>
+#include <vtkPoints.h>
+#include <vtkPolyData.h>
+
+#include "bench_args.hpp"
+#include "flying_edges/noisy_cube.hpp"
+#include "flying_edges/surface_distance.hpp"
+
+extern char** environ;
+
+namespace geotandem::bench {
+namespace {
+
+namespace fs = std::filesystem;
+using Clock = std::chrono::steady_clock;
+
+// Bump when the generator changes, so that a cube left in `dir` by another build is not reused.
+constexpr int kGeneratorVersion = 1;
+
+struct Timing {
+  double wall = 0.0; // s
+  double cpu = 0.0;  // s, user + system
+};
+
+double seconds_since(Clock::time_point t) {
+  return std::chrono::duration<double>(Clock::now() - t).count();
+}
+
+double process_cpu() {
+  timespec ts{};
+  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts);
+  return static_cast<double>(ts.tv_sec) + 1e-9 * static_cast<double>(ts.tv_nsec);
+}
+
+// Runs `argv` with stdout and stderr into files; its wall time and its CPU time (wait4's rusage of
+// the child). Throws when it cannot start or does not exit with 0, quoting its stderr's end.
+Timing run_child(const std::vector<std::string>& argv, const fs::path& out, const fs::path& err) {
+  std::vector<char*> args;
+  for (const std::string& a : argv)
+    args.push_back(const_cast<char*>(a.c_str()));
+  args.push_back(nullptr);
+  posix_spawn_file_actions_t actions;
+  posix_spawn_file_actions_init(&actions);
+  posix_spawn_file_actions_addopen(&actions, 1, out.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+  posix_spawn_file_actions_addopen(&actions, 2, err.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+  const auto start = Clock::now();
+  pid_t pid = 0;
+  const int spawned = posix_spawn(&pid, args[0], &actions, nullptr, args.data(), environ);
+  posix_spawn_file_actions_destroy(&actions);
+  if (spawned != 0) throw std::runtime_error("cannot start " + argv[0] + ": " + std::strerror(spawned));
+  int status = 0;
+  rusage usage{};
+  if (wait4(pid, &status, 0, &usage) != pid) throw std::runtime_error("wait4 failed for " + argv[0]);
+  Timing t;
+  t.wall = seconds_since(start);
+  auto tv = [](const timeval& v) { return static_cast<double>(v.tv_sec) + 1e-6 * static_cast<double>(v.tv_usec); };
+  t.cpu = tv(usage.ru_utime) + tv(usage.ru_stime);
+  if (!WIFEXITED(status) || WEXITSTATUS(status) != 0) {
+    std::ifstream in(err);
+    std::stringstream text;
+    text << in.rdbuf();
+    std::string s = text.str();
+    if (s.size() > 2000) s = s.substr(s.size() - 2000);
+    std::string command;
+    for (const std::string& a : argv)
+      command += (command.empty() ? "" : " ") + a;
+    throw std::runtime_error(command + " failed (status " + std::to_string(status) + "):\n" + s);
+  }
+  return t;
+}
+
+std::string read_text(const fs::path& path) {
+  std::ifstream in(path);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+// A binary little-endian PLY with x, y, z vertex properties (float or double, any others skipped)
+// and one face list (uchar or uint count, int or uint indices) plus scalar properties, as
+// `geotandem store export --format ply` writes it.
+Surface read_ply(const fs::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw std::runtime_error("cannot open " + path.string());
+  auto size_of = [&](const std::string& type) -> std::size_t {
+    if (type == "char" || type == "uchar" || type == "int8" || type == "uint8") return 1;
+    if (type == "short" || type == "ushort" || type == "int16" || type == "uint16") return 2;
+    if (type == "int" || type == "uint" || type == "float" || type == "int32" || type == "uint32" || type == "float32")
+      return 4;
+    if (type == "double" || type == "float64") return 8;
+    throw std::runtime_error(path.string() + ": PLY property type '" + type + "' not handled");
+  };
+  struct Property {
+    std::string name, type, count_type; // count_type set for a list
+  };
+  std::vector<Property> vertex_props, face_props;
+  std::size_t vertices = 0, faces = 0;
+  std::string line, element;
+  std::getline(in, line);
+  if (line != "ply") throw std::runtime_error(path.string() + " is not a PLY file");
+  while (std::getline(in, line) && line != "end_header") {
+    std::istringstream words(line);
+    std::string key;
+    words >> key;
+    if (key == "format") {
+      std::string f;
+      words >> f;
+      if (f != "binary_little_endian") throw std::runtime_error(path.string() + ": PLY format " + f + " not handled");
+    } else if (key == "element") {
+      std::size_t n = 0;
+      words >> element >> n;
+      (element == "vertex" ? vertices : faces) = n;
+    } else if (key == "property") {
+      Property p;
+      words >> p.type;
+      if (p.type == "list") words >> p.count_type >> p.type;
+      words >> p.name;
+      (element == "vertex" ? vertex_props : face_props).push_back(p);
+    }
+  }
+  Surface s;
+  s.xyz.resize(3 * vertices);
+  std::vector<char> record;
+  for (std::size_t v = 0; v < vertices; ++v)
+    for (const Property& p : vertex_props) {
+      const std::size_t n = size_of(p.type);
+      record.resize(n);
+      in.read(record.data(), static_cast<std::streamsize>(n));
+      const int axis = p.name == "x" ? 0 : p.name == "y" ? 1 : p.name == "z" ? 2 : -1;
+      if (axis < 0) continue;
+      double value = 0.0;
+      if (n == 8) {
+        std::memcpy(&value, record.data(), 8);
+      } else if (p.type == "float" || p.type == "float32") {
+        float f = 0.0f;
+        std::memcpy(&f, record.data(), 4);
+        value = f;
+      } else {
+        throw std::runtime_error(path.string() + ": vertex coordinate of type " + p.type + " not handled");
+      }
+      s.xyz[3 * v + static_cast<std::size_t>(axis)] = static_cast<float>(value);
+    }
+  s.corners.reserve(3 * faces);
+  for (std::size_t f = 0; f < faces; ++f)
+    for (const Property& p : face_props) {
+      if (p.count_type.empty()) {
+        in.ignore(static_cast<std::streamsize>(size_of(p.type)));
+        continue;
+      }
+      std::uint32_t count = 0;
+      in.read(reinterpret_cast<char*>(&count), static_cast<std::streamsize>(size_of(p.count_type)));
+      if (count != 3 || size_of(p.type) != 4)
+        throw std::runtime_error(path.string() + ": a face that is not a triangle of 32-bit indices");
+      std::uint32_t c[3];
+      in.read(reinterpret_cast<char*>(c), sizeof c);
+      for (std::uint32_t x : c) {
+        if (x >= vertices) throw std::runtime_error(path.string() + ": a face index out of range");
+        s.corners.push_back(x);
+      }
+    }
+  if (!in) throw std::runtime_error(path.string() + " ends early");
+  return s;
+}
+
+// geotandem extract: times, its summary line, its surface (the store exported without caps).
+struct GeotandemRun {
+  Timing time;
+  std::string summary;
+  long long marching_cubes_triangles = -1;
+  double extraction_seconds = -1.0; // what geotandem reports for the extraction itself
+  Surface surface;
+};
+
+GeotandemRun run_geotandem(const std::string& exe, const fs::path& cube, double iso, double max_error,
+                           const fs::path& dir, const std::string& name) {
+  GeotandemRun r;
+  const fs::path store = dir / ("store-" + name);
+  char iso_text[64], e0_text[64];
+  std::snprintf(iso_text, sizeof iso_text, "%.17g", iso);
+  std::snprintf(e0_text, sizeof e0_text, "%.17g", max_error);
+  r.time = run_child({exe, "extract", cube.string(), "--iso", iso_text, "--max-error", e0_text, "--workers", "0",
+                      "--out", store.string(), "--fresh"},
+                     dir / (name + ".stdout"), dir / (name + ".stderr"));
+  const std::string out = read_text(dir / (name + ".stdout"));
+  r.summary = out.substr(0, out.find('\n'));
+  std::smatch m;
+  if (std::regex_search(r.summary, m, std::regex(R"(from (\d+) marching-cubes triangles in ([0-9.]+) s)"))) {
+    r.marching_cubes_triangles = std::stoll(m[1]);
+    r.extraction_seconds = std::stod(m[2]);
+  }
+  const fs::path ply = dir / (name + ".ply");
+  run_child(
+      {exe, "store", "export", store.string(), "--format", "ply", "--no-caps", "--overwrite", "--out", ply.string()},
+      dir / (name + "-export.stdout"), dir / (name + "-export.stderr"));
+  r.surface = read_ply(ply);
+  return r;
+}
+
+// FlyingEdges3D's points are (x, y, z) = (k, j, i) of the [i][j][k] array; geotandem's are
+// (i, j, k). The distances compare them in geotandem's order.
+Surface to_ijk(const float* xyz, std::size_t vertices, std::vector<std::uint32_t> corners) {
+  Surface s;
+  s.xyz.resize(3 * vertices);
+  for (std::size_t v = 0; v < vertices; ++v) {
+    s.xyz[3 * v] = xyz[3 * v + 2];
+    s.xyz[3 * v + 1] = xyz[3 * v + 1];
+    s.xyz[3 * v + 2] = xyz[3 * v];
+  }
+  s.corners = std::move(corners);
+  return s;
+}
+
+struct Pair {
+  Distance there, back; // simplified -> reference, reference -> simplified
+  double max() const { return std::max(there.max, back.max); }
+  double mean() const {
+    const double area = there.area + back.area;
+    return area > 0 ? (there.weighted_sum + back.weighted_sum) / area : 0.0;
+  }
+};
+
+Pair compare(const Surface& simplified, const TriangleGrid& simplified_grid, const Surface& reference,
+             const TriangleGrid& reference_grid, double spacing) {
+  return {sampled_distance(simplified, reference_grid, spacing), sampled_distance(reference, simplified_grid, spacing)};
+}
+
+// Threads of this process now (/proc/self/status), to show that VTK ran on one.
+int thread_count() {
+  std::ifstream in("/proc/self/status");
+  std::string line;
+  while (std::getline(in, line))
+    if (line.rfind("Threads:", 0) == 0) return std::stoi(line.substr(8));
+  return -1;
+}
+
+int bench_main(int argc, char** argv) {
+  // One thread for VTK: its SMP tools read these when first used (vtkSMPTools.h documents both;
+  // the header itself cannot be included here, VTK 9.1's is not valid C++20). The thread count
+  // printed after FlyingEdges3D checks it: TBB or std::thread backends would start workers.
+  setenv("VTK_SMP_BACKEND_IN_USE", "Sequential", 1);
+  setenv("VTK_SMP_MAX_THREADS", "1", 1);
+  const Args args(argc, argv,
+                  "bench_flying_edges_meshopt GEOTANDEM [edge=512] [dir=/tmp/geotandem-fe-meshopt] [seed=1] "
+                  "[iso=0.5] [spacing=0.5]");
+  if (args.size() < 1) args.fail(1, "is missing: the geotandem executable to time");
+  const std::string exe = fs::absolute(args.text(1, "")).string();
+  const std::int64_t edge = args.integer(2, 512, 8);
+  const fs::path dir = args.text(3, "/tmp/geotandem-fe-meshopt");
+  const auto seed = static_cast<std::uint64_t>(args.integer(4, 1, 0));
+  const double iso = args.real(5, 0.5, -1e30);
+  const double spacing = args.real(6, 0.5, 0.01);
+  const double max_error = 0.5; // geotandem's default E0
+  fs::create_directories(dir);
+
+  // 1. The cube, made once per edge, seed and generator version.
+  const fs::path cube = dir / ("noisy-" + std::to_string(edge) + "-seed" + std::to_string(seed) + "-v" +
+                               std::to_string(kGeneratorVersion) + ".raw");
+  if (fs::exists(cube.string() + ".json") && fs::exists(cube) &&
+      fs::file_size(cube) == static_cast<std::uintmax_t>(edge * edge * edge) * sizeof(float)) {
+    std::printf("cube: %s (reused)\n", cube.c_str());
+  } else {
+    const auto t = Clock::now();
+    NoisyCubeOptions o;
+    o.edge = edge;
+    o.seed = seed;
+    write_raw_cube(make_noisy_cube(o), edge, cube);
+    std::printf("cube: %s (generated and written in %.1f s)\n", cube.c_str(), seconds_since(t));
+  }
+  std::printf("%lld^3 float32 samples, iso %g, geotandem E0 %g voxel (its default), alpha and leaves at their "
+              "defaults\n",
+              static_cast<long long>(edge), iso, max_error);
+  std::fflush(stdout);
+
+  // 2. geotandem, timed; then its full-resolution marching cubes (not timed for the comparison).
+  const GeotandemRun gt = run_geotandem(exe, cube, iso, max_error, dir, "geotandem");
+  const GeotandemRun full = run_geotandem(exe, cube, iso, 1e-6, dir, "geotandem-full");
+
+  // 3. FlyingEdges3D + meshopt_simplify in this process, on one thread.
+  const auto read_start = Clock::now();
+  const double read_cpu0 = process_cpu();
+  std::vector<float> samples = read_raw_cube(cube, edge);
+  const Timing read_time{seconds_since(read_start), process_cpu() - read_cpu0};
+
+  vtkNew<vtkFloatArray> scalars;
+  scalars->SetNumberOfComponents(1);
+  scalars->SetArray(samples.data(), static_cast<vtkIdType>(samples.size()), 1); // 1: VTK does not own or free it
+  vtkNew<vtkImageData> image;
+  image->SetDimensions(static_cast<int>(edge), static_cast<int>(edge), static_cast<int>(edge)); // x = k fastest
+  image->SetSpacing(1.0, 1.0, 1.0);
+  image->SetOrigin(0.0, 0.0, 0.0);
+  image->GetPointData()->SetScalars(scalars);
+  vtkNew<vtkFlyingEdges3D> flying;
+  flying->SetInputData(image);
+  flying->SetValue(0, iso);
+  flying->ComputeNormalsOff();
+  flying->ComputeGradientsOff();
+  flying->ComputeScalarsOff();
+  flying->InterpolateAttributesOff();
+  auto start = Clock::now();
+  double cpu0 = process_cpu();
+  flying->Update();
+  const Timing fe_time{seconds_since(start), process_cpu() - cpu0};
+  vtkPolyData* fe = flying->GetOutput();
+
+  // The index buffer meshoptimizer takes, from VTK's cell array (counted with meshopt's time).
+  start = Clock::now();
+  cpu0 = process_cpu();
+  vtkCellArray* polys = fe->GetPolys();
+  const auto fe_triangles = static_cast<std::size_t>(polys->GetNumberOfCells());
+  std::vector<std::uint32_t> indices(3 * fe_triangles);
+  vtkDataArray* connectivity = polys->GetConnectivityArray();
+  if (static_cast<std::size_t>(connectivity->GetNumberOfValues()) != indices.size())
+    throw std::runtime_error("FlyingEdges3D gave cells that are not all triangles");
+  if (polys->IsStorage64Bit()) {
+    const auto* c = polys->GetConnectivityArray64()->GetPointer(0);
+    for (std::size_t n = 0; n < indices.size(); ++n)
+      indices[n] = static_cast<std::uint32_t>(c[n]);
+  } else {
+    const auto* c = polys->GetConnectivityArray32()->GetPointer(0);
+    for (std::size_t n = 0; n < indices.size(); ++n)
+      indices[n] = static_cast<std::uint32_t>(c[n]);
+  }
+  auto* fe_points = vtkFloatArray::SafeDownCast(fe->GetPoints()->GetData());
+  if (fe_points == nullptr) throw std::runtime_error("FlyingEdges3D's points are not float32");
+  const float* positions = fe_points->GetPointer(0);
+  const auto fe_vertices = static_cast<std::size_t>(fe->GetNumberOfPoints());
+  // Weld: FlyingEdges3D shares the points of an edge between its cells, so the remap finds
+  // nothing to merge; it is timed anyway, since a route that does not know that needs it.
+  std::vector<unsigned int> remap(fe_vertices);
+  const std::size_t unique = meshopt_generateVertexRemap(remap.data(), indices.data(), indices.size(), positions,
+                                                         fe_vertices, 3 * sizeof(float));
+  std::vector<float> welded;
+  if (unique < fe_vertices) {
+    meshopt_remapIndexBuffer(indices.data(), indices.data(), indices.size(), remap.data());
+    welded.resize(3 * unique);
+    meshopt_remapVertexBuffer(welded.data(), positions, fe_vertices, 3 * sizeof(float), remap.data());
+    positions = welded.data();
+  }
+  const std::size_t vertices = unique < fe_vertices ? unique : fe_vertices;
+  const Timing weld_time{seconds_since(start), process_cpu() - cpu0};
+
+  const std::size_t target = 3 * gt.surface.triangles();
+  std::vector<std::uint32_t> simplified(indices.size());
+  float relative_error = 0.0f;
+  start = Clock::now();
+  cpu0 = process_cpu();
+  // target_error 1: any error (relative to the mesh's extent), so that only the count stops it.
+  simplified.resize(meshopt_simplify(simplified.data(), indices.data(), indices.size(), positions, vertices,
+                                     3 * sizeof(float), target, 1.0f, 0, &relative_error));
+  const Timing mo_time{seconds_since(start), process_cpu() - cpu0};
+  const int threads = thread_count();
+  const double meshopt_error = relative_error * meshopt_simplifyScale(positions, vertices, 3 * sizeof(float));
+
+  // 4. Quality: distances to both full-resolution surfaces, shape, edges.
+  const Surface fe_surface = to_ijk(positions, vertices, indices);
+  const Surface mo_surface = to_ijk(positions, vertices, simplified);
+  const double cell = 2.0;
+  const auto dist_start = Clock::now();
+  const TriangleGrid fe_grid(fe_surface, cell), full_grid(full.surface, cell), gt_grid(gt.surface, cell),
+      mo_grid(mo_surface, cell);
+  const Pair gt_fe = compare(gt.surface, gt_grid, fe_surface, fe_grid, spacing);
+  const Pair mo_fe = compare(mo_surface, mo_grid, fe_surface, fe_grid, spacing);
+  const Pair gt_full = compare(gt.surface, gt_grid, full.surface, full_grid, spacing);
+  const Pair mo_full = compare(mo_surface, mo_grid, full.surface, full_grid, spacing);
+  const Pair fe_full = compare(fe_surface, fe_grid, full.surface, full_grid, spacing);
+  const double dist_seconds = seconds_since(dist_start);
+  const EdgeCounts mo_edges = count_edges(mo_surface), gt_edges = count_edges(gt.surface),
+                   fe_edges = count_edges(fe_surface);
+
+  // 5. The table.
+  std::printf("\nVTK: VTK_SMP_BACKEND_IN_USE=Sequential, %d thread(s) in this process after FlyingEdges3D and "
+              "meshopt\ngeotandem: %s\n",
+              threads, gt.summary.c_str());
+  std::printf("full resolution: FlyingEdges3D %zu triangles; geotandem's marching cubes %lld triangles (%zu kept at "
+              "E0 1e-6)\n",
+              fe_triangles, full.marching_cubes_triangles, full.surface.triangles());
+  std::printf("distances in voxels (sampled every %g voxel, both directions; mean: area-weighted over both)\n\n",
+              spacing);
+  std::printf("%-34s %8s %8s %10s | %-17s | %-17s | %6s\n", "", "wall s", "CPU s", "triangles", "to FlyingEdges3D",
+              "to geotandem MC", "aniso");
+  std::printf("%-34s %8s %8s %10s | %8s %8s | %8s %8s | %6s\n", "", "", "", "", "max", "mean", "max", "mean", "");
+  auto row = [](const char* name, const Timing& t, std::size_t triangles, const Pair* to_fe, const Pair* to_full,
+                double aniso) {
+    std::printf("%-34s %8.3f %8.3f %10zu |", name, t.wall, t.cpu, triangles);
+    if (to_fe)
+      std::printf(" %8.3f %8.4f |", to_fe->max(), to_fe->mean());
+    else
+      std::printf(" %8s %8s |", "-", "-");
+    if (to_full)
+      std::printf(" %8.3f %8.4f |", to_full->max(), to_full->mean());
+    else
+      std::printf(" %8s %8s |", "-", "-");
+    std::printf(" %6.3f\n", aniso);
+  };
+  row("geotandem extract --workers 0", gt.time, gt.surface.triangles(), &gt_fe, &gt_full, anisotropy(gt.surface));
+  row("FlyingEdges3D (full resolution)", fe_time, fe_triangles, nullptr, &fe_full, anisotropy(fe_surface));
+  row("index buffer + weld check", weld_time, fe_triangles, nullptr, nullptr, 0.0);
+  row("meshopt_simplify", mo_time, mo_surface.triangles(), &mo_fe, &mo_full, anisotropy(mo_surface));
+  const Timing route{fe_time.wall + weld_time.wall + mo_time.wall, fe_time.cpu + weld_time.cpu + mo_time.cpu};
+  row("FlyingEdges3D + meshopt", route, mo_surface.triangles(), &mo_fe, &mo_full, anisotropy(mo_surface));
+  std::printf("%-34s %8.3f %8.3f\n", "ratio geotandem / (FE + meshopt)", gt.time.wall / route.wall,
+              gt.time.cpu / route.cpu);
+  std::printf("%-34s %8.3f %8.3f   (raw file from the page cache; geotandem reads it itself)\n",
+              "read the cube into memory", read_time.wall, read_time.cpu);
+  std::printf("%-34s %8.3f %8.3f\n", "ratio geotandem / (read+FE+meshopt)",
+              gt.time.wall / (read_time.wall + route.wall), gt.time.cpu / (read_time.cpu + route.cpu));
+
+  std::printf("\none-sided maxima (simplified -> full / full -> simplified): geotandem to FE %.3f / %.3f, to its MC "
+              "%.3f / %.3f; meshopt to FE %.3f / %.3f, to geotandem MC %.3f / %.3f; FE to geotandem MC %.3f / %.3f\n",
+              gt_fe.there.max, gt_fe.back.max, gt_full.there.max, gt_full.back.max, mo_fe.there.max, mo_fe.back.max,
+              mo_full.there.max, mo_full.back.max, fe_full.there.max, fe_full.back.max);
+  std::printf("geotandem: %.3f s of extraction by its own count (the rest: start, value scan, store); full "
+              "resolution run %.3f s wall\n",
+              gt.extraction_seconds, full.time.wall);
+  std::printf("FlyingEdges3D: %zu points, %zu unique after the weld check; meshopt_simplify: target %zu triangles, "
+              "reached %zu, its own error estimate %.3f voxel\n",
+              fe_vertices, unique, target / 3, mo_surface.triangles(), meshopt_error);
+  std::printf("edges: meshopt %zu non-manifold, %zu border, %zu degenerate triangles; geotandem %zu non-manifold, %zu "
+              "border; FlyingEdges3D %zu non-manifold, %zu border\n",
+              mo_edges.non_manifold, mo_edges.border, mo_edges.degenerate_triangles, gt_edges.non_manifold,
+              gt_edges.border, fe_edges.non_manifold, fe_edges.border);
+  std::printf("distances took %.1f s; samples: %zu + %zu (geotandem, FE), %zu + %zu (meshopt, FE)\n", dist_seconds,
+              gt_fe.there.samples, gt_fe.back.samples, mo_fe.there.samples, mo_fe.back.samples);
+  return 0;
+}
+
+} // namespace
+} // namespace geotandem::bench
+
+int main(int argc, char** argv) {
+  return geotandem::bench::guarded_main("bench_flying_edges_meshopt",
+                                        [&] { return geotandem::bench::bench_main(argc, argv); });
+}

@@ -84,7 +84,7 @@ struct Blob {
   double weight;
 };
 
-Blob random_blob(Random& random, double edge) {
+Blob random_blob(Random& random, double edge, double smallest, double largest) {
   Blob b{};
   for (double& c : b.centre)
     c = random.uniform(0.0, edge);
@@ -105,7 +105,7 @@ Blob random_blob(Random& random, double edge) {
                                  {2 * (x * z - w * y), 2 * (y * z + w * x), 1 - 2 * (x * x + y * y)}};
   b.reach = 0.0;
   for (int a = 0; a < 3; ++a) {
-    const double radius = random.uniform(0.03, 0.10) * edge;
+    const double radius = random.uniform(smallest, largest);
     b.reach = std::max(b.reach, radius);
     for (int c = 0; c < 3; ++c)
       b.axes[static_cast<std::size_t>(a)][static_cast<std::size_t>(c)] = rotation[a][c] / radius;
@@ -135,7 +135,7 @@ std::vector<float> make_noisy_cube(const NoisyCubeOptions& options) {
   const double scale = static_cast<double>(n) / 512.0;
   const auto blobs = std::max<std::int64_t>(1, std::llround(options.blobs_per_512 * scale * scale * scale));
   for (std::int64_t b = 0; b < blobs; ++b) {
-    const Blob blob = random_blob(random, static_cast<double>(n));
+    const Blob blob = random_blob(random, static_cast<double>(n), options.smallest_radius, options.largest_radius);
     std::int64_t lo[3], hi[3];
     for (std::size_t a = 0; a < 3; ++a) {
       lo[a] = std::max<std::int64_t>(0, static_cast<std::int64_t>(std::floor(blob.centre[a] - blob.reach)));

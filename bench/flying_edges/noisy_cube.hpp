@@ -14,9 +14,11 @@ namespace geotandem::bench {
 struct NoisyCubeOptions {
   std::int64_t edge = 512;    // samples along each axis
   std::uint64_t seed = 1;     // the same seed gives the same bits on any machine
-  double blobs_per_512 = 48;  // blob count for a 512^3 cube, scaled with the volume
+  double blobs_per_512 = 160; // blob count for a 512^3 cube, scaled with the volume
+  double smallest_radius = 8; // blob radii (each of the three axes) drawn in [smallest, largest]
+  double largest_radius = 40; // samples: fixed, so a cube of 8 times the volume has 8 times the bodies
   double noise_coarse = 0.25; // amplitude of the value noise of period 8 samples
-  double noise_fine = 0.12;   // amplitude of the value noise of period 3 samples
+  double noise_fine = 0.15;   // amplitude of the value noise of period 3 samples
 };
 
 // Samples in C order [i][j][k] (k fastest), the order of geotandem's raw cubes: index

@@ -185,16 +185,24 @@ double TriangleGrid::distance(const double p[3]) const {
   }
 }
 
-Distance sampled_distance(const Surface& from, const TriangleGrid& to, double spacing) {
-  Distance out;
-  std::vector<double> at_vertex(from.vertices(), -1.0);
-  auto measure = [&](V p) {
+Sampled sampled_distance(const Surface& from, const TriangleGrid& to, double spacing, const Box& inside) {
+  Sampled out;
+  auto measure = [&](V p, double area) {
     const double q[3] = {p.x, p.y, p.z};
     const double d = to.distance(q);
-    out.max = std::max(out.max, d);
-    ++out.samples;
-    return d;
+    const bool in = inside.contains(q);
+    for (Distance* x : {&out.all, in ? &out.inside : nullptr}) {
+      if (x == nullptr) continue;
+      if (d > x->max) {
+        x->max = d;
+        std::copy(q, q + 3, x->where);
+      }
+      ++x->samples;
+      x->weighted_sum += d * area;
+      x->area += area;
+    }
   };
+  std::vector<char> vertex_done(from.vertices(), 0);
   for (std::size_t t = 0; t < from.triangles(); ++t) {
     const std::uint32_t* c = from.corners.data() + 3 * t;
     const V a = vertex(from, c[0]), b = vertex(from, c[1]), e = vertex(from, c[2]);
@@ -202,32 +210,28 @@ Distance sampled_distance(const Surface& from, const TriangleGrid& to, double sp
     const double longest = std::sqrt(std::max({dot(u, u), dot(w, w), dot(e - b, e - b)}));
     const auto m = std::max<std::int64_t>(1, static_cast<std::int64_t>(std::ceil(longest / spacing)));
     const double step = 1.0 / static_cast<double>(m);
-    // Corners of the sub-triangles: the triangle's own corners once per vertex.
+    // Corners of the sub-triangles, for the maximum only: the triangle's own corners once per vertex.
     for (std::int64_t i = 0; i <= m; ++i)
       for (std::int64_t j = 0; i + j <= m; ++j) {
         const int corner = i == 0 && j == 0 ? 0 : i == m ? 1 : j == m ? 2 : -1;
         if (corner >= 0) {
-          double& known = at_vertex[c[corner]];
-          if (known < 0.0) known = measure(vertex(from, c[corner]));
+          if (!vertex_done[c[corner]]) measure(vertex(from, c[corner]), 0.0);
+          vertex_done[c[corner]] = 1;
           continue;
         }
-        measure(a + (static_cast<double>(i) * step) * u + (static_cast<double>(j) * step) * w);
+        measure(a + (static_cast<double>(i) * step) * u + (static_cast<double>(j) * step) * w, 0.0);
       }
     // Centroids of the m^2 sub-triangles, each for 1 / m^2 of the area.
-    const double area = 0.5 * std::sqrt(dot(cross(u, w), cross(u, w)));
-    const double share = area * step * step;
+    const double share = 0.5 * std::sqrt(dot(cross(u, w), cross(u, w))) * step * step;
     for (std::int64_t i = 0; i < m; ++i)
       for (std::int64_t j = 0; i + j < m; ++j) {
-        const double up = measure(a + ((static_cast<double>(i) + 1.0 / 3.0) * step) * u +
-                                  ((static_cast<double>(j) + 1.0 / 3.0) * step) * w);
-        out.weighted_sum += up * share;
-        out.area += share;
-        if (i + j + 2 <= m) {
-          const double down = measure(a + ((static_cast<double>(i) + 2.0 / 3.0) * step) * u +
-                                      ((static_cast<double>(j) + 2.0 / 3.0) * step) * w);
-          out.weighted_sum += down * share;
-          out.area += share;
-        }
+        measure(a + ((static_cast<double>(i) + 1.0 / 3.0) * step) * u +
+                    ((static_cast<double>(j) + 1.0 / 3.0) * step) * w,
+                share);
+        if (i + j + 2 <= m)
+          measure(a + ((static_cast<double>(i) + 2.0 / 3.0) * step) * u +
+                      ((static_cast<double>(j) + 2.0 / 3.0) * step) * w,
+                  share);
       }
   }
   return out;

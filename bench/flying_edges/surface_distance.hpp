@@ -20,9 +20,10 @@ struct Surface {
 
 // Distances from points sampled on one surface to the triangles of another, in voxels.
 struct Distance {
-  double max = 0.0;          // the largest sampled distance (a one-sided Hausdorff distance)
-  double weighted_sum = 0.0; // sum of distance x area over the samples of the mean
-  double area = 0.0;         // the area those samples stand for
+  double max = 0.0;            // the largest sampled distance (a one-sided Hausdorff distance)
+  double where[3] = {0, 0, 0}; // the sample it was found at
+  double weighted_sum = 0.0;   // sum of distance x area over the samples of the mean
+  double area = 0.0;           // the area those samples stand for
   std::size_t samples = 0;
   double mean() const { return area > 0.0 ? weighted_sum / area : 0.0; }
 };
@@ -48,11 +49,27 @@ private:
   mutable std::uint32_t query_ = 0;
 };
 
+// An axis-aligned box, closed.
+struct Box {
+  double lo[3] = {0, 0, 0};
+  double hi[3] = {0, 0, 0};
+  bool contains(const double p[3]) const {
+    return p[0] >= lo[0] && p[0] <= hi[0] && p[1] >= lo[1] && p[1] <= hi[1] && p[2] >= lo[2] && p[2] <= hi[2];
+  }
+};
+
+// Distances of all samples, and of those inside a box on their own.
+struct Sampled {
+  Distance all;
+  Distance inside;
+};
+
 // Samples `from` densely: on every triangle a barycentric grid of m x m sub-triangles with
 // m = ceil(longest edge / spacing), their corners for the maximum and their centroids (each standing
 // for a sub-triangle's area) for the area-weighted mean. The maximum is a sampled one: it can miss
-// a peak by at most about the spacing times the slope of the distance (1).
-Distance sampled_distance(const Surface& from, const TriangleGrid& to, double spacing);
+// a peak by at most about the spacing times the slope of the distance (1). The samples in `inside`
+// are also counted apart (the bench leaves out the rims of the open surfaces on the cube's faces).
+Sampled sampled_distance(const Surface& from, const TriangleGrid& to, double spacing, const Box& inside);
 
 // 1 - mean over triangles of sqrt(lambda2 / lambda1), the eigenvalues of the triangle's inertia
 // matrix 1/3 sum (v - g)(v - g)^T (the seed's section 4): 0 when every triangle is equilateral.

@@ -9,8 +9,16 @@
 find_package(VTK 9 QUIET COMPONENTS CommonCore CommonDataModel CommonExecutionModel FiltersCore)
 find_package(meshoptimizer QUIET CONFIG)
 if(NOT VTK_FOUND OR NOT meshoptimizer_FOUND)
-  message(STATUS "bench_flying_edges_meshopt left out: it needs VTK 9 (found: ${VTK_FOUND}) and meshoptimizer "
-                 "(found: ${meshoptimizer_FOUND}); install them with GEOTANDEM_BENCH_DEPS=1 scripts/setup.sh")
+  set(missing "")
+  if(NOT VTK_FOUND)
+    list(APPEND missing "VTK 9 (libvtk9-dev)")
+  endif()
+  if(NOT meshoptimizer_FOUND)
+    list(APPEND missing "meshoptimizer (libmeshoptimizer-dev)")
+  endif()
+  list(JOIN missing " and " missing)
+  message(STATUS "bench_flying_edges_meshopt left out: ${missing} not found (bench-only; "
+                 "GEOTANDEM_BENCH_DEPS=1 scripts/setup.sh installs them)")
   return()
 endif()
 add_executable(bench_flying_edges_meshopt

@@ -322,12 +322,12 @@ int bench_main(int argc, char** argv) {
   // 3. FlyingEdges3D + meshopt_simplify in this process, on one thread.
   const auto read_start = Clock::now();
   const double read_cpu0 = process_cpu();
-  std::vector<float> samples = read_raw_cube(cube, edge);
+  const std::unique_ptr<float[]> samples = read_raw_cube(cube, edge);
   const Timing read_time{seconds_since(read_start), process_cpu() - read_cpu0};
 
   vtkNew<vtkFloatArray> scalars;
   scalars->SetNumberOfComponents(1);
-  scalars->SetArray(samples.data(), static_cast<vtkIdType>(samples.size()), 1); // 1: VTK does not own or free it
+  scalars->SetArray(samples.get(), static_cast<vtkIdType>(edge * edge * edge), 1); // 1: VTK does not own or free it
   vtkNew<vtkImageData> image;
   image->SetDimensions(static_cast<int>(edge), static_cast<int>(edge), static_cast<int>(edge)); // x = k fastest
   image->SetSpacing(1.0, 1.0, 1.0);

@@ -3,11 +3,16 @@
 
 #include "flying_edges/noisy_cube.hpp"
 
+#include <fcntl.h>
+#include <unistd.h>
+
 #include <algorithm>
 #include <array>
 #include <bit>
+#include <cerrno>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 #include <fstream>
 #include <stdexcept>
 
@@ -179,11 +184,22 @@ void write_raw_cube(const std::vector<float>& samples, std::int64_t edge, const 
   if (!json) throw std::runtime_error("cannot write the sidecar " + path.string() + ".json");
 }
 
-std::vector<float> read_raw_cube(const std::filesystem::path& path, std::int64_t edge) {
-  std::vector<float> samples(static_cast<std::size_t>(edge * edge * edge));
-  std::ifstream in(path, std::ios::binary);
-  in.read(reinterpret_cast<char*>(samples.data()), static_cast<std::streamsize>(samples.size() * sizeof(float)));
-  if (!in || in.peek() != std::ifstream::traits_type::eof())
+std::unique_ptr<float[]> read_raw_cube(const std::filesystem::path& path, std::int64_t edge) {
+  const auto bytes = static_cast<std::size_t>(edge * edge * edge) * sizeof(float);
+  std::unique_ptr<float[]> samples(new float[bytes / sizeof(float)]); // not value-initialised: no zeroing pass
+  const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
+  if (fd < 0) throw std::runtime_error("cannot open " + path.string() + ": " + std::strerror(errno));
+  std::size_t done = 0;
+  while (done < bytes) {
+    const ssize_t n = ::read(fd, reinterpret_cast<char*>(samples.get()) + done, bytes - done);
+    if (n < 0 && errno == EINTR) continue;
+    if (n <= 0) break;
+    done += static_cast<std::size_t>(n);
+  }
+  char extra = 0;
+  const bool longer = done == bytes && ::read(fd, &extra, 1) > 0;
+  ::close(fd);
+  if (done != bytes || longer)
     throw std::runtime_error("cannot read " + path.string() + " as a " + std::to_string(edge) + "^3 float32 cube");
   return samples;
 }

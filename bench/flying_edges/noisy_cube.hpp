@@ -6,6 +6,7 @@
 
 #include <cstdint>
 #include <filesystem>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -31,8 +32,9 @@ std::vector<float> make_noisy_cube(const NoisyCubeOptions& options);
 // a file cannot be written.
 void write_raw_cube(const std::vector<float>& samples, std::int64_t edge, const std::filesystem::path& path);
 
-// Reads back the samples of a raw cube written by write_raw_cube (the timing of the other route
-// includes it). Throws std::runtime_error when the file is missing or of the wrong size.
-std::vector<float> read_raw_cube(const std::filesystem::path& path, std::int64_t edge);
+// Reads back the samples of a raw cube written by write_raw_cube, as the other route would: into
+// memory that is not zeroed first, with read(2) (the bench times it). Throws std::runtime_error when
+// the file is missing or of the wrong size.
+std::unique_ptr<float[]> read_raw_cube(const std::filesystem::path& path, std::int64_t edge);
 
 } // namespace geotandem::bench

@@ -161,6 +161,16 @@ double TriangleGrid::distance(const double p[3]) const {
             continue;
           }
           const auto n = static_cast<std::size_t>((i * dims_[1] + j) * dims_[2] + k);
+          if (start_[n] == start_[n + 1]) continue;
+          // A cell whose box is no nearer than the best triangle so far cannot hold a nearer one.
+          const std::int64_t ijk[3] = {i, j, k};
+          double gap2 = 0.0;
+          for (int a = 0; a < 3; ++a) {
+            const double lo_a = lo_[a] + static_cast<double>(ijk[a]) * cell_;
+            const double g = std::max({0.0, lo_a - p[a], p[a] - (lo_a + cell_)});
+            gap2 += g * g;
+          }
+          if (gap2 >= best * best) continue;
           for (std::uint32_t e = start_[n]; e < start_[n + 1]; ++e) {
             const std::uint32_t t = triangles_[e];
             if (stamp_[t] == query_) continue;

@@ -195,7 +195,8 @@ double TriangleGrid::distance(const double p[3]) const {
   }
 }
 
-Sampled sampled_distance(const Surface& from, const TriangleGrid& to, double spacing, const Box& inside) {
+Sampled sampled_distance(const Surface& from, const TriangleGrid& to, double spacing, const Box& inside,
+                         double beyond) {
   Sampled out;
   auto measure = [&](V p, double area) {
     const double q[3] = {p.x, p.y, p.z};
@@ -210,6 +211,7 @@ Sampled sampled_distance(const Surface& from, const TriangleGrid& to, double spa
       ++x->samples;
       x->weighted_sum += d * area;
       x->area += area;
+      if (d > beyond) x->area_beyond += area;
     }
   };
   std::vector<char> vertex_done(from.vertices(), 0);

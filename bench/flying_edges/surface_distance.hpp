@@ -24,6 +24,7 @@ struct Distance {
   double where[3] = {0, 0, 0}; // the sample it was found at
   double weighted_sum = 0.0;   // sum of distance x area over the samples of the mean
   double area = 0.0;           // the area those samples stand for
+  double area_beyond = 0.0;    // the part of it whose samples are farther than the `beyond` asked for
   std::size_t samples = 0;
   double mean() const { return area > 0.0 ? weighted_sum / area : 0.0; }
 };
@@ -69,7 +70,8 @@ struct Sampled {
 // for a sub-triangle's area) for the area-weighted mean. The maximum is a sampled one: it can miss
 // a peak by at most about the spacing times the slope of the distance (1). The samples in `inside`
 // are also counted apart (the bench leaves out the rims of the open surfaces on the cube's faces).
-Sampled sampled_distance(const Surface& from, const TriangleGrid& to, double spacing, const Box& inside);
+// `area_beyond` sums the area of the centroid samples farther than `beyond`.
+Sampled sampled_distance(const Surface& from, const TriangleGrid& to, double spacing, const Box& inside, double beyond);
 
 // 1 - mean over triangles of sqrt(lambda2 / lambda1), the eigenvalues of the triangle's inertia
 // matrix 1/3 sum (v - g)(v - g)^T (the seed's section 4): 0 when every triangle is equilateral.

@@ -8,7 +8,10 @@
 # release (or dev) build into .venv, a virtual environment that sees Debian's numpy, pandas,
 # xarray and matplotlib; nothing comes from PyPI.
 # Environment: GEOTANDEM_SKIP_APT=1 skips the package step (for machines that already have them);
-# GEOTANDEM_SKIP_PYTHON=1 skips installing the Python package into .venv (the build still makes it).
+# GEOTANDEM_SKIP_PYTHON=1 skips installing the Python package into .venv (the build still makes it);
+# GEOTANDEM_BENCH_DEPS=1 also installs the bench-only packages (bench_packages below: VTK and
+# meshoptimizer for bench_flying_edges_meshopt; VTK pulls in Java, Open MPI and Qt, so neither CI nor
+# a default setup installs them, and without them that one bench is left out of the build).
 set -euo pipefail
 here="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 cd "$here"
@@ -29,6 +32,8 @@ packages=(
   python3-nbconvert jupyter-nbconvert python3-ipykernel python3-venv python3-setuptools python3-wheel
   python3-fiona python3-gdal
 )
+bench_packages=(libvtk9-dev libmeshoptimizer-dev)
+[ "${GEOTANDEM_BENCH_DEPS:-0}" != 1 ] || packages+=("${bench_packages[@]}")
 
 as_root() {
   if [ "$(id -u)" -eq 0 ]; then "$@"; else sudo "$@"; fi

@@ -152,11 +152,26 @@ def _raw_layout_file(a: np.ndarray) -> Optional[str]:
     return str(a.filename)
 
 
+def _crs_text(crs: Any) -> str:
+    """crs= as the C++ side parses it: "" for none, else an EPSG code or a WKT."""
+    if crs is None:
+        return ""
+    if hasattr(crs, "to_wkt"):  # pyproj.CRS
+        return str(crs.to_wkt())
+    if isinstance(crs, int) and not isinstance(crs, bool):
+        return f"EPSG:{crs}"
+    if isinstance(crs, str):
+        if not crs.strip():
+            raise ValueError("crs= is empty: give an EPSG code ('EPSG:23031') or a WKT, or leave it out")
+        return crs
+    raise TypeError(f"crs= must be an EPSG code, a WKT or a pyproj.CRS, not {type(crs).__name__}")
+
+
 def extract(volume: Any, iso: float, *, out: PathLike, workers: Optional[int] = None, fresh: bool = False,
             nan: str = "error", no_data: Optional[float] = None, spacing: Optional[Sequence[float]] = None,
             origin: Optional[Sequence[float]] = None, z_unit: Optional[str] = None,
-            geometry: Optional[Mapping[str, Any]] = None, progress: _progress.ProgressArg = None,
-            **params: Any) -> Store:
+            geometry: Optional[Mapping[str, Any]] = None, crs: Any = None,
+            progress: _progress.ProgressArg = None, **params: Any) -> Store:
     # The docstring is completed below from the C++ declarations.
     given = {"iso": iso, **params}
     names = {p["name"] for p in _PARAMS}
@@ -165,13 +180,14 @@ def extract(volume: Any, iso: float, *, out: PathLike, workers: Optional[int] = 
             raise TypeError(f"extract() got an unexpected keyword argument '{name}' "
                             f"(the extraction's parameters: {', '.join(sorted(names))})")
     texts = {k: _param_text(v) for k, v in given.items()}
+    crs_text = _crs_text(crs)
     report, sink = _progress.resolve(progress)  # not `mode`: an extraction parameter has that name
     out = os.fspath(out)
     common = dict(params=texts, out=out, workers=workers, fresh=fresh, nan=nan, no_data=no_data,
                   worker_command=_native.worker_command(), mode=report, sink=sink)
     if isinstance(volume, (str, os.PathLike)):
         # A file, as `geotandem extract FILE` reads it.
-        result = _core.extract(None, os.fspath(volume), {}, "", 0, "", **common)
+        result = _core.extract(None, os.fspath(volume), {}, crs_text, "", 0, "", **common)
         return _finish(out, result)
     data = volume.data if hasattr(volume, "dims") and hasattr(volume, "coords") else volume
     g = geometry_of(volume, spacing=spacing, origin=origin, z_unit=z_unit, geometry=geometry)
@@ -192,7 +208,7 @@ def extract(volume: Any, iso: float, *, out: PathLike, workers: Optional[int] = 
             file, offset = str(data.filename), at
     source = _source(array, is_memmap)
     if not workers:
-        result = _core.extract(array, "", g, file, offset, source, **common)
+        result = _core.extract(array, "", g, crs_text, file, offset, source, **common)
         return _finish(out, result)
     # Worker processes cannot see this process's memory: they read a raw cube file. A memmap of a
     # raw-layout file is read where it is (a link to it and a sidecar beside the store); any other
@@ -210,7 +226,7 @@ def extract(volume: Any, iso: float, *, out: PathLike, workers: Optional[int] = 
             _core.write_raw_sidecar(str(cube), g)
         else:
             _core.write_raw(array, g, file, offset, str(cube), report, sink)
-        result = _core.extract(None, str(cube), {}, "", 0, source, **common)
+        result = _core.extract(None, str(cube), {}, crs_text, "", 0, source, **common)
     finally:
         for path in (cube, sidecar):
             if path.is_symlink() or path.exists():
@@ -274,6 +290,11 @@ def _extract_doc() -> str:
         "",
         "``nan``: missing samples (NaN, infinite, or ``no_data``) are an ``'error'`` (DataError) or",
         "``'fill'`` (outside). ``progress``: see :mod:`geotandem.progress`.",
+        "",
+        "``crs``: the coordinate reference system of the map coordinates (x, y), as ``--crs`` takes it:",
+        "an EPSG code (``'EPSG:23031'``), a WKT, or an object with ``to_wkt()`` (``pyproj.CRS``). It",
+        "replaces what a file says; without it a file's own CRS is kept and an array has none. The",
+        "store keeps it (``Store.crs``, ``components().attrs['crs']``) and every export says it.",
         "",
         "The extraction's parameters (declared by the C++ extract step; the command line and recipes",
         "take the same defaults):",

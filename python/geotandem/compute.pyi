@@ -16,7 +16,7 @@ def geometry_of(volume: Any = ..., *, shape: Optional[Sequence[int]] = ..., spac
 def extract(volume: Any, iso: float, *, out: PathLike, workers: Optional[int] = ..., fresh: bool = ...,
             nan: str = ..., no_data: Optional[float] = ..., spacing: Optional[Sequence[float]] = ...,
             origin: Optional[Sequence[float]] = ..., z_unit: Optional[str] = ...,
-            geometry: Optional[Mapping[str, Any]] = ..., progress: ProgressArg = ...,
+            geometry: Optional[Mapping[str, Any]] = ..., crs: Any = ..., progress: ProgressArg = ...,
             side: str = ..., max_error: float = ..., isotropy: float = ..., axis: str = ..., block_size: int = ...,
             mode: str = ..., extended_time_lag: bool = ...) -> Store: ...
 def run_workflow(recipe: PathLike, overrides: Optional[Mapping[str, Any]] = ..., *, fresh: bool = ...,

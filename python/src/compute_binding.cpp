@@ -20,6 +20,7 @@
 #include "geotandem/core/error.hpp"
 #include "geotandem/store/store.hpp"
 #include "geotandem/synth/synthetic.hpp"
+#include "geotandem/volume/crs.hpp"
 #include "geotandem/volume/fingerprint.hpp"
 #include "geotandem/volume/io.hpp"
 #include "geotandem/workflow/extract_step.hpp"
@@ -48,6 +49,12 @@ volume::Geometry geometry_of(const py::dict& d) {
   g.affine = {a["x0"].cast<double>(), a["xi"].cast<double>(), a["xj"].cast<double>(),
               a["y0"].cast<double>(), a["yi"].cast<double>(), a["yj"].cast<double>()};
   g.validate();
+  return g;
+}
+
+// `g` with `crs` when one is given.
+volume::Geometry geometry_with_crs(volume::Geometry g, const std::optional<volume::Crs>& crs) {
+  if (crs) g.crs = *crs;
   return g;
 }
 
@@ -123,6 +130,7 @@ struct ExtractCall {
   bool fresh = false;
   std::string nan = "error";
   std::optional<float> no_data;
+  std::string crs; // crs=: an EPSG code or a WKT replacing what the input says; empty: the input's
   std::vector<std::string> worker_command;
 };
 
@@ -136,14 +144,22 @@ py::dict extract_impl(const ExtractCall& c, ReportMode mode, py::object sink) {
   volume::OpenOptions open;
   open.nan_policy = volume::parse_nan_policy(c.nan);
   open.no_data = c.no_data;
+  if (!c.crs.empty()) {
+    try {
+      open.crs = volume::parse_crs(c.crs);
+    } catch (const InvalidArgument& e) {
+      throw InvalidArgument("crs=: " + e.message(), {}, e.hint());
+    }
+  }
   const bool below = options.side == tandem::Side::below;
   if (below) open.fill_value = std::numeric_limits<float>::max(); // filled samples stay outside
   run_cancellable(
       [&] {
         std::unique_ptr<volume::Volume> cube;
         if (c.cube_path.empty())
-          cube = volume::apply_nan_policy(
-              std::make_unique<ArrayVolume>(c.geometry, c.samples, c.source, c.file, c.file_offset), open);
+          cube = volume::apply_nan_policy(std::make_unique<ArrayVolume>(geometry_with_crs(c.geometry, open.crs),
+                                                                        c.samples, c.source, c.file, c.file_offset),
+                                          open);
         else
           cube = volume::open_volume(c.cube_path, open);
         workflow::require_cells(cube->geometry(), c.cube_path.empty() ? c.source : c.cube_path);
@@ -162,6 +178,7 @@ py::dict extract_impl(const ExtractCall& c, ReportMode mode, py::object sink) {
                            {"segy", {{"inline_byte", 189}, {"crossline_byte", 193}}}};
           if (c.no_data) d["no_data"] = *c.no_data;
           if (below) d["fill"] = "highest";
+          if (!c.crs.empty()) d["crs"] = c.crs; // the workers' volume says the same CRS
           s.volume_description = d.dump();
           s.worker_command = c.worker_command;
         }
@@ -184,13 +201,14 @@ py::dict extract_impl(const ExtractCall& c, ReportMode mode, py::object sink) {
   return d;
 }
 
-py::dict extract(py::object array, const std::string& cube_path, const py::dict& geometry, const std::string& file,
-                 std::uint64_t file_offset, const std::string& source, const std::map<std::string, std::string>& params,
-                 const std::string& out, std::optional<std::size_t> workers, bool fresh, const std::string& nan,
-                 std::optional<float> no_data, const std::vector<std::string>& worker_command, const std::string& mode,
-                 py::object sink) {
+py::dict extract(py::object array, const std::string& cube_path, const py::dict& geometry, const std::string& crs,
+                 const std::string& file, std::uint64_t file_offset, const std::string& source,
+                 const std::map<std::string, std::string>& params, const std::string& out,
+                 std::optional<std::size_t> workers, bool fresh, const std::string& nan, std::optional<float> no_data,
+                 const std::vector<std::string>& worker_command, const std::string& mode, py::object sink) {
   ExtractCall c;
   c.cube_path = cube_path;
+  c.crs = crs;
   if (cube_path.empty()) {
     c.geometry = geometry_of(geometry);
     c.samples = samples_of(array, c.geometry); // `array` stays referenced by this frame throughout
@@ -279,10 +297,10 @@ void synth(const std::string& out, const std::string& kind, const std::vector<st
 
 void bind_compute(py::module_& m) {
   m.def("extract_params", &extract_param_list, "The extract step's declared parameters (name, type, default, ...).");
-  m.def("extract", &extract, py::arg("array"), py::arg("cube_path"), py::arg("geometry"), py::arg("file"),
-        py::arg("file_offset"), py::arg("source"), py::arg("params"), py::arg("out"), py::arg("workers"),
-        py::arg("fresh"), py::arg("nan"), py::arg("no_data"), py::arg("worker_command"), py::arg("mode"),
-        py::arg("sink"));
+  m.def("extract", &extract, py::arg("array"), py::arg("cube_path"), py::arg("geometry"), py::arg("crs"),
+        py::arg("file"), py::arg("file_offset"), py::arg("source"), py::arg("params"), py::arg("out"),
+        py::arg("workers"), py::arg("fresh"), py::arg("nan"), py::arg("no_data"), py::arg("worker_command"),
+        py::arg("mode"), py::arg("sink"));
   m.def("write_raw", &write_raw, py::arg("array"), py::arg("geometry"), py::arg("file"), py::arg("file_offset"),
         py::arg("path"), py::arg("mode"), py::arg("sink"));
   m.def(

@@ -231,3 +231,69 @@ def test_the_gil_is_released_while_extracting(analytic_cube, scratch_root):
         spins += 1  # runs only while the extraction does not hold the GIL
     thread.join()
     assert spins > 100_000
+
+
+class _WktOnly:
+    """Stands for a pyproj.CRS (not installed here): crs= takes anything with to_wkt()."""
+
+    def __init__(self, wkt):
+        self.wkt = wkt
+
+    def to_wkt(self):
+        return self.wkt
+
+
+def test_crs_is_the_command_lines_and_changes_no_vertex(analytic_cube, scratch_root, reference):
+    samples, sidecar = read_raw(analytic_cube)
+    cli_out = scratch_root / "cli-crs"
+    cli("-q", "extract", analytic_cube, "--iso", "0.5", "--block-size", "32", "--workers", "0", "--crs", "EPSG:23031",
+        "--out", cli_out)
+    expected = geotandem.open_store(cli_out).crs
+    assert expected and expected["code"] == "EPSG:23031"
+
+    s = geotandem.extract(samples, 0.5, out=scratch_root / "py-crs-array", block_size=32,
+                          geometry=sidecar["geometry"], crs="EPSG:23031", progress=False)
+    assert s.crs == expected
+    assert s.components().attrs["crs"] == expected["wkt"]
+    assert_same(s, reference)  # the CRS labels the coordinates, it moves nothing
+
+    # A file read by two worker processes, the CRS given as an object with to_wkt(): the workers open
+    # the file with the same CRS as the manager.
+    f = geotandem.extract(analytic_cube, 0.5, out=scratch_root / "py-crs-file", block_size=32, workers=2,
+                          crs=_WktOnly(expected["wkt"]), progress=False)
+    assert f.last_result["workers"] == 2
+    assert f.crs["name"] == expected["name"] and f.crs["unit"] == expected["unit"]
+    assert_same(f, reference, exact=False)
+
+    # An integer is an EPSG code; without crs= an array has none.
+    assert geotandem.extract(samples, 0.5, out=scratch_root / "py-crs-int", block_size=32,
+                             geometry=sidecar["geometry"], crs=23031, progress=False).crs == expected
+    assert geotandem.extract(samples, 0.5, out=scratch_root / "py-crs-none", block_size=32,
+                             geometry=sidecar["geometry"], progress=False).crs is None
+
+
+def test_a_bad_crs_is_refused_before_any_work(analytic_cube, scratch_root):
+    samples, sidecar = read_raw(analytic_cube)
+    out = scratch_root / "py-crs-bad"
+    with pytest.raises(geotandem.errors.InvalidArgumentError, match="crs="):
+        geotandem.extract(samples, 0.5, out=out, geometry=sidecar["geometry"], crs="EPSG:999999", progress=False)
+    assert not out.exists()
+    with pytest.raises(TypeError, match="crs="):
+        geotandem.extract(samples, 0.5, out=out, geometry=sidecar["geometry"], crs=1.5, progress=False)
+    with pytest.raises(ValueError, match="crs= is empty"):
+        geotandem.extract(samples, 0.5, out=out, geometry=sidecar["geometry"], crs=" ", progress=False)
+
+
+@pytest.mark.parametrize("suffix", ["nc", "tif"])
+def test_a_gdal_format_is_read_in_this_process(scratch_root, suffix):
+    """netCDF and GeoTIFF go through geotandem's GDAL module, which the Python process loads after
+    holding the framework's libraries privately (extension modules are loaded RTLD_LOCAL): the same
+    components as the command line's."""
+    cube = scratch_root / f"gdal-cube.{suffix}"
+    cli("-q", "synth", "--shape", "48", "48", "40", "--out", cube)
+    expected = scratch_root / f"gdal-cli-{suffix}"
+    cli("-q", "extract", cube, "--iso", "0.5", "--workers", "0", "--out", expected)
+    s = geotandem.extract(cube, 0.5, out=scratch_root / f"gdal-py-{suffix}", workers=0, progress=False)
+    assert len(s.components()) > 0
+    assert keys_and_volumes(ls_json(expected)) == {int(k): v for k, v in zip(s.components()["key"],
+                                                                             s.components()["volume"])}

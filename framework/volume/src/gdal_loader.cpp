@@ -33,6 +33,13 @@ struct Loaded {
 Loaded load() {
   Loaded out;
   out.path = module_path();
+  // The module takes this library's symbols (and geotandem_core's) from the process. A process that
+  // loaded this library privately does not offer them: Python loads an extension module, and with
+  // it this library, with RTLD_LOCAL. Made global here (RTLD_NOLOAD: it is loaded already), this
+  // library and its dependencies are offered to the module. Never closed, as the module.
+  Dl_info self{};
+  if (::dladdr(reinterpret_cast<const void*>(&module_path), &self) != 0 && self.dli_fname)
+    (void)::dlopen(self.dli_fname, RTLD_NOW | RTLD_NOLOAD | RTLD_GLOBAL);
   ::dlerror();
   // Never closed: volumes made by the module outlive any caller that could close it.
   void* handle = ::dlopen(out.path.c_str(), RTLD_NOW | RTLD_LOCAL);

@@ -30,7 +30,8 @@ struct LabelArgs {
 // The volume the run extracted from, kept alive with the registry whose plugins compute it, and
 // the input file the label cube follows (its format family, its SEG-Y headers).
 std::shared_ptr<const volume::Volume> field_of(const nlohmann::json& parameters, const LabelArgs& a, bool below,
-                                               Context& context, workflow::LabelLike& like) {
+                                               const volume::Crs& store_crs, Context& context,
+                                               workflow::LabelLike& like) {
   const nlohmann::json chain = parameters.value("chain", nlohmann::json::object());
   if (a.cube.empty() && chain.is_object() && chain.contains("steps")) {
     struct Held {
@@ -53,6 +54,9 @@ std::shared_ptr<const volume::Volume> field_of(const nlohmann::json& parameters,
   open.no_data = no_data_option(a.no_data);
   if (!open.no_data && parameters.contains("no_data")) open.no_data = parameters["no_data"].get<float>();
   open.variable = !a.variable.empty() ? a.variable : parameters.value("variable", "");
+  // The CRS the extraction used: the file's own, or the one `extract --crs` gave it (which the file
+  // does not say). The label cube carries it.
+  if (!store_crs.empty()) open.crs = store_crs;
   open.segy = a.segy;
   if (a.segy == volume::SegyOptions{} && parameters.contains("segy"))
     open.segy = volume::segy_options_from_json(parameters["segy"]);
@@ -113,7 +117,7 @@ void add_store_labels(CLI::App* parent, Context& context, Runner& run) {
           keys.push_back(row.key);
 
       workflow::LabelLike like;
-      auto field = field_of(parameters, *a, settings.below, context, like);
+      auto field = field_of(parameters, *a, settings.below, store.geometry().crs, context, like);
       if (!(field->geometry() == store.geometry()))
         throw InvalidArgument("the cube's geometry is not the store's", {field->source()},
                               "label the cube the store was extracted from");

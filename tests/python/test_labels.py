@@ -183,3 +183,20 @@ def test_netcdf_labels_read_by_gdal(scratch_root):
     # The input's coordinates: the same dimension variables, the same values.
     for dim in ("iline", "xline"):
         np.testing.assert_array_equal(got_group.OpenMDArray(dim).ReadAsArray(), group.OpenMDArray(dim).ReadAsArray())
+
+
+def test_netcdf_labels_carry_the_crs_extract_was_given(scratch_root):
+    """A file that says no CRS, extracted with --crs: the label cube is the store's (the cube
+    reopened with the store's CRS, not refused as another grid) and says that CRS, read by GDAL."""
+    osr = pytest.importorskip("osgeo.osr")
+    cube = scratch_root / "labels-crs-in.nc"
+    cli("synth", "--kind", "analytic", "--shape", "40", "40", "40", "--seed", "7", "--out", cube)
+    store = scratch_root / "labels-crs-store"
+    cli("-q", "extract", cube, "--iso", "0.5", "--workers", "0", "--crs", "EPSG:23031", "--out", store)
+    out = scratch_root / "labels-crs.nc"
+    cli("-q", "store", "labels", store, "--out", out)
+    got = gdal.OpenEx(str(out), gdal.OF_MULTIDIM_RASTER).GetRootGroup().OpenMDArray("body_id")
+    srs = osr.SpatialReference()
+    assert srs.ImportFromWkt(got.GetAttribute("geotandem_crs").ReadAsString()) == 0
+    assert srs.GetAuthorityName(None) == "EPSG" and srs.GetAuthorityCode(None) == "23031"
+    assert int(got.ReadAsArray().max()) > 0

@@ -8,6 +8,7 @@
 #include <set>
 #include <thread>
 
+#include "batch_extract.hpp"
 #include "commit_queue.hpp"
 #include "component_committer.hpp"
 #include "finished_blocks.hpp"

@@ -40,7 +40,10 @@ void Manager::Impl::decide(Peer& p) {
     report.redone_leaves += n;
   }
   Message m = detail::task_message(d, tree);
-  if (d.kind == TaskKind::extract) m.lease.attempt = ++attempts[d.leaf];
+  if (d.kind == TaskKind::extract) {
+    m.lease.attempt = ++attempts[d.leaf];
+    if (d.finished > 0) m.bytes = detail::encode_runs(detail::finished_runs(tree, schedule, d.leaf));
+  }
   const bool busy = d.kind != TaskKind::wait && (d.kind != TaskKind::finished || d.final);
   if (busy) {
     m.lease.task = next_task++;
@@ -92,7 +95,7 @@ void Manager::Impl::task_done(Peer& p, const Message& m) {
   const double s = static_cast<double>(m.box[5]) / 1e6;
   {
     std::uint64_t leaves = 1;
-    if (p.task->kind == TaskKind::extract) leaves = schedule.leaves_under(p.task->leaf);
+    if (p.task->kind == TaskKind::extract) leaves = schedule.leaves_under(p.task->leaf) - p.task->finished;
     if (p.task->kind == TaskKind::merge) leaves = schedule.transfer_leaves(p.task->transfer);
     if (p.task->kind == TaskKind::finished) leaves = schedule.leaves_held(p.id);
     // box[5]: microseconds (0 from a worker that does not send them: the milliseconds then).
@@ -103,7 +106,7 @@ void Manager::Impl::task_done(Peer& p, const Message& m) {
   report.worker_peak_rss_kb = std::max(report.worker_peak_rss_kb, m.box[0]);
   switch (p.task->kind) {
   case TaskKind::extract: {
-    const std::size_t n = schedule.leaves_under(p.task->leaf);
+    const std::size_t n = schedule.leaves_under(p.task->leaf) - p.task->finished; // extracted
     report.extract += n, report.seconds_extract += s;
     ++report.extract_tasks;
     extracted_leaves += n;

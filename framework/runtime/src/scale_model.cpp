@@ -89,13 +89,20 @@ ScaleModelCalibration calibrate(const TaskLogRun& run) {
       cpu_wall += s;
     }
     if (t.kind == "EXTRACT" && t.leaf >= 0 && static_cast<std::size_t>(t.leaf) < tree.size()) {
-      // A batch: its node's leaves share its time evenly (they include the merges inside it).
+      // A batch: its node's leaves share its time evenly (they include the merges inside it). A
+      // batch may span leaves finished before (Schedule::set_batch; the log counts the leaves it
+      // extracted): when the leaves not timed yet are as many, they are the ones it extracted.
       const NodeId end = subtree_end(tree, static_cast<NodeId>(t.leaf));
-      std::size_t k = 0;
+      std::size_t k = 0, untimed = 0;
       for (NodeId n = static_cast<NodeId>(t.leaf); n < end; ++n)
-        k += tree.node(n).is_leaf() ? 1 : 0;
+        if (tree.node(n).is_leaf()) {
+          ++k;
+          untimed += std::isnan(c.extract[static_cast<std::size_t>(n)]) ? 1 : 0;
+        }
+      const bool only_fresh = untimed > 0 && untimed < k && untimed == t.leaves;
+      if (only_fresh) k = untimed;
       for (NodeId n = static_cast<NodeId>(t.leaf); n < end; ++n) {
-        if (!tree.node(n).is_leaf()) continue;
+        if (!tree.node(n).is_leaf() || (only_fresh && !std::isnan(c.extract[static_cast<std::size_t>(n)]))) continue;
         c.extract[static_cast<std::size_t>(n)] = s / static_cast<double>(k);
         c.solid[static_cast<std::size_t>(n)] = run.empties && (t.empty & 2) != 0 ? 0 : 1;
       }
@@ -259,12 +266,12 @@ ScalePrediction predict(const ScaleModelCalibration& c, const tandem::BlockTree&
         ++out.extract;
         double s = 0;
         for (NodeId n = d.leaf, end = subtree_end(tree, d.leaf); n < end; ++n)
-          if (tree.node(n).is_leaf()) {
+          if (tree.node(n).is_leaf() && !schedule.finished(n)) { // a batch's finished leaves are skipped
             s += extract[static_cast<std::size_t>(n)];
             solid_held[it.w] += solid[static_cast<std::size_t>(n)] ? 1 : 0;
           }
         leaf_seconds += s;
-        leaves_done += schedule.leaves_under(d.leaf);
+        leaves_done += schedule.leaves_under(d.leaf) - d.finished;
         busy = s * slow + c.overhead_extract;
         last_extract_end = std::max(last_extract_end, t + busy);
         task_bytes[it.w] = 0;

@@ -13,6 +13,7 @@
 #include <thread>
 #include <utility>
 
+#include "batch_extract.hpp"
 #include "geotandem/core/error.hpp"
 #include "geotandem/runtime/launcher.hpp"
 #include "geotandem/runtime/manager.hpp"
@@ -242,13 +243,11 @@ private:
     const auto start = Clock::now();
     const volume::Box cells{{m.box[0], m.box[1], m.box[2]}, {m.box[3], m.box[4], m.box[5]}};
     piece_empty_ = false;
-    std::unique_ptr<tandem::WorkingSurface> piece;
     const bool brute = settings_.extraction.mode == tandem::ExtractMode::brute;
     const std::int64_t leaf = tandem::leaf_size(settings_.extraction, volume_->geometry().shape);
-    if (cells.size(0) > leaf || cells.size(1) > leaf || cells.size(2) > leaf) // a batch: a subtree's leaves
-      piece = tandem::extract_subtree(*volume_, cells, leaf, options_tandem_, &*sink_, brute);
-    else
-      tandem::extract_block(*volume_, cells, options_tandem_, &*sink_, &piece, brute);
+    // A leaf, or a batch: a subtree's leaves but the finished ones the bytes name (batch_extract.hpp).
+    std::unique_ptr<tandem::WorkingSurface> piece =
+        detail::extract_batch(*volume_, cells, leaf, detail::decode_runs(m.bytes), options_tandem_, &*sink_, brute);
     piece_empty_ = !piece || piece->component_count() == 0;
     absorb(std::move(piece));
     report(m, start);
@@ -256,6 +255,7 @@ private:
   }
 
   void absorb(std::unique_ptr<tandem::WorkingSurface> piece) {
+    if (!piece) return; // every leaf of the batch was finished
     if (!surface_)
       surface_ = std::move(piece);
     else

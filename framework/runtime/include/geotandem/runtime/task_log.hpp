@@ -6,13 +6,14 @@
 //   worker kind leaf leaves start end worker_ms bytes rows empty cpu_ms
 // worker: the worker's token; kind: EXTRACT, SEND, MERGE or FINISHED (the final pass); leaf: the
 // extracted leaf's node id (-1 for other kinds); leaves: the leaves the task concerns (1 for an
-// EXTRACT, those of the surface sent or merged, those of the whole surface for FINISHED); start,
+// EXTRACT of one leaf, those of the surface sent or merged, those of the whole surface for FINISHED); start,
 // end: seconds since the run started when the manager sent the task and when its result arrived;
 // worker_ms: the task's time as the worker measured it (SEND: end - start); bytes: the partial
 // surface sent or merged (0 otherwise); rows: index rows the worker committed during the task;
 // empty (EXTRACT, MERGE; absent from logs before it): 1 when the worker's surface was empty after
 // the task (it dropped it: no SEND or MERGE for those leaves), plus 2 when the EXTRACT's leaves left
-// nothing open by themselves. An EXTRACT of a batch has the batch's node as its leaf. cpu_ms (absent
+// nothing open by themselves. An EXTRACT of a batch has the batch's node as its leaf, and as leaves
+// those it extracted (not the finished ones it spanned and skipped). cpu_ms (absent
 // before it; -1 for SEND): the worker process's CPU time during the task (user + system).
 // Lines starting with '#' describe the run: "# cube LO0 LO1 LO2 HI0 HI1 HI2 leaf_size N [batch B
 // cores C]" first (B: the most leaves an EXTRACT could carry; C: the host's processors),

@@ -25,7 +25,7 @@ void Manager::Impl::retire(Peer& p, const std::string& why) {
 
 void Manager::Impl::decide(Peer& p) {
   schedule.expect_joins(workers_to_come());
-  if (cpu_at_first_task < 0) cpu_at_first_task = cpu_seconds();
+  if (cpu_at_first_task < 0) cpu_at_first_task = task_cpu_seconds();
   schedule.set_batch(batch_leaves());
   const Decision d = schedule.next(p.id);
   if (d.kind == TaskKind::send && schedule.retiring(p.id)) {

@@ -103,9 +103,23 @@ TEST(BatchExtract, SkippedFinishedLeavesGiveTheComponentsOfTheInProcessRun) {
   ASSERT_EQ(sent, runs);
 
   Volumes after;
+  detail::BatchMerges merges;
   std::unique_ptr<tandem::WorkingSurface> surface =
-      detail::extract_batch(*c.volume, c.cells, 8, sent, c.options, &after, false);
+      detail::extract_batch(*c.volume, c.cells, 8, sent, c.options, &after, false, &merges);
   ASSERT_TRUE(surface);
+  // Its merges are reported for the task log (one fewer than the surfaces merged, each with a
+  // record that travelled), through the DONE's wire form.
+  std::size_t extracted = 0;
+  for (char f : finished)
+    extracted += f ? 0 : 1;
+  EXPECT_GT(merges.merges, 0u);
+  EXPECT_LT(merges.merges, extracted);
+  EXPECT_GE(merges.leaves, merges.merges);
+  EXPECT_GT(merges.bytes, 0u);
+  const detail::BatchMerges back = detail::decode_merges(detail::encode_merges(merges));
+  EXPECT_EQ(back.merges, merges.merges);
+  EXPECT_EQ(back.bytes, merges.bytes);
+  EXPECT_NEAR(back.merge_seconds, merges.merge_seconds, 1e-6);
   surface->set_region(tandem::Region::block(c.cells, c.cells)); // the final pass, as worker.cpp's
   surface->finish();
   for (const auto& [key, v] : before.by_key) {
@@ -128,6 +142,7 @@ TEST(BatchExtract, RunsOutsideTheBatchAreRefused) {
                InvalidArgument);
   EXPECT_TRUE(sink.by_key.empty());
   EXPECT_THROW(detail::decode_runs(std::vector<std::byte>(12)), ProtocolError);
+  EXPECT_THROW(detail::decode_merges(std::vector<std::byte>(12)), ProtocolError);
 }
 
 // The manager's side: the runs name exactly the finished leaves of the batch's subtree, by their

@@ -108,7 +108,8 @@ struct Manager::Impl {
     return socket.send(token, encode(m));
   }
   // The task log's line for the peer's task that just ended (before the schedule forgets it).
-  void log_task(const Peer& p, std::uint64_t leaves, double worker_ms, unsigned empty = 0, double cpu_ms = -1.0) {
+  void log_task(const Peer& p, std::uint64_t leaves, double worker_ms, unsigned empty = 0, double cpu_ms = -1.0,
+                const detail::BatchMerges& merges = {}) {
     const double end = since(start);
     const double begun = std::chrono::duration<double>(p.task_start - start).count();
     task_log.add({.worker = p.token,
@@ -121,7 +122,13 @@ struct Manager::Impl {
                   .bytes = p.task_bytes,
                   .rows = p.task_rows,
                   .empty = empty,
-                  .cpu_ms = cpu_ms});
+                  .cpu_ms = cpu_ms,
+                  .merges = merges.merges,
+                  .merge_leaves = merges.leaves,
+                  .merge_bytes = merges.bytes,
+                  .wire_ms = 1000.0 * merges.wire_seconds,
+                  .merge_ms = 1000.0 * merges.merge_seconds,
+                  .absorb_ms = 1000.0 * merges.absorb_seconds});
   }
 
   void drop(const std::string& why) {
@@ -201,6 +208,7 @@ struct Manager::Impl {
   }
   static bool final_task(const Peer& p) { return p.task && p.task->kind == TaskKind::finished; }
 
+  detail::BatchMerges batch_merges(const Peer& p, const Message& m);
   void task_done(Peer& p, const Message& m);
   void handle(const std::string& token, std::span<const std::byte> frame);
   void heartbeats();

@@ -90,6 +90,17 @@ void Manager::Impl::depart(const std::string& token) {
   peers.erase(it);
 }
 
+// The merges inside an EXTRACT's batch, from its DONE (for the task log only: a damaged figure is
+// left out, the run goes on).
+detail::BatchMerges Manager::Impl::batch_merges(const Peer& p, const Message& m) {
+  try {
+    return detail::decode_merges(m.bytes);
+  } catch (const ProtocolError& e) {
+    log.warning("worker " + p.token + ": " + e.what() + "; the task log leaves its batch's merges out");
+    return {};
+  }
+}
+
 void Manager::Impl::task_done(Peer& p, const Message& m) {
   // The task's wall time as the worker measured it (box[5], microseconds); number is its CPU time.
   const double s = static_cast<double>(m.box[5]) / 1e6;
@@ -100,8 +111,9 @@ void Manager::Impl::task_done(Peer& p, const Message& m) {
     if (p.task->kind == TaskKind::finished) leaves = schedule.leaves_held(p.id);
     // box[5]: microseconds (0 from a worker that does not send them: the milliseconds then).
     const bool piece_task = p.task->kind == TaskKind::extract || p.task->kind == TaskKind::merge;
+    const detail::BatchMerges merges = p.task->kind == TaskKind::extract ? batch_merges(p, m) : detail::BatchMerges{};
     log_task(p, leaves, static_cast<double>(m.box[5]) / 1000.0, piece_task ? static_cast<unsigned>(m.box[1] & 3) : 0u,
-             static_cast<double>(m.number) / 1000.0);
+             static_cast<double>(m.number) / 1000.0, merges);
   }
   report.worker_peak_rss_kb = std::max(report.worker_peak_rss_kb, m.box[0]);
   switch (p.task->kind) {

@@ -28,7 +28,8 @@ namespace geotandem::runtime {
 // 3: RETIRE (a worker near its walltime hands back its surface). 4: SETUP carries the extraction
 // options as one object in their own codec (tandem::to_json), block_size 0 included.
 // 5: COMMIT entries end with the samples each component encloses (issue 54). 6: an EXTRACT's bytes
-// name the finished leaves of its batch, which the worker skips (issue 55).
+// name the finished leaves of its batch, which the worker skips, and its DONE's bytes the merges
+// inside the batch (issue 55).
 inline constexpr std::uint16_t kProtocolVersion = 6;
 inline constexpr std::size_t kHeaderSize = 16;
 // Largest message either side accepts. Also set as ZMQ_MAXMSGSIZE on both sockets.
@@ -48,7 +49,8 @@ enum class MessageKind : std::uint8_t {
                      // surface is empty after it (it dropped it), bit 1: the EXTRACT's leaves left
                      // nothing open by themselves; after the final FINISHED,
                      // box[2], box[3] = marching-cubes triangles and collapses of the whole surface;
-                     // box[5] = the task's microseconds (0 from an older worker; for the task log)
+                     // box[5] = the task's microseconds (0 from an older worker; for the task log); bytes
+                     // (EXTRACT): the merges inside its batch (batch_extract.hpp)
   surface = 4,       // lease, number = total bytes, box[0] = XXH64 of them: the end of the worker's surface for
                      // its SEND (sent before as surface_chunk; relayed by the manager)
   commit = 5,        // lease, entries: components written (and synced) to the worker's shard

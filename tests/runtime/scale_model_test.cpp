@@ -47,11 +47,19 @@ TEST(ScaleModel, ReplaysRecordedRunsAndPrintsItsMisses) {
     EXPECT_EQ(c.cores, std::thread::hardware_concurrency()) << "the log records the host's processors";
     const double p1 = runtime::predict(c, tree, 1, c.cores).wall, p2 = runtime::predict(c, tree, 2, c.cores).wall;
     // Any log prices merges: a 1-worker run has no SEND or MERGE, but its task log records the
-    // merges inside its batches and of each batch into its worker's surface (issue 55).
+    // merges of each EXTRACT's surface into its worker's, and those inside its batches, which size
+    // surfaces (issue 55; under a sanitizer a leaf is too slow to batch: no batch merges then).
     EXPECT_GT(c.merge_fixed + c.merge_per_byte, 0.0) << from << ": no price for a MERGE";
-    EXPECT_GT(c.bytes_k, 0.0) << from << ": no size for a partial surface";
+    bool batches = false;
+    for (const runtime::TaskRecord& t : runs.back().tasks)
+      batches = batches || (t.kind == "EXTRACT" && t.leaves > 1);
+    if (batches || from == "w2") {
+      EXPECT_GT(c.bytes_k, 0.0) << from << ": no size for a partial surface";
+    }
     if (from == "w1") {
-      EXPECT_GT(c.batch_merges, 0u) << "the 1-worker log records no merge inside its batches";
+      if (batches) {
+        EXPECT_GT(c.batch_merges, 0u) << "the 1-worker log records no merge inside its batches";
+      }
       const runtime::ScalePrediction replay2 = runtime::predict(c, tree, 2, c.cores);
       EXPECT_GT(replay2.merge, 0u);
       EXPECT_GT(replay2.work, runtime::predict(c, tree, 1, c.cores).work) << "2 workers' merges cost nothing";

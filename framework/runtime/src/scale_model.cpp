@@ -159,11 +159,12 @@ ScaleModelCalibration calibrate(const TaskLogRun& run) {
     c.bytes_k = std::exp(log_k);
     (void)a;
   }
-  // Without MERGEs to fit, the absorbs priced in the same bytes (the size law above), else the
-  // merges inside batches.
-  if (merges.size() < 2 && !absorbs.empty() && c.bytes_k > 0) {
+  // Without MERGEs to fit, the absorbs priced in the same bytes (the size law above; without one, a
+  // log of single-leaf EXTRACTs and no SEND, at their mean: a fixed price), else the merges inside
+  // batches.
+  if (merges.size() < 2 && !absorbs.empty()) {
     for (const auto& [leaves, seconds] : absorbs)
-      merges.emplace_back(c.bytes_k * std::pow(leaves, c.bytes_p), seconds);
+      merges.emplace_back(c.bytes_k > 0 ? c.bytes_k * std::pow(leaves, c.bytes_p) : 0.0, seconds);
   } else if (merges.size() < 2) {
     merges.insert(merges.end(), batch_merges.begin(), batch_merges.end());
   }

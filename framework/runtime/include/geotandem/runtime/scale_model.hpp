@@ -12,9 +12,11 @@
 //   SENDs (bytes = k leaves^p, p within [1/2, 1], 2/3 when the SENDs cover one size); a MERGE's and a SEND's time are
 //   linear in those bytes, fitted on the recorded ones; the final pass takes its recorded time, scaled
 //   with the bytes of the whole cube's surface on another cube;
-//   a log with fewer than two SENDs or MERGEs (a 1-worker run) fits them on the merges inside its
-//   batches instead (the records' leaves and bytes, the time to merge them and to serialise them),
-//   and a MERGE's overhead is then an EXTRACT's;
+//   a log with fewer than two SENDs or MERGEs (a 1-worker run) fits them on what its EXTRACTs record
+//   instead: the surface sizes and the SEND's time on the merges inside its batches (the records'
+//   leaves and bytes, the time to serialise them), the MERGE's time on the merges of each EXTRACT's
+//   surface into its worker's (a merge into a large surface, as a MERGE is; at their mean when no
+//   batch merged anything, as with leaves too slow to batch), and a MERGE's overhead is an EXTRACT's;
 // - the manager spends the recorded CPU per message (its CPU but its index writer's, over its messages) on each of
 //   the simulated ones: ASK, the task, DONE and COMMIT per task, chunks and credits per MiB of a
 //   surface both ways; the index writer its recorded busy time per leaf extracted;

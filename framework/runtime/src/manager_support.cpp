@@ -4,7 +4,6 @@
 #include <sys/resource.h>
 
 #include <cstdlib>
-#include <ctime>
 #include <random>
 
 namespace geotandem::runtime::detail {

@@ -48,7 +48,7 @@ const char* to_string(TaskKind kind);
 
 struct Decision {
   TaskKind kind = TaskKind::wait;
-  tandem::NodeId leaf = tandem::kNoNode; // extract: a leaf, or a node whose leaves are all extracted (a batch)
+  tandem::NodeId leaf = tandem::kNoNode; // extract: a leaf, or a node (a batch: its leaves but the finished ones)
   std::uint32_t finished = 0;            // extract: leaves of the batch finished already (the worker skips them)
   WorkerId target = 0;                   // send
   TransferId transfer = 0;               // send, merge

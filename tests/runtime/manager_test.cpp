@@ -2,6 +2,8 @@
 // to its socket while real worker processes extract, surfaces in small chunks, on disk and over
 // the size cap, workers dead past the restart limit. manager_trust_test.cpp: a task held forever,
 // a reconnecting worker, the run's key directory.
+#include <cstdlib>
+
 #include "manager_run.hpp"
 
 namespace geotandem::runtime {
@@ -46,6 +48,12 @@ TEST(Manager, AWorkerJoiningLateTakesPart) {
   ManagerRun run("64 60 56");
   ASSERT_TRUE(run.extract_reference());
   run.options.workers = 1;
+  // One leaf per EXTRACT: with batches the first worker finished the 512 leaves before the late one
+  // said HELLO on an idle machine (on main too), and the late worker then waited for a manager gone.
+  setenv("GEOTANDEM_EXTRACT_BATCH", "1", 1);
+  struct Unset {
+    ~Unset() { unsetenv("GEOTANDEM_EXTRACT_BATCH"); }
+  } unset;
   LocalLauncher launcher;
   Logger log(std::cerr, LogLevel::info);
   Manager manager(run.options, *run.store, &launcher, log, run.progress, run.cancel);

@@ -43,7 +43,8 @@ TEST(WorkerCounts, OneToSixtyFourWorkersGiveTheSameComponentKeys) {
       }
     }
     // The task log: every leaf extracted once (an EXTRACT of a batch names its subtree's node, issue
-    // 55), and every worker seen.
+    // 55, and counts the leaves it extracted: a batch may span leaves finished before, which its
+    // worker skips), and every worker seen.
     const auto runs = runtime::read_task_log(out + "/task-log.tsv");
     ASSERT_EQ(runs.size(), 1u);
     std::set<std::int64_t> leaves;
@@ -59,8 +60,9 @@ TEST(WorkerCounts, OneToSixtyFourWorkersGiveTheSameComponentKeys) {
             leaves.insert(n);
             ++under;
           }
-        EXPECT_EQ(t.leaves, under) << "EXTRACT of node " << t.leaf;
-        extracted += under;
+        EXPECT_GE(t.leaves, 1u) << "EXTRACT of node " << t.leaf;
+        EXPECT_LE(t.leaves, under) << "EXTRACT of node " << t.leaf;
+        extracted += t.leaves;
       }
       seen.insert(t.worker);
       EXPECT_LE(t.start, t.end);

@@ -1,6 +1,8 @@
 // The manager's index writes on their own thread (commit_queue.hpp).
 #include "commit_queue.hpp"
 
+#include <ctime>
+
 #include <iterator>
 #include <utility>
 
@@ -56,6 +58,21 @@ double CommitQueue::busy_seconds() {
   return busy_seconds_;
 }
 
+double CommitQueue::cpu_seconds() {
+  std::lock_guard lock(mutex_);
+  return cpu_seconds_;
+}
+
+namespace {
+
+double thread_cpu() {
+  timespec t{};
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
+  return static_cast<double>(t.tv_sec) + static_cast<double>(t.tv_nsec) / 1e9;
+}
+
+} // namespace
+
 // One transaction for all; when it is refused, batch by batch, so that a batch the store refuses
 // (a worker's bad entry) does not take the good ones queued before it along: those are committed,
 // the refused one's failure goes up, and nothing after it is done.
@@ -102,6 +119,7 @@ void CommitQueue::loop() {
     busy_ = true;
     lock.unlock();
     const auto began = std::chrono::steady_clock::now();
+    const double cpu_began = thread_cpu();
     std::exception_ptr failed;
     try {
       if (auto* entries = std::get_if<std::vector<store::IndexEntry>>(&work))
@@ -112,8 +130,10 @@ void CommitQueue::loop() {
       failed = std::current_exception();
     }
     const double spent = std::chrono::duration<double>(std::chrono::steady_clock::now() - began).count();
+    const double cpu = thread_cpu() - cpu_began;
     lock.lock();
     busy_seconds_ += spent;
+    cpu_seconds_ += cpu;
     busy_ = false;
     if (failed && !failure_) failure_ = failed;
     if (queue_.empty() || failure_) idle_.notify_all();

@@ -36,6 +36,8 @@ public:
   void drain();
   // The time the thread spent on work (commits and actions), so far.
   double busy_seconds();
+  // The CPU time the thread spent on it (user + system), so far.
+  double cpu_seconds();
 
 private:
   using Work = std::variant<std::vector<store::IndexEntry>, std::function<void()>>;
@@ -47,7 +49,7 @@ private:
   std::condition_variable wake_, idle_;
   std::deque<Work> queue_;
   bool busy_ = false, stop_ = false;
-  double busy_seconds_ = 0;
+  double busy_seconds_ = 0, cpu_seconds_ = 0;
   std::exception_ptr failure_;
   std::thread thread_; // last: starts once the members above exist
 };

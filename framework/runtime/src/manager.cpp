@@ -210,6 +210,7 @@ ManagerReport Manager::Impl::run() {
     totals.rows = rows_in;
     totals.commit_seconds = report.commit_seconds;
     totals.workers = report.workers;
+    totals.commit_cpu_seconds = commits.cpu_seconds();
     task_log.close(totals);
   }
   report.components = committer.added();

@@ -8,6 +8,7 @@
 #include <set>
 #include <thread>
 
+#include "batch_extract.hpp"
 #include "commit_queue.hpp"
 #include "component_committer.hpp"
 #include "finished_blocks.hpp"
@@ -107,7 +108,8 @@ struct Manager::Impl {
     return socket.send(token, encode(m));
   }
   // The task log's line for the peer's task that just ended (before the schedule forgets it).
-  void log_task(const Peer& p, std::uint64_t leaves, double worker_ms, unsigned empty = 0, double cpu_ms = -1.0) {
+  void log_task(const Peer& p, std::uint64_t leaves, double worker_ms, unsigned empty = 0, double cpu_ms = -1.0,
+                const detail::BatchMerges& merges = {}) {
     const double end = since(start);
     const double begun = std::chrono::duration<double>(p.task_start - start).count();
     task_log.add({.worker = p.token,
@@ -120,7 +122,13 @@ struct Manager::Impl {
                   .bytes = p.task_bytes,
                   .rows = p.task_rows,
                   .empty = empty,
-                  .cpu_ms = cpu_ms});
+                  .cpu_ms = cpu_ms,
+                  .merges = merges.merges,
+                  .merge_leaves = merges.leaves,
+                  .merge_bytes = merges.bytes,
+                  .wire_ms = 1000.0 * merges.wire_seconds,
+                  .merge_ms = 1000.0 * merges.merge_seconds,
+                  .absorb_ms = 1000.0 * merges.absorb_seconds});
   }
 
   void drop(const std::string& why) {
@@ -161,15 +169,22 @@ struct Manager::Impl {
   // Small leaves in batches (issue 55; extract_batch() in schedule.hpp). GEOTANDEM_EXTRACT_BATCH
   // caps the leaves per EXTRACT (1: one leaf per EXTRACT, the seed's algorithm).
   double extracted_seconds = 0;  // the workers' time for the leaves extracted so far
-  double cpu_at_first_task = -1; // the manager's CPU time at its first decision
+  double cpu_at_first_task = -1; // task_cpu_seconds() at the manager's first decision
   std::uint64_t extracted_leaves = 0;
   std::size_t batch_cap = detail::extract_batch_cap();
-  std::size_t batch_leaves() const {
+  // The manager's CPU time but its index writer's.
+  double task_cpu_seconds() { return cpu_seconds() - commits.cpu_seconds(); }
+  std::size_t batch_leaves() {
     const double per_leaf = extracted_leaves ? extracted_seconds / static_cast<double>(extracted_leaves) : 0.0;
-    // The manager's CPU per task since its first decision, once a few tasks tell.
+    // The manager's CPU per task since its first decision, once a few tasks tell: what batches
+    // save (messages, decisions, relayed chunks, ZeroMQ's thread). Not the index writer's: its cost
+    // is per leaf whatever the batch, and counting it fed back (larger batches, fewer tasks, more
+    // CPU per task, larger batches): clean runs settled on batches of 128 leaves, resumed ones, whose
+    // writer had less to do, on 64, with 1.7x their EXTRACTs (analytic 256^3, leaves of 8, 2 workers).
     const std::uint64_t tasks = report.extract_tasks + report.merge + report.send;
-    const double per_task =
-        tasks >= 16 && cpu_at_first_task >= 0 ? (cpu_seconds() - cpu_at_first_task) / static_cast<double>(tasks) : 0.0;
+    const double per_task = tasks >= 16 && cpu_at_first_task >= 0
+                                ? (task_cpu_seconds() - cpu_at_first_task) / static_cast<double>(tasks)
+                                : 0.0;
     return extract_batch(per_leaf, schedule.unprocessed(), peers.size(), batch_cap,
                          batch_seconds(per_task, peers.size()));
   }
@@ -193,6 +208,7 @@ struct Manager::Impl {
   }
   static bool final_task(const Peer& p) { return p.task && p.task->kind == TaskKind::finished; }
 
+  detail::BatchMerges batch_merges(const Peer& p, const Message& m);
   void task_done(Peer& p, const Message& m);
   void handle(const std::string& token, std::span<const std::byte> frame);
   void heartbeats();

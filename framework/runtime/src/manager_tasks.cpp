@@ -25,7 +25,7 @@ void Manager::Impl::retire(Peer& p, const std::string& why) {
 
 void Manager::Impl::decide(Peer& p) {
   schedule.expect_joins(workers_to_come());
-  if (cpu_at_first_task < 0) cpu_at_first_task = cpu_seconds();
+  if (cpu_at_first_task < 0) cpu_at_first_task = task_cpu_seconds();
   schedule.set_batch(batch_leaves());
   const Decision d = schedule.next(p.id);
   if (d.kind == TaskKind::send && schedule.retiring(p.id)) {
@@ -40,7 +40,10 @@ void Manager::Impl::decide(Peer& p) {
     report.redone_leaves += n;
   }
   Message m = detail::task_message(d, tree);
-  if (d.kind == TaskKind::extract) m.lease.attempt = ++attempts[d.leaf];
+  if (d.kind == TaskKind::extract) {
+    m.lease.attempt = ++attempts[d.leaf];
+    if (d.finished > 0) m.bytes = detail::encode_runs(detail::finished_runs(tree, schedule, d.leaf));
+  }
   const bool busy = d.kind != TaskKind::wait && (d.kind != TaskKind::finished || d.final);
   if (busy) {
     m.lease.task = next_task++;
@@ -87,23 +90,35 @@ void Manager::Impl::depart(const std::string& token) {
   peers.erase(it);
 }
 
+// The merges inside an EXTRACT's batch, from its DONE (for the task log only: a damaged figure is
+// left out, the run goes on).
+detail::BatchMerges Manager::Impl::batch_merges(const Peer& p, const Message& m) {
+  try {
+    return detail::decode_merges(m.bytes);
+  } catch (const ProtocolError& e) {
+    log.warning("worker " + p.token + ": " + e.what() + "; the task log leaves its batch's merges out");
+    return {};
+  }
+}
+
 void Manager::Impl::task_done(Peer& p, const Message& m) {
   // The task's wall time as the worker measured it (box[5], microseconds); number is its CPU time.
   const double s = static_cast<double>(m.box[5]) / 1e6;
   {
     std::uint64_t leaves = 1;
-    if (p.task->kind == TaskKind::extract) leaves = schedule.leaves_under(p.task->leaf);
+    if (p.task->kind == TaskKind::extract) leaves = schedule.leaves_under(p.task->leaf) - p.task->finished;
     if (p.task->kind == TaskKind::merge) leaves = schedule.transfer_leaves(p.task->transfer);
     if (p.task->kind == TaskKind::finished) leaves = schedule.leaves_held(p.id);
     // box[5]: microseconds (0 from a worker that does not send them: the milliseconds then).
     const bool piece_task = p.task->kind == TaskKind::extract || p.task->kind == TaskKind::merge;
+    const detail::BatchMerges merges = p.task->kind == TaskKind::extract ? batch_merges(p, m) : detail::BatchMerges{};
     log_task(p, leaves, static_cast<double>(m.box[5]) / 1000.0, piece_task ? static_cast<unsigned>(m.box[1] & 3) : 0u,
-             static_cast<double>(m.number) / 1000.0);
+             static_cast<double>(m.number) / 1000.0, merges);
   }
   report.worker_peak_rss_kb = std::max(report.worker_peak_rss_kb, m.box[0]);
   switch (p.task->kind) {
   case TaskKind::extract: {
-    const std::size_t n = schedule.leaves_under(p.task->leaf);
+    const std::size_t n = schedule.leaves_under(p.task->leaf) - p.task->finished; // extracted
     report.extract += n, report.seconds_extract += s;
     ++report.extract_tasks;
     extracted_leaves += n;

@@ -70,6 +70,13 @@ ScaleModelCalibration calibrate(const TaskLogRun& run) {
   c.drops = run.empties;
   c.batch = run.batch;
   std::vector<std::pair<double, double>> merges, sends, sizes;
+  // The merges inside batches (the task log's columns), per EXTRACT: a record's mean bytes against
+  // the mean time to merge it and to serialise it, and its mean leaves against its bytes. They price
+  // a SEND and a MERGE when the log has none (a 1-worker run) or too few to fit.
+  std::vector<std::pair<double, double>> batch_merges, batch_wires, batch_sizes;
+  // An EXTRACT's surface merged into the one its worker held (absorb), by the leaves it extracted:
+  // a merge into a large surface, as a MERGE is (the merges inside a batch are into small ones).
+  std::vector<std::pair<double, double>> absorbs;
   std::map<std::string, double> first_task;
   double extract_sum = 0;
   std::size_t extracts = 0;
@@ -89,18 +96,33 @@ ScaleModelCalibration calibrate(const TaskLogRun& run) {
       cpu_wall += s;
     }
     if (t.kind == "EXTRACT" && t.leaf >= 0 && static_cast<std::size_t>(t.leaf) < tree.size()) {
-      // A batch: its node's leaves share its time evenly (they include the merges inside it).
+      // A batch: its node's leaves share its time evenly (they include the merges inside it). A
+      // batch may span leaves finished before (Schedule::set_batch; the log counts the leaves it
+      // extracted): when the leaves not timed yet are as many, they are the ones it extracted.
       const NodeId end = subtree_end(tree, static_cast<NodeId>(t.leaf));
-      std::size_t k = 0;
+      std::size_t k = 0, untimed = 0;
       for (NodeId n = static_cast<NodeId>(t.leaf); n < end; ++n)
-        k += tree.node(n).is_leaf() ? 1 : 0;
+        if (tree.node(n).is_leaf()) {
+          ++k;
+          untimed += std::isnan(c.extract[static_cast<std::size_t>(n)]) ? 1 : 0;
+        }
+      const bool only_fresh = untimed > 0 && untimed < k && untimed == t.leaves;
+      if (only_fresh) k = untimed;
       for (NodeId n = static_cast<NodeId>(t.leaf); n < end; ++n) {
-        if (!tree.node(n).is_leaf()) continue;
+        if (!tree.node(n).is_leaf() || (only_fresh && !std::isnan(c.extract[static_cast<std::size_t>(n)]))) continue;
         c.extract[static_cast<std::size_t>(n)] = s / static_cast<double>(k);
         c.solid[static_cast<std::size_t>(n)] = run.empties && (t.empty & 2) != 0 ? 0 : 1;
       }
       extract_sum += s;
       extracts += k;
+      if (t.absorb_ms > 0 && t.leaves > 0) absorbs.emplace_back(static_cast<double>(t.leaves), t.absorb_ms / 1000.0);
+      if (t.merges > 0 && t.merge_bytes > 0) {
+        const double n = static_cast<double>(t.merges), bytes = static_cast<double>(t.merge_bytes) / n;
+        batch_merges.emplace_back(bytes, t.merge_ms / 1000.0 / n);
+        batch_wires.emplace_back(bytes, t.wire_ms / 1000.0 / n);
+        if (t.merge_leaves > 0)
+          batch_sizes.emplace_back(std::log(static_cast<double>(t.merge_leaves) / n), std::log(bytes));
+      }
     } else if (t.kind == "MERGE") {
       merges.emplace_back(static_cast<double>(t.bytes), s);
     } else if (t.kind == "SEND") {
@@ -117,10 +139,13 @@ ScaleModelCalibration calibrate(const TaskLogRun& run) {
   // The mean, not the median: the replay must add up to what the log records, and the overheads are
   // skewed (a task whose result waits behind a SEND's chunks at the manager).
   c.overhead_extract = mean(over["EXTRACT"]);
-  c.overhead_merge = mean(over["MERGE"]);
+  // A log without MERGE (1 worker): a MERGE's messages there and back cost what an EXTRACT's do.
+  c.overhead_merge = over["MERGE"].empty() ? c.overhead_extract : mean(over["MERGE"]);
   c.overhead_finish = mean(over["FINISHED"]);
   c.gap = median(gaps);
-  std::tie(c.merge_fixed, c.merge_per_byte) = fit_line(merges);
+  if (sends.size() < 2 && !batch_wires.empty()) sends.insert(sends.end(), batch_wires.begin(), batch_wires.end());
+  if (sizes.size() < 2 && !batch_sizes.empty()) sizes.insert(sizes.end(), batch_sizes.begin(), batch_sizes.end());
+  c.batch_merges = batch_merges.size();
   std::tie(c.send_fixed, c.send_per_byte) = fit_line(sends);
   // A partial surface is the open front of its region: it grows like the region's faces, not its
   // volume. The exponent is fitted where the SENDs cover several sizes, kept within [1/2, 1], and
@@ -134,8 +159,20 @@ ScaleModelCalibration calibrate(const TaskLogRun& run) {
     c.bytes_k = std::exp(log_k);
     (void)a;
   }
+  // Without MERGEs to fit, the absorbs priced in the same bytes (the size law above; without one, a
+  // log of single-leaf EXTRACTs and no SEND, at their mean: a fixed price), else the merges inside
+  // batches.
+  if (merges.size() < 2 && !absorbs.empty()) {
+    for (const auto& [leaves, seconds] : absorbs)
+      merges.emplace_back(c.bytes_k > 0 ? c.bytes_k * std::pow(leaves, c.bytes_p) : 0.0, seconds);
+  } else if (merges.size() < 2) {
+    merges.insert(merges.end(), batch_merges.begin(), batch_merges.end());
+  }
+  std::tie(c.merge_fixed, c.merge_per_byte) = fit_line(merges);
   const double messages = static_cast<double>(run.messages_in + run.messages_out);
-  c.manager_per_message = messages > 0 ? run.manager_cpu_seconds / messages : 0;
+  // The manager's CPU but its index writer's (modelled apart, per leaf) spread over its messages.
+  const double writer_cpu = std::clamp(run.commit_cpu_seconds, 0.0, run.manager_cpu_seconds);
+  c.manager_per_message = messages > 0 ? (run.manager_cpu_seconds - writer_cpu) / messages : 0;
   // The index writer's whole busy time (rows, and the finished leaves it records) spread over the
   // leaves: per row it would make a run of few rows and many records look absurd.
   c.index_per_row = run.commit_seconds / static_cast<double>(extracts);
@@ -193,8 +230,12 @@ ScalePrediction predict(const ScaleModelCalibration& c, const tandem::BlockTree&
   const auto bytes_of = [&](std::size_t leaves) {
     return leaves == 0 ? 0.0 : c.bytes_k * std::pow(static_cast<double>(leaves), c.bytes_p);
   };
-  const double finish = c.finish_leaves > 0 && bytes_of(c.finish_leaves) > 0
-                            ? c.finish_seconds * bytes_of(tree.leaves().size()) / bytes_of(c.finish_leaves)
+  // The final pass finishes what is still open at the end, whatever the workers: its recorded time,
+  // scaled with the surface of the cube when the cube is not the recorded one (by the leaves the
+  // final worker holds it was 2000x too slow: it holds every leaf a batch spanned, and on a 1-worker
+  // log the size law, fitted on the merges inside batches, is linear).
+  const double finish = bytes_of(recorded.leaves().size()) > 0
+                            ? c.finish_seconds * bytes_of(tree.leaves().size()) / bytes_of(recorded.leaves().size())
                             : c.finish_seconds;
 
   // The processors (see scale_model.hpp): a worker's share of a core in the recorded run and in this
@@ -236,7 +277,7 @@ ScalePrediction predict(const ScaleModelCalibration& c, const tandem::BlockTree&
   };
   for (WorkerId w = 1; w <= workers; ++w) {
     schedule.join(w);
-    events.push({c.startup, seq++, w, Event::ask});
+    events.push({c.startup * slow, seq++, w, Event::ask}); // starting is CPU work too (exec, libraries, SETUP)
   }
   while (!events.empty()) {
     const Item it = events.top();
@@ -259,12 +300,12 @@ ScalePrediction predict(const ScaleModelCalibration& c, const tandem::BlockTree&
         ++out.extract;
         double s = 0;
         for (NodeId n = d.leaf, end = subtree_end(tree, d.leaf); n < end; ++n)
-          if (tree.node(n).is_leaf()) {
+          if (tree.node(n).is_leaf() && !schedule.finished(n)) { // a batch's finished leaves are skipped
             s += extract[static_cast<std::size_t>(n)];
             solid_held[it.w] += solid[static_cast<std::size_t>(n)] ? 1 : 0;
           }
         leaf_seconds += s;
-        leaves_done += schedule.leaves_under(d.leaf);
+        leaves_done += schedule.leaves_under(d.leaf) - d.finished;
         busy = s * slow + c.overhead_extract;
         last_extract_end = std::max(last_extract_end, t + busy);
         task_bytes[it.w] = 0;

@@ -46,7 +46,7 @@ std::size_t extract_batch(double leaf_seconds, std::size_t unprocessed, std::siz
 Schedule::Schedule(const tandem::BlockTree& tree)
     : tree_(tree), unprocessed_(tree.size(), 0), unprocessed_count_(tree.leaves().size()),
       open_(std::make_unique<detail::LeafCounts>(tree)), taken_(std::make_unique<detail::LeafCounts>(tree)),
-      owner_(tree.size(), 0), leaves_under_(tree.size(), 0) {
+      owner_(tree.size(), 0), leaves_under_(tree.size(), 0), finished_(tree.size(), 0) {
   for (NodeId leaf : tree.leaves())
     unprocessed_[static_cast<std::size_t>(leaf)] = 1;
   open_->count_every_leaf();
@@ -67,6 +67,8 @@ void Schedule::skip(NodeId leaf) {
     throw InvalidArgument("schedule: node " + std::to_string(leaf) + " is not a leaf of the block tree");
   if (!unprocessed_[static_cast<std::size_t>(leaf)]) return;
   ++skipped_;
+  ++loose_;
+  finished_[static_cast<std::size_t>(leaf)] = 1;
   unprocessed_[static_cast<std::size_t>(leaf)] = 0;
   --unprocessed_count_;
   open_->change(leaf, -1);
@@ -201,7 +203,7 @@ Decision Schedule::next_retiring(WorkerId id, Worker& w) {
     }
     // Nobody to take it, and it holds the whole surface: it finishes the run itself rather than
     // have everything re-done.
-    if (transfers_.empty() && w.held.size() == tree_.leaves().size() - finished_leaves())
+    if (transfers_.empty() && w.held.size() == tree_.leaves().size() - loose_)
       return assign(w, {.kind = TaskKind::finished, .final = true});
     if (awaited_ > 0) return assign(w, {.kind = TaskKind::wait}); // a successor is on its way
   }
@@ -232,51 +234,62 @@ Decision Schedule::next(WorkerId id) {
   if (expecting && leaf == kNoNode) return assign(w, {.kind = TaskKind::wait});
   if (leaf != kNoNode) {
     const NodeId node = batch_of(leaf);
-    take_leaves(id, w, node);
-    return assign(w, {.kind = TaskKind::extract, .leaf = node});
+    const std::uint32_t finished = take_leaves(id, w, node);
+    return assign(w, {.kind = TaskKind::extract, .leaf = node, .finished = finished});
   }
 
-  // Finished leaves (skipped by a resume, dropped with an empty surface) can leave gaps between the
-  // aggregates that the restricted adjacency never bridges (any_holder).
-  if (finished_leaves() > 0 && !w.held.empty() && unprocessed() == 0)
+  // Finished leaves that no batch took in (skipped by a resume, dropped with an empty surface) can
+  // leave gaps between the aggregates that the restricted adjacency never bridges (any_holder).
+  if (loose_ > 0 && !w.held.empty() && unprocessed() == 0)
     if (const std::optional<WorkerId> v = any_holder(id)) return send_to(id, w, *v);
 
   // Every leaf finished, none held: a resumed run with nothing left to do, or a run whose surfaces
   // all ended empty.
-  if (finished_leaves() == tree_.leaves().size()) {
+  if (loose_ == tree_.leaves().size()) {
     complete_ = true;
     return assign(w, {.kind = TaskKind::finished});
   }
   // 4. The whole surface in one worker, nothing on its way: it finishes the run.
-  if (transfers_.empty() && !w.held.empty() && w.held.size() == tree_.leaves().size() - finished_leaves())
+  if (transfers_.empty() && !w.held.empty() && w.held.size() == tree_.leaves().size() - loose_)
     return assign(w, {.kind = TaskKind::finished, .final = true});
   return assign(w, {.kind = TaskKind::wait});
 }
 
+// The subtree grows while no live worker claims a leaf of it: its leaves are unprocessed or
+// finished (skipped, dropped). Stopping at finished leaves instead cut a resumed run's tree into
+// smaller batches and, between them, more merges (1056 EXTRACTs and 559 merges against a clean
+// run's 592 and 350 on the analytic 256^3 cube, leaves of 8, 488 leaves finished before the kill).
 NodeId Schedule::batch_of(NodeId leaf) const {
   NodeId node = leaf;
   while (batch_ > 1 && node != tree_.root()) {
     const NodeId up = tree_.node(node).parent;
-    const std::uint32_t n = leaves_under_[static_cast<std::size_t>(up)];
-    if (n > batch_ || open_->total(up) != n) break;
+    if (leaves_under_[static_cast<std::size_t>(up)] > batch_ || taken_->total(up) != 0) break;
     node = up;
   }
   return node;
 }
 
-void Schedule::take_leaves(WorkerId id, Worker& w, NodeId node) {
+std::uint32_t Schedule::take_leaves(WorkerId id, Worker& w, NodeId node) {
+  std::uint32_t finished = 0;
   const NodeId end = subtree_end(tree_, node);
   for (NodeId leaf = node; leaf < end; ++leaf) {
     if (!tree_.node(leaf).is_leaf()) continue;
-    unprocessed_[static_cast<std::size_t>(leaf)] = 0;
-    --unprocessed_count_;
-    open_->change(leaf, -1);
+    if (finished_[static_cast<std::size_t>(leaf)]) {
+      // Claimed by nobody (batch_of): held from now on, but neither extracted nor recorded again.
+      --loose_;
+      ++finished;
+    } else {
+      unprocessed_[static_cast<std::size_t>(leaf)] = 0;
+      --unprocessed_count_;
+      open_->change(leaf, -1);
+      w.fresh.push_back(leaf);
+    }
     taken_->change(leaf, +1);
     w.held.add(leaf);
-    w.fresh.push_back(leaf);
     claim_node(id, leaf);
     ++w.claimed;
   }
+  return finished;
 }
 
 void Schedule::done(WorkerId id, bool emptied) {
@@ -298,9 +311,13 @@ void Schedule::done(WorkerId id, bool emptied) {
   // by nobody, and never sent, merged or re-done. What is on its way to it stays addressed to it.
   ++counts_.emptied;
   unclaim(id, w.held);
-  for (NodeId leaf : w.held.leaves())
+  for (NodeId leaf : w.held.leaves()) {
     taken_->change(leaf, -1);
-  dropped_ += w.held.size();
+    ++loose_;
+    if (finished_[static_cast<std::size_t>(leaf)]) continue; // taken in by a batch: finished before
+    finished_[static_cast<std::size_t>(leaf)] = 1;
+    ++dropped_;
+  }
   w.held.clear();
 }
 
@@ -319,6 +336,13 @@ bool Schedule::arrived(WorkerId sender, TransferId t) {
 
 void Schedule::release(const Aggregate& leaves, std::vector<NodeId>& out) {
   for (NodeId leaf : leaves.leaves()) {
+    if (finished_[static_cast<std::size_t>(leaf)]) { // a batch took it in: claimed by nobody again, not re-done
+      if (taken_->total(leaf) != 0) {
+        taken_->change(leaf, -1);
+        ++loose_;
+      }
+      continue;
+    }
     if (unprocessed_[static_cast<std::size_t>(leaf)]) continue;
     unprocessed_[static_cast<std::size_t>(leaf)] = 1;
     ++unprocessed_count_;

@@ -31,7 +31,8 @@ TaskLogWriter::TaskLogWriter(const std::filesystem::path& path, const volume::Bo
                static_cast<long long>(cube.lo[2]), static_cast<long long>(cube.hi[0]),
                static_cast<long long>(cube.hi[1]), static_cast<long long>(cube.hi[2]),
                static_cast<long long>(leaf_size), batch, cores);
-  std::fprintf(file_, "worker\tkind\tleaf\tleaves\tstart\tend\tworker_ms\tbytes\trows\tempty\tcpu_ms\n");
+  std::fprintf(file_, "worker\tkind\tleaf\tleaves\tstart\tend\tworker_ms\tbytes\trows\tempty\tcpu_ms\tmerges\t"
+                      "merge_leaves\tmerge_bytes\twire_ms\tmerge_ms\tabsorb_ms\n");
 }
 
 TaskLogWriter::~TaskLogWriter() {
@@ -40,19 +41,22 @@ TaskLogWriter::~TaskLogWriter() {
 
 void TaskLogWriter::add(const TaskRecord& t) {
   if (!file_) return;
-  std::fprintf(file_, "%s\t%s\t%lld\t%llu\t%.6f\t%.6f\t%.3f\t%llu\t%llu\t%u\t%.3f\n", t.worker.c_str(), t.kind.c_str(),
-               static_cast<long long>(t.leaf), static_cast<unsigned long long>(t.leaves), t.start, t.end, t.worker_ms,
-               static_cast<unsigned long long>(t.bytes), static_cast<unsigned long long>(t.rows), t.empty, t.cpu_ms);
+  std::fprintf(
+      file_, "%s\t%s\t%lld\t%llu\t%.6f\t%.6f\t%.3f\t%llu\t%llu\t%u\t%.3f\t%llu\t%llu\t%llu\t%.3f\t%.3f\t%.3f\n",
+      t.worker.c_str(), t.kind.c_str(), static_cast<long long>(t.leaf), static_cast<unsigned long long>(t.leaves),
+      t.start, t.end, t.worker_ms, static_cast<unsigned long long>(t.bytes), static_cast<unsigned long long>(t.rows),
+      t.empty, t.cpu_ms, static_cast<unsigned long long>(t.merges), static_cast<unsigned long long>(t.merge_leaves),
+      static_cast<unsigned long long>(t.merge_bytes), t.wire_ms, t.merge_ms, t.absorb_ms);
 }
 
 void TaskLogWriter::close(const TaskLogRun& r) {
   if (!file_) return;
   std::fprintf(file_,
                "# manager cpu_seconds %.6f wall_seconds %.6f messages_in %llu messages_out %llu rows %llu "
-               "commit_seconds %.6f workers %llu\n",
+               "commit_seconds %.6f workers %llu commit_cpu_seconds %.6f\n",
                r.manager_cpu_seconds, r.wall_seconds, static_cast<unsigned long long>(r.messages_in),
                static_cast<unsigned long long>(r.messages_out), static_cast<unsigned long long>(r.rows),
-               r.commit_seconds, static_cast<unsigned long long>(r.workers));
+               r.commit_seconds, static_cast<unsigned long long>(r.workers), r.commit_cpu_seconds);
   std::fflush(file_);
 }
 
@@ -109,18 +113,24 @@ std::vector<TaskLogRun> read_task_log(const std::filesystem::path& path) {
         if (key == "messages_out") r.messages_out = static_cast<std::uint64_t>(value);
         if (key == "rows") r.rows = static_cast<std::uint64_t>(value);
         if (key == "workers") r.workers = static_cast<std::uint64_t>(value);
+        if (key == "commit_cpu_seconds") r.commit_cpu_seconds = value;
       }
       continue;
     }
     if (line.rfind("worker\t", 0) == 0) {
-      if (!runs.empty()) runs.back().empties = line.find("\tempty") != std::string::npos;
+      if (!runs.empty()) {
+        runs.back().empties = line.find("\tempty") != std::string::npos;
+        runs.back().batch_merges = line.find("\tmerges") != std::string::npos;
+      }
       continue;
     }
     if (line[0] == '#') continue;
     if (runs.empty()) throw bad("a task before a cube line");
     TaskRecord t;
     f >> t.worker >> t.kind >> t.leaf >> t.leaves >> t.start >> t.end >> t.worker_ms >> t.bytes >> t.rows;
-    if (f.fail() || (runs.back().empties && !(f >> t.empty >> t.cpu_ms))) {
+    if (f.fail() || (runs.back().empties && !(f >> t.empty >> t.cpu_ms)) ||
+        (runs.back().batch_merges &&
+         !(f >> t.merges >> t.merge_leaves >> t.merge_bytes >> t.wire_ms >> t.merge_ms >> t.absorb_ms))) {
       cut = bad("a task line that does not read");
       continue;
     }

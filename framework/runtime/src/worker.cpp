@@ -13,6 +13,7 @@
 #include <thread>
 #include <utility>
 
+#include "batch_extract.hpp"
 #include "geotandem/core/error.hpp"
 #include "geotandem/runtime/launcher.hpp"
 #include "geotandem/runtime/manager.hpp"
@@ -227,6 +228,7 @@ private:
     d.box[3] = static_cast<std::int64_t>(totals_.collapses);
     // 4: the triangles this worker's surface holds after the task (the run's triangles held).
     d.box[4] = surface_ ? static_cast<std::int64_t>(surface_->triangle_count()) : 0;
+    d.bytes = batch_merges_; // an EXTRACT's merges inside its batch (batch_extract.hpp)
     if (final) {
       d.text = counters_to_json(totals_); // every counter of the whole surface
     } else if (empty && surface_) {
@@ -242,20 +244,25 @@ private:
     const auto start = Clock::now();
     const volume::Box cells{{m.box[0], m.box[1], m.box[2]}, {m.box[3], m.box[4], m.box[5]}};
     piece_empty_ = false;
-    std::unique_ptr<tandem::WorkingSurface> piece;
     const bool brute = settings_.extraction.mode == tandem::ExtractMode::brute;
     const std::int64_t leaf = tandem::leaf_size(settings_.extraction, volume_->geometry().shape);
-    if (cells.size(0) > leaf || cells.size(1) > leaf || cells.size(2) > leaf) // a batch: a subtree's leaves
-      piece = tandem::extract_subtree(*volume_, cells, leaf, options_tandem_, &*sink_, brute);
-    else
-      tandem::extract_block(*volume_, cells, options_tandem_, &*sink_, &piece, brute);
+    // A leaf, or a batch: a subtree's leaves but the finished ones the bytes name (batch_extract.hpp).
+    detail::BatchMerges merges;
+    std::unique_ptr<tandem::WorkingSurface> piece = detail::extract_batch(
+        *volume_, cells, leaf, detail::decode_runs(m.bytes), options_tandem_, &*sink_, brute, &merges);
     piece_empty_ = !piece || piece->component_count() == 0;
+    const auto absorbing = Clock::now();
+    const bool into = surface_ && piece;
     absorb(std::move(piece));
+    if (into) merges.absorb_seconds = std::chrono::duration<double>(Clock::now() - absorbing).count();
+    batch_merges_ = detail::encode_merges(merges);
     report(m, start);
     piece_empty_ = false;
+    batch_merges_.clear();
   }
 
   void absorb(std::unique_ptr<tandem::WorkingSurface> piece) {
+    if (!piece) return; // every leaf of the batch was finished
     if (!surface_)
       surface_ = std::move(piece);
     else
@@ -377,11 +384,12 @@ private:
   std::optional<store::ShardWriter> writer_;
   std::optional<ShardSink> sink_;
   std::unique_ptr<tandem::WorkingSurface> surface_;
-  Lease task_lease_;                 // of the task in progress (mid-task COMMITs carry it)
-  bool retiring_ = false;            // near its walltime: RETIRE sent
-  bool piece_empty_ = false;         // the EXTRACT in progress gave an empty piece
-  std::uint64_t task_cpu_start_ = 0; // this process's CPU microseconds when the task began
-  tandem::SimplifyCounters totals_;  // of the whole surface, once finished
+  Lease task_lease_;                    // of the task in progress (mid-task COMMITs carry it)
+  bool retiring_ = false;               // near its walltime: RETIRE sent
+  bool piece_empty_ = false;            // the EXTRACT in progress gave an empty piece
+  std::vector<std::byte> batch_merges_; // of the EXTRACT in progress (batch_extract.hpp)
+  std::uint64_t task_cpu_start_ = 0;    // this process's CPU microseconds when the task began
+  tandem::SimplifyCounters totals_;     // of the whole surface, once finished
 };
 
 } // namespace

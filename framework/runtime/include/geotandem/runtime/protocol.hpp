@@ -27,8 +27,10 @@ namespace geotandem::runtime {
 
 // 3: RETIRE (a worker near its walltime hands back its surface). 4: SETUP carries the extraction
 // options as one object in their own codec (tandem::to_json), block_size 0 included.
-// 5: COMMIT entries end with the samples each component encloses (issue 54).
-inline constexpr std::uint16_t kProtocolVersion = 5;
+// 5: COMMIT entries end with the samples each component encloses (issue 54). 6: an EXTRACT's bytes
+// name the finished leaves of its batch, which the worker skips, and its DONE's bytes the merges
+// inside the batch (issue 55).
+inline constexpr std::uint16_t kProtocolVersion = 6;
 inline constexpr std::size_t kHeaderSize = 16;
 // Largest message either side accepts. Also set as ZMQ_MAXMSGSIZE on both sockets.
 inline constexpr std::size_t kDefaultMaxMessage = std::size_t{1} << 30;
@@ -47,7 +49,8 @@ enum class MessageKind : std::uint8_t {
                      // surface is empty after it (it dropped it), bit 1: the EXTRACT's leaves left
                      // nothing open by themselves; after the final FINISHED,
                      // box[2], box[3] = marching-cubes triangles and collapses of the whole surface;
-                     // box[5] = the task's microseconds (0 from an older worker; for the task log)
+                     // box[5] = the task's microseconds (0 from an older worker; for the task log); bytes
+                     // (EXTRACT): the merges inside its batch (batch_extract.hpp)
   surface = 4,       // lease, number = total bytes, box[0] = XXH64 of them: the end of the worker's surface for
                      // its SEND (sent before as surface_chunk; relayed by the manager)
   commit = 5,        // lease, entries: components written (and synced) to the worker's shard
@@ -59,7 +62,8 @@ enum class MessageKind : std::uint8_t {
                      // hands its surface to another worker (SEND) and is then told FINISHED
   // manager -> worker
   setup = 16,          // text: the run's description (JSON: volume, options, store, shard)
-  extract = 17,        // lease, leaf
+  extract = 17,        // lease, number = node id, box = its cells, bytes = the finished leaves of the batch to
+                       // skip: (first, count) u32 pairs of leaf ordinals in tree order (batch_extract.hpp)
   send = 18,           // lease, target: hand your surface over (to the manager, for that worker)
   merge = 19,          // lease, number = total bytes, box[0] = XXH64: merge this surface (as merge_chunk) into yours
   wait = 20,           // number: milliseconds before asking again

@@ -10,11 +10,18 @@
 //   cube (the recorded leaf's time, scaled by the ratio of cells when the leaf sizes differ);
 // - a partial surface's bytes follow a power law in the leaves it covers, fitted on the recorded
 //   SENDs (bytes = k leaves^p, p within [1/2, 1], 2/3 when the SENDs cover one size); a MERGE's and a SEND's time are
-//   linear in those bytes, fitted on the recorded ones; the final pass scales with the bytes of the whole surface;
-// - the manager spends the recorded CPU per message (its total CPU over its messages) on each of
+//   linear in those bytes, fitted on the recorded ones; the final pass takes its recorded time, scaled
+//   with the bytes of the whole cube's surface on another cube;
+//   a log with fewer than two SENDs or MERGEs (a 1-worker run) fits them on what its EXTRACTs record
+//   instead: the surface sizes and the SEND's time on the merges inside its batches (the records'
+//   leaves and bytes, the time to serialise them), the MERGE's time on the merges of each EXTRACT's
+//   surface into its worker's (a merge into a large surface, as a MERGE is; at their mean when no
+//   batch merged anything, as with leaves too slow to batch), and a MERGE's overhead is an EXTRACT's;
+// - the manager spends the recorded CPU per message (its CPU but its index writer's, over its messages) on each of
 //   the simulated ones: ASK, the task, DONE and COMMIT per task, chunks and credits per MiB of a
 //   surface both ways; the index writer its recorded busy time per leaf extracted;
-// - workers start when the recorded ones did (the mean delay to their first task), and a WAIT
+// - workers start when the recorded ones did (the mean delay to their first task, scaled as a task's
+//   time is by the share of a core they get), and a WAIT
 //   lasts what the manager says (20 ms);
 // - processors: with cores = 0 every worker runs on its own core; with the host's cores, the
 //   workers, the manager and the recorded run's other load share them (cpu_share below);
@@ -53,6 +60,7 @@ struct ScaleModelCalibration {
   // start - the worker's time: messages there and back, the shard's sync before the COMMIT), by
   // kind, and the median gap between a worker's result and its next task (its ASK on the way).
   double overhead_extract = 0, overhead_merge = 0, overhead_finish = 0, gap = 0;
+  std::size_t batch_merges = 0; // EXTRACTs whose merges inside the batch the log records
   // The processors (issue 55): the host's cores (from the log; 0: not recorded), the share of a core
   // a worker got in its tasks (its CPU time over its wall time, 1 when not recorded), the manager's
   // share of a core (its CPU over the wall time), and the machine's other load in runnable

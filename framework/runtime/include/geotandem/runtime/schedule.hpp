@@ -48,7 +48,8 @@ const char* to_string(TaskKind kind);
 
 struct Decision {
   TaskKind kind = TaskKind::wait;
-  tandem::NodeId leaf = tandem::kNoNode; // extract: a leaf, or a node whose leaves are all extracted (a batch)
+  tandem::NodeId leaf = tandem::kNoNode; // extract: a leaf, or a node (a batch: its leaves but the finished ones)
+  std::uint32_t finished = 0;            // extract: leaves of the batch finished already (the worker skips them)
   WorkerId target = 0;                   // send
   TransferId transfer = 0;               // send, merge
   bool final = false;                    // finished: this worker holds the whole surface
@@ -89,9 +90,14 @@ public:
   // extracted. Only before the first decision. Throws InvalidArgument for a non-leaf.
   void skip(tandem::NodeId leaf);
   // Small leaves in batches (issue 55): an EXTRACT hands out the largest subtree, of at most
-  // `leaves` leaves, around the leaf it would have chosen, all of whose leaves are unprocessed (the
-  // worker extracts them in tree order and merges them bottom-up as one process does). 1 (the
-  // default): one leaf per EXTRACT, the seed's algorithm. May change between decisions.
+  // `leaves` leaves, around the leaf it would have chosen, none of whose leaves a worker claims:
+  // each is unprocessed or finished (skipped by a resume, dropped with an empty surface). The
+  // worker extracts the unprocessed ones in tree order and merges them bottom-up as one process
+  // does; it skips the finished ones (Decision::finished counts them, finished() tells which), whose
+  // surfaces are empty, and the batch's node joins its aggregate whole. So the few leaves a killed
+  // run finished do not cut a resumed run's tree into smaller batches and more merges: its batches
+  // and merges are those of a clean run. 1 (the default): one leaf per EXTRACT, the seed's
+  // algorithm. May change between decisions.
   void set_batch(std::size_t leaves) { batch_ = leaves < 1 ? 1 : leaves; }
 
   // Events. A worker id is joined once; events for unknown or departed workers throw std::logic_error
@@ -134,6 +140,8 @@ public:
   // task, these and the ones taken before are finished. O(leaves returned).
   std::vector<tandem::NodeId> take_unrecorded(WorkerId worker);
   std::size_t skipped() const { return skipped_; }
+  // True for a leaf finished by an earlier run or with an empty surface: never extracted again.
+  bool finished(tandem::NodeId leaf) const { return finished_.at(static_cast<std::size_t>(leaf)) != 0; }
   // The leaves under a node of the tree (1 for a leaf): those of an EXTRACT's batch.
   std::size_t leaves_under(tandem::NodeId node) const { return leaves_under_.at(static_cast<std::size_t>(node)); }
   // Leaves finished with an empty surface during this run (done(..., true)).
@@ -175,9 +183,8 @@ private:
   void release(const Aggregate& leaves, std::vector<tandem::NodeId>& out);
   // The node an EXTRACT hands out for `leaf` (see set_batch) and taking its leaves.
   tandem::NodeId batch_of(tandem::NodeId leaf) const;
-  void take_leaves(WorkerId id, Worker& w, tandem::NodeId node);
-  // Leaves finished before this run (skipped) or during it with an empty surface (dropped).
-  std::size_t finished_leaves() const { return skipped_ + dropped_; }
+  // Returns the finished leaves among them (held from now on, not extracted).
+  std::uint32_t take_leaves(WorkerId id, Worker& w, tandem::NodeId node);
   Decision assign(Worker& w, Decision d);
   // The claimed leaves (held or on their way) of each worker as maximal nodes, in owner_.
   void claim(WorkerId id, const Aggregate& leaves);
@@ -206,6 +213,11 @@ private:
   bool complete_ = false;
   std::size_t skipped_ = 0;
   std::size_t dropped_ = 0;
+  // Per node id: 1 for a leaf finished before this run (skipped) or during it with an empty surface
+  // (dropped); such a leaf is never extracted again. A finished leaf may be held again (a batch took
+  // it in): `loose_` counts those no live worker claims.
+  std::vector<char> finished_;
+  std::size_t loose_ = 0;
   std::size_t batch_ = 1;
   std::size_t awaited_ = 0;
   ScheduleCounts counts_;

@@ -190,8 +190,7 @@ void add_extract_command(CLI::App& app, Context& context, Runner& run) {
       }
       if (s.workers > 0) {
         s.volume_description =
-            describe_cube_file(a->cube, a->nan, open.no_data, a->variable, a->segy, a->crs, cube->reopen_hint(),
-                               below);
+            describe_cube_file(a->cube, a->nan, open.no_data, a->variable, a->segy, a->crs, cube->reopen_hint(), below);
         s.worker_command = worker_command(context);
       }
       s.record = {{"command", "geotandem extract"}, {"cube", a->cube}};

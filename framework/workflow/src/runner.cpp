@@ -311,10 +311,9 @@ private:
         {"store", recipe_.output.store},
         {"selection", selection_.empty() ? nlohmann::json(nullptr) : nlohmann::json(selection_)},
         {"recipe", recipe_.path}};
-    LabelOutput out =
-        write_label_cube(volumes_.result, labels, keys, label_like_of_input(chain_.input), path.string(),
-                         ours || settings_.fresh, description,
-                         "geotandem body labels (0 outside), table in .bodies.csv", progress.get(), cancel_);
+    LabelOutput out = write_label_cube(
+        volumes_.result, labels, keys, label_like_of_input(chain_.input), path.string(), ours || settings_.fresh,
+        description, "geotandem body labels (0 outside), table in .bodies.csv", progress.get(), cancel_);
     state_.set("labels",
                {{"fingerprint", print_}, {"done", true}, {"path", path.string()}, {"bodies", out.bodies.size()}});
     log_.info("labels: " + std::to_string(out.bodies.size()) + " bodies in " + path.string() + " (table " +

@@ -71,7 +71,7 @@ std::vector<std::byte> encode_merges(const BatchMerges& m) {
 BatchMerges decode_merges(std::span<const std::byte> bytes) {
   BatchMerges m;
   if (bytes.empty()) return m;
-  if (bytes.size() != 6 * 8)
+  if (bytes.size() != 6 * sizeof(std::uint64_t))
     throw ProtocolError("DONE of an EXTRACT: " + std::to_string(bytes.size()) +
                         " bytes of batch merges, not the six u64 fields");
   ByteReader r(bytes);

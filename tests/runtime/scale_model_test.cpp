@@ -81,6 +81,24 @@ TEST(ScaleModel, ReplaysRecordedRunsAndPrintsItsMisses) {
   // infers from each run, moves between two runs seconds apart on this shared machine.
 }
 
+// What a manager killed mid-run had logged more than a second before is in the file: the writer
+// flushes its buffer once a second, not only at the end of the run.
+TEST(TaskLog, LinesReachTheFileWithinASecondWhileTheRunGoesOn) {
+  ScratchDir dir;
+  const std::string path = dir.file("task-log.tsv");
+  runtime::TaskRecord t{.worker = "w1", .kind = "EXTRACT", .leaf = 3, .leaves = 1, .start = 0.1, .end = 0.2};
+  runtime::detail::TaskLogWriter writer(path, volume::Box{{0, 0, 0}, {16, 16, 16}}, 8, 1, 2);
+  writer.add(t);
+  std::this_thread::sleep_for(std::chrono::milliseconds(1100));
+  t.leaf = 4;
+  writer.add(t);
+  // Read while the writer is still open (no close, no destructor): what a SIGKILL would leave.
+  const auto runs = runtime::read_task_log(path);
+  ASSERT_EQ(runs.size(), 1u);
+  ASSERT_EQ(runs[0].tasks.size(), 2u);
+  EXPECT_EQ(runs[0].tasks[1].leaf, 4);
+}
+
 // A manager killed mid-run leaves its task log's last line cut: the resumed run's block starts on a
 // line of its own (the real writer), the cut line is dropped, and both runs read; a line that does
 // not read anywhere else is an error naming it.

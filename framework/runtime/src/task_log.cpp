@@ -15,7 +15,8 @@ TaskLogWriter::TaskLogWriter(const std::filesystem::path& path, const volume::Bo
                              std::size_t batch, std::size_t cores)
     : file_(std::fopen(path.c_str(), "ae")) {
   if (!file_) return;
-  // A buffer of 1 MiB: a line costs the manager a formatted print, no system call.
+  // A buffer of 1 MiB: a line costs the manager a formatted print, and the buffer goes to the file
+  // once a second at most (add()).
   std::setvbuf(file_, nullptr, _IOFBF, std::size_t{1} << 20);
   // A manager killed mid-run leaves its last line cut: this run's lines start on a line of their own.
   {
@@ -47,6 +48,11 @@ void TaskLogWriter::add(const TaskRecord& t) {
       t.start, t.end, t.worker_ms, static_cast<unsigned long long>(t.bytes), static_cast<unsigned long long>(t.rows),
       t.empty, t.cpu_ms, static_cast<unsigned long long>(t.merges), static_cast<unsigned long long>(t.merge_leaves),
       static_cast<unsigned long long>(t.merge_bytes), t.wire_ms, t.merge_ms, t.absorb_ms);
+  const auto now = std::chrono::steady_clock::now();
+  if (now - flushed_ >= std::chrono::seconds(1)) {
+    std::fflush(file_);
+    flushed_ = now;
+  }
 }
 
 void TaskLogWriter::close(const TaskLogRun& r) {

@@ -1,5 +1,6 @@
 #pragma once
 // The manager's writer of the task log (geotandem/runtime/task_log.hpp). Internal to the runtime.
+#include <chrono>
 #include <cstdio>
 #include <filesystem>
 
@@ -18,12 +19,15 @@ public:
   TaskLogWriter& operator=(const TaskLogWriter&) = delete;
 
   bool ok() const { return file_ != nullptr; }
+  // One line; the lines so far reach the file at most a second after they were added (a manager
+  // killed later keeps them for the scale model), without a system call per line.
   void add(const TaskRecord& task);
   // The closing line (see task_log.hpp), then flushed.
   void close(const TaskLogRun& totals);
 
 private:
   std::FILE* file_ = nullptr;
+  std::chrono::steady_clock::time_point flushed_ = std::chrono::steady_clock::now();
 };
 
 } // namespace geotandem::runtime::detail

@@ -23,6 +23,7 @@ if(NOT VTK_FOUND OR NOT meshoptimizer_FOUND)
 endif()
 add_executable(bench_flying_edges_meshopt
   ${CMAKE_CURRENT_SOURCE_DIR}/flying_edges/flying_edges_meshopt.cpp
+  ${CMAKE_CURRENT_SOURCE_DIR}/flying_edges/child_and_ply.cpp
   ${CMAKE_CURRENT_SOURCE_DIR}/flying_edges/noisy_cube.cpp
   ${CMAKE_CURRENT_SOURCE_DIR}/flying_edges/surface_distance.cpp)
 # Imported targets: their headers are SYSTEM includes, so VTK's own warnings do not fail -Werror.

@@ -5,6 +5,7 @@
 #include <sys/resource.h>
 #include <unistd.h>
 
+#include <cmath>
 #include <csignal>
 #include <cstdlib>
 #include <ctime>
@@ -22,6 +23,8 @@
 #include "geotandem/tandem/blocks.hpp"
 #include "geotandem/tandem/marching_cubes.hpp"
 #include "geotandem/tandem/serialize.hpp"
+#include "manager_support.hpp"
+#include "shard_sink.hpp"
 #include "walltime.hpp"
 #include "worker_failure.hpp"
 #include "worker_link.hpp"
@@ -31,43 +34,6 @@ namespace geotandem::runtime {
 namespace {
 
 using Clock = std::chrono::steady_clock;
-
-// This process's CPU time (user + system, every thread), in microseconds.
-std::uint64_t cpu_microseconds() {
-  timespec t{};
-  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);
-  return static_cast<std::uint64_t>(t.tv_sec) * 1000000u + static_cast<std::uint64_t>(t.tv_nsec) / 1000u;
-}
-
-// Finished components to the worker's shard; their index entries wait for the next COMMIT, which
-// goes at the end of the task or, during a long one, every 200 ms (or 256 components): a manager
-// killed mid-task then loses little.
-class ShardSink final : public mesh::ComponentSink {
-public:
-  ShardSink(store::ShardWriter& writer, std::int64_t run, std::function<void()> flush)
-      : writer_(writer), run_(run), flush_(std::move(flush)) {}
-  void commit(const mesh::Component& c) override {
-    store::IndexEntry e;
-    e.key = c.key;
-    e.location = writer_.append(c);
-    e.stats = c.stats;
-    e.run = run_;
-    pending_.push_back(std::move(e));
-    if (pending_.size() >= 256 || Clock::now() - last_ > std::chrono::milliseconds(200)) flush_();
-  }
-  std::vector<store::IndexEntry> take() {
-    last_ = Clock::now();
-    if (!pending_.empty()) writer_.sync();
-    return std::exchange(pending_, {});
-  }
-
-private:
-  store::ShardWriter& writer_;
-  std::int64_t run_;
-  std::function<void()> flush_;
-  std::vector<store::IndexEntry> pending_;
-  Clock::time_point last_ = Clock::now();
-};
 
 class Worker {
 public:
@@ -121,7 +87,7 @@ private:
   bool handle(const Message& m) {
     {
       task_lease_ = m.lease;
-      task_cpu_start_ = cpu_microseconds();
+      task_cpu_start_ = detail::cpu_seconds();
       switch (m.kind) {
       case MessageKind::setup: setup(m); break;
       case MessageKind::extract: extract(m); break;
@@ -209,7 +175,8 @@ private:
     d.kind = MessageKind::done;
     d.lease = task.lease;
     const auto spent = Clock::now() - start;
-    d.number = cpu_microseconds() - task_cpu_start_;
+    d.number =
+        static_cast<std::uint64_t>(std::llround((detail::cpu_seconds() - task_cpu_start_) * 1e6)); // CPU microseconds
     // 5: the same in microseconds, for the task log (a leaf of an empty region takes well under 1 ms).
     d.box[5] = std::chrono::duration_cast<std::chrono::microseconds>(spent).count();
     rusage u{};
@@ -382,13 +349,13 @@ private:
   tandem::TandemOptions options_tandem_;
   std::shared_ptr<const volume::Volume> volume_;
   std::optional<store::ShardWriter> writer_;
-  std::optional<ShardSink> sink_;
+  std::optional<detail::ShardSink> sink_;
   std::unique_ptr<tandem::WorkingSurface> surface_;
   Lease task_lease_;                    // of the task in progress (mid-task COMMITs carry it)
   bool retiring_ = false;               // near its walltime: RETIRE sent
   bool piece_empty_ = false;            // the EXTRACT in progress gave an empty piece
   std::vector<std::byte> batch_merges_; // of the EXTRACT in progress (batch_extract.hpp)
-  std::uint64_t task_cpu_start_ = 0;    // this process's CPU microseconds when the task began
+  double task_cpu_start_ = 0.0;         // this process's CPU seconds when the task began
   tandem::SimplifyCounters totals_;     // of the whole surface, once finished
 };
 
